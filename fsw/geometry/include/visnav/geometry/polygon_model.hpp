@@ -1,0 +1,60 @@
+// Polygon target model (paper sec. II-H): vertices, planar surfaces as vertex lists in counter-clockwise order
+// seen from outside, and stored outward normals. Built and validated once at init; read-only afterwards.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "visnav/core/status.hpp"
+#include "visnav/core/types.hpp"
+
+namespace visnav {
+
+struct ModelSurface {
+  std::string name;
+  std::vector<int> vertex_indices;  ///< >= 3, counter-clockwise seen from outside (right-hand rule = normal)
+  Vec3 normal_m = Vec3::Zero();     ///< outward unit normal in the model frame (stored, sec. II-H)
+  Vec3 centroid_m = Vec3::Zero();
+  double albedo = 0.8;              ///< brightness in [0, 1] for rendering; optional in files
+};
+
+struct ModelEdge {
+  int v0 = -1;
+  int v1 = -1;
+  int surface_left = -1;   ///< surface in which v0 -> v1 runs counter-clockwise
+  int surface_right = -1;  ///< the neighbouring surface sharing the edge, -1 for an open boundary
+};
+
+class PolygonModel {
+ public:
+  /// Validates and builds. Checks: >= 3 vertices per surface, indices in range, no repeated vertex, planarity
+  /// (tolerance 1e-6 relative to size), convex polygon, stored normal within 1 degree of the one implied by
+  /// the vertex order (a zero stored normal means "compute it"), each edge shared by at most two surfaces
+  /// and traversed in opposite directions by them. On error `out` is left untouched.
+  static LoadError build(const std::vector<Vec3>& vertices, std::vector<ModelSurface> surfaces,
+                         PolygonModel& out);
+
+  const std::vector<Vec3>& vertices() const { return m_vertices; }
+  const std::vector<ModelSurface>& surfaces() const { return m_surfaces; }
+  const std::vector<ModelEdge>& edges() const { return m_edges; }
+  /// Edge index for the surface's k-th side (vertex k -> k+1).
+  int surfaceEdge(int surface, int k) const { return m_surface_edges[surface][k]; }
+  int maxSurfaceVertices() const { return m_max_surface_vertices; }
+  /// Radius of the smallest origin-centred sphere holding every vertex [m].
+  double boundingRadius() const { return m_bounding_radius; }
+
+ private:
+  std::vector<Vec3> m_vertices;
+  std::vector<ModelSurface> m_surfaces;
+  std::vector<ModelEdge> m_edges;
+  std::vector<std::vector<int>> m_surface_edges;
+  int m_max_surface_vertices = 0;
+  double m_bounding_radius = 0.0;
+};
+
+/// A flat rectangular plate of width x height [m] in the model x-y plane, normal +z (the paper's 4-edge target).
+PolygonModel makeRectanglePlate(double width_m, double height_m, double albedo = 0.8);
+/// A closed box with half-sizes (hx, hy, hz) [m] centred on the origin.
+PolygonModel makeBox(double hx_m, double hy_m, double hz_m, double albedo = 0.8);
+
+}  // namespace visnav

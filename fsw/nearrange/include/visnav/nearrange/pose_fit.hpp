@@ -1,0 +1,44 @@
+// 6-DOF pose update (paper sec. II-G): Levenberg-Marquardt over the vertex residual of eq. 7, or over the
+// point-to-line residual of every edge point. Works in ideal (undistorted) pixels: CONVENTIONS.md.
+#pragma once
+
+#include "visnav/core/types.hpp"
+#include "visnav/geometry/camera.hpp"
+#include "visnav/geometry/polygon_model.hpp"
+#include "visnav/geometry/pose.hpp"
+#include "visnav/solver/levenberg_marquardt.hpp"
+
+namespace visnav {
+
+/// A measured image position (ideal pixels) of model vertex `vertex` (eq. 6 output).
+struct VertexObservation {
+  int vertex = -1;
+  Vec2 px_ideal = Vec2::Zero();
+};
+
+/// A measured edge point (ideal pixels) lying on model edge `edge`.
+struct EdgePointObservation {
+  int edge = -1;
+  Vec2 px_ideal = Vec2::Zero();
+};
+
+enum class PoseResidual : std::uint8_t { kVertex, kPointToLine };
+
+struct PoseFitResult {
+  LmSummary<6> lm;
+  Mat6 covariance = Mat6::Zero();  ///< over (omega, dt), CONVENTIONS.md; sigma^2 (J^T J)^-1
+  double rms_px = 0.0;             ///< root-mean-square residual at the solution
+};
+
+/// Eq. 7: minimise sum_i |c_i(p) - r_i|^2. `pose` is the start and receives the solution.
+/// `pixel_sigma_px` scales the covariance (a posteriori when <= 0: from the residual).
+bool fitPoseToVertices(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation* obs,
+                       int count, const LmOptions& options, double pixel_sigma_px, Pose& pose,
+                       PoseFitResult& result);
+
+/// Point-to-line: minimise sum_j d(e_j, projected model edge)^2 over every edge inlier point.
+bool fitPoseToEdgePoints(const PinholeCamera& camera, const PolygonModel& model, const EdgePointObservation* obs,
+                         int count, const LmOptions& options, double pixel_sigma_px, Pose& pose,
+                         PoseFitResult& result);
+
+}  // namespace visnav

@@ -1,0 +1,105 @@
+// Levenberg-Marquardt (More 1978, the paper's ref. [7]) on a fixed-size parameter block. The problem
+// accumulates the Gauss-Newton normal equations itself, so the number of residuals can vary per frame
+// without any dynamic matrix: nothing here allocates.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "visnav/core/status.hpp"
+#include "visnav/core/types.hpp"
+
+namespace visnav {
+
+struct LmOptions {
+  int max_iterations = 15;            ///< bounded loop
+  double initial_lambda = 1e-4;       ///< damping relative to diag(H)
+  double max_lambda = 1e8;            ///< give up beyond this damping
+  double step_tolerance = 1e-10;      ///< converged when |delta| < this
+  double cost_tolerance = 1e-12;      ///< converged when relative cost decrease < this
+};
+
+template <int N>
+struct LmSummary {
+  Status status = Status::kNotConverged;
+  int iterations = 0;
+  int residual_count = 0;   ///< scalar residuals in the final linearisation
+  double initial_cost = 0.0;
+  double final_cost = 0.0;  ///< sum of squared residuals at the solution
+  bool converged = false;
+  Eigen::Matrix<double, N, N> information = Eigen::Matrix<double, N, N>::Zero();  ///< J^T J at the solution
+};
+
+/// Problem concept:
+///   int linearize(const State&, Eigen::Matrix<double,N,N>& JtJ, Eigen::Matrix<double,N,1>& Jtr, double& cost)
+///       returns the number of scalar residuals (0 = cannot evaluate);
+///   bool evaluate(const State&, double& cost);
+/// State concept: State boxPlus(const Eigen::Matrix<double,N,1>&) const.
+template <int N, typename State, typename Problem>
+LmSummary<N> solveLevenbergMarquardt(Problem& problem, State& state, const LmOptions& options) {
+  using MatN = Eigen::Matrix<double, N, N>;
+  using VecN = Eigen::Matrix<double, N, 1>;
+  LmSummary<N> summary;
+  MatN jtj;
+  VecN jtr;
+  double cost = 0.0;
+  int residuals = problem.linearize(state, jtj, jtr, cost);
+  if (residuals < N) {
+    summary.status = Status::kNotEnoughData;
+    return summary;
+  }
+  summary.initial_cost = cost;
+  double lambda = options.initial_lambda;
+  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+    summary.iterations = iteration + 1;
+    bool accepted = false;
+    // Inner damping loop, bounded by max_lambda (at most ~log10(max/initial) + 1 rounds).
+    for (int attempt = 0; attempt < 32 && lambda <= options.max_lambda; ++attempt) {
+      MatN damped = jtj;
+      damped.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-12);
+      const Eigen::LDLT<MatN> ldlt(damped);
+      if (ldlt.info() != Eigen::Success) {
+        lambda *= 10.0;
+        continue;
+      }
+      const VecN delta = -ldlt.solve(jtr);
+      if (!delta.allFinite()) {
+        lambda *= 10.0;
+        continue;
+      }
+      const State candidate = state.boxPlus(delta);
+      double candidate_cost = 0.0;
+      if (problem.evaluate(candidate, candidate_cost) && candidate_cost < cost) {
+        const double decrease = (cost - candidate_cost) / std::fmax(cost, 1e-300);
+        state = candidate;
+        lambda = std::fmax(lambda * 0.1, 1e-12);
+        accepted = true;
+        if (delta.norm() < options.step_tolerance || decrease < options.cost_tolerance) {
+          summary.converged = true;
+        }
+        break;
+      }
+      if (delta.norm() < options.step_tolerance) {
+        summary.converged = true;  // no further progress is possible at this precision
+        break;
+      }
+      lambda *= 10.0;
+    }
+    residuals = problem.linearize(state, jtj, jtr, cost);
+    if (residuals < N) {
+      summary.status = Status::kNotEnoughData;
+      return summary;
+    }
+    if (summary.converged || !accepted) {
+      if (!accepted && !summary.converged) summary.converged = lambda > options.max_lambda;
+      break;
+    }
+  }
+  summary.final_cost = cost;
+  summary.residual_count = residuals;
+  summary.information = jtj;
+  summary.status = summary.converged ? Status::kOk : Status::kNotConverged;
+  return summary;
+}
+
+}  // namespace visnav
