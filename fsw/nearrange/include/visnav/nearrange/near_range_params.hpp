@@ -1,0 +1,117 @@
+// Every tunable of the near-range tracker (paper sec. II), with units, ranges and defaults. The generated
+// reference is config/PARAMETERS.md; the values used by a run come from the [nearrange] table of its config.
+#pragma once
+
+#include "visnav/core/param_visitor.hpp"
+
+namespace visnav {
+
+enum class EdgePolarityMode : int { kAny = 0, kLearned = 1 };
+enum class PoseResidualMode : int { kVertex = 0, kPointToLine = 1 };
+
+struct NearRangeParams {
+  // Scanlines (sec. II-D): density is the paper's accuracy/time knob.
+  double scanline_spacing_px = 6.0;
+  int scanline_half_length_px = 7;
+  double vertex_margin_px = 5.0;
+  double min_edge_length_px = 12.0;
+  // Edge point on a scanline (eq. 4, eq. 5 / Algorithm 1).
+  double contrast_delta = 0.2;
+  int texture_bins = 32;
+  bool subpixel = true;
+  int polarity_mode = static_cast<int>(EdgePolarityMode::kLearned);
+  // RANSAC line fit (sec. II-E).
+  double ransac_threshold_px = 0.9;
+  int ransac_iterations = 100;
+  int ransac_seed = 1;
+  int min_points_per_line = 5;
+  double min_inlier_ratio = 0.5;
+  // Pose update (sec. II-G).
+  int pose_residual = static_cast<int>(PoseResidualMode::kVertex);
+  int lm_max_iterations = 15;
+  double pixel_sigma_px = 0.1;
+  double max_rms_px = 1.5;
+  double degraded_rms_px = 0.6;
+  // Surface switching (sec. II-H), viewing angle v of CONVENTIONS.md.
+  double visibility_enter_low_deg = 45.0;
+  double visibility_enter_high_deg = 135.0;
+  double visibility_exit_low_deg = 40.0;
+  double visibility_exit_high_deg = 140.0;
+  // Capacities (memory is sized from these at init).
+  int max_tracked_surfaces = 16;
+  int max_scanlines_per_edge = 256;
+
+  template <typename Visitor>
+  void visit(Visitor& v) {
+    v.real({"nearrange", "scanline_spacing_px", "px", 1.0, 200.0,
+            "distance between neighbouring scanlines along a projected edge (sec. II-D)"},
+           scanline_spacing_px);
+    v.integer({"nearrange", "scanline_half_length_px", "px", 2, 64,
+               "samples on each side of the predicted edge; bounds the tracked inter-frame motion"},
+              scanline_half_length_px);
+    v.real({"nearrange", "vertex_margin_px", "px", 0.0, 100.0,
+            "no scanline closer than this to a projected vertex (it would cross the neighbouring edge)"},
+           vertex_margin_px);
+    v.real({"nearrange", "min_edge_length_px", "px", 2.0, 1000.0,
+            "projected edges shorter than this are not measured"},
+           min_edge_length_px);
+    v.real({"nearrange", "contrast_delta", "-", 0.0, 1.0,
+            "delta of sec. II-D: texture split (eq. 5) when max(w) - mean(w) < delta (brightness 0..1)"},
+           contrast_delta);
+    v.integer({"nearrange", "texture_bins", "count", 2, 256, "brightness classes of Algorithm 1"}, texture_bins);
+    v.boolean({"nearrange", "subpixel", "-", 0, 1,
+               "refine the eq. 4 maximum to sub-pixel with a Gaussian/parabola fit of w"},
+              subpixel);
+    v.enumeration({"nearrange", "polarity_mode", "-", 0, 1,
+                   "any: argmax |w|; learned: argmax of w signed by the polarity seen at the same place "
+                   "of the edge in the last frame (contrast may reverse along an outline)"},
+                  "any|learned", polarity_mode);
+    v.real({"nearrange", "ransac_threshold_px", "px", 0.05, 20.0, "alpha of sec. II-E: consensus distance"},
+           ransac_threshold_px);
+    v.integer({"nearrange", "ransac_iterations", "count", 1, 10000, "n of sec. II-E: hypotheses per line"},
+              ransac_iterations);
+    v.integer({"nearrange", "ransac_seed", "-", 0, 2147483647,
+               "seed of the deterministic generator (same seed and input => same output)"},
+              ransac_seed);
+    v.integer({"nearrange", "min_points_per_line", "count", 2, 1000, "fewer consensus points: line not used"},
+              min_points_per_line);
+    v.real({"nearrange", "min_inlier_ratio", "-", 0.0, 1.0, "smaller consensus/points ratio: line not used"},
+           min_inlier_ratio);
+    v.enumeration({"nearrange", "pose_residual", "-", 0, 1,
+                   "vertex: eq. 7 over intersected vertices; point_to_line: every inlier edge point"},
+                  "vertex|point_to_line", pose_residual);
+    v.integer({"nearrange", "lm_max_iterations", "count", 1, 100, "Levenberg-Marquardt iteration bound"},
+              lm_max_iterations);
+    v.real({"nearrange", "pixel_sigma_px", "px", 0.001, 10.0,
+            "1-sigma measurement noise of an edge point, scales the reported covariance"},
+           pixel_sigma_px);
+    v.real({"nearrange", "max_rms_px", "px", 0.01, 100.0, "pose residual above this: status lost"},
+           max_rms_px);
+    v.real({"nearrange", "degraded_rms_px", "px", 0.01, 100.0, "pose residual above this: status degraded"},
+           degraded_rms_px);
+    v.real({"nearrange", "visibility_enter_low_deg", "deg", 0.0, 90.0, "sec. II-H: start tracking above"},
+           visibility_enter_low_deg);
+    v.real({"nearrange", "visibility_enter_high_deg", "deg", 90.0, 180.0, "sec. II-H: start tracking below"},
+           visibility_enter_high_deg);
+    v.real({"nearrange", "visibility_exit_low_deg", "deg", 0.0, 90.0, "sec. II-H: stop tracking below"},
+           visibility_exit_low_deg);
+    v.real({"nearrange", "visibility_exit_high_deg", "deg", 90.0, 180.0, "sec. II-H: stop tracking above"},
+           visibility_exit_high_deg);
+    v.integer({"nearrange", "max_tracked_surfaces", "count", 1, 256, "capacity: surfaces tracked at once"},
+              max_tracked_surfaces);
+    v.integer({"nearrange", "max_scanlines_per_edge", "count", 4, 4096, "capacity: scanlines per edge"},
+              max_scanlines_per_edge);
+  }
+
+  /// Cross-field checks the per-field ranges cannot express. Returns nullptr when valid.
+  const char* crossCheck() const {
+    if (!(visibility_exit_low_deg <= visibility_enter_low_deg))
+      return "visibility_exit_low_deg must be <= visibility_enter_low_deg (hysteresis)";
+    if (!(visibility_enter_high_deg <= visibility_exit_high_deg))
+      return "visibility_enter_high_deg must be <= visibility_exit_high_deg (hysteresis)";
+    if (!(degraded_rms_px <= max_rms_px)) return "degraded_rms_px must be <= max_rms_px";
+    return nullptr;
+  }
+};
+
+}  // namespace visnav

@@ -1,0 +1,150 @@
+// The near-range 6-DOF edge tracker (paper sec. II): project the model with the predicted pose, measure
+// edge points on scanlines across every edge of every tracked surface, fit lines by RANSAC, intersect them
+// into vertices and fit the pose by Levenberg-Marquardt. All memory is sized in init(); track() allocates
+// nothing, throws nothing and every loop in it is bounded by a capacity fixed at init.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "visnav/core/bounded_buffer.hpp"
+#include "visnav/core/image_view.hpp"
+#include "visnav/core/rng.hpp"
+#include "visnav/core/status.hpp"
+#include "visnav/geometry/camera.hpp"
+#include "visnav/geometry/line2d.hpp"
+#include "visnav/geometry/polygon_model.hpp"
+#include "visnav/geometry/pose.hpp"
+#include "visnav/nearrange/edge_detector.hpp"
+#include "visnav/nearrange/near_range_params.hpp"
+#include "visnav/nearrange/pose_fit.hpp"
+#include "visnav/nearrange/ransac_line.hpp"
+#include "visnav/nearrange/surface_visibility.hpp"
+
+namespace visnav {
+
+enum class TrackStatus : std::uint8_t {
+  kTracking = 0,  ///< every measured line consistent, residual small
+  kDegraded = 1,  ///< a pose was fitted but some lines failed or the residual is elevated
+  kLost = 2,      ///< no trustworthy pose: the reported pose is the prediction, covariance inflated
+};
+const char* toString(TrackStatus status);
+
+/// Why a frame is not kTracking (bit set; several may hold).
+enum TrackFlag : std::uint32_t {
+  kFlagNoSurface = 1U << 0,        ///< no surface passes the visibility hysteresis
+  kFlagTooFewLines = 1U << 1,      ///< not enough usable lines for the chosen residual
+  kFlagLineRejected = 1U << 2,     ///< at least one line failed its point count / inlier ratio
+  kFlagSolverFailed = 1U << 3,     ///< LM did not converge or had too few residuals
+  kFlagResidualHigh = 1U << 4,     ///< rms above degraded_rms_px
+  kFlagResidualTooHigh = 1U << 5,  ///< rms above max_rms_px
+  kFlagOutOfImage = 1U << 6,       ///< projected model leaves the image
+  kFlagTextureFallback = 1U << 7,  ///< some edge points came from the texture split (information)
+};
+
+/// Per-stage execution time of one track() call [us] (zeros when no clock is set).
+struct NearRangeTiming {
+  double project_us = 0.0;
+  double scan_us = 0.0;
+  double ransac_us = 0.0;
+  double pose_us = 0.0;
+  double total_us = 0.0;
+};
+
+struct NearRangeResult {
+  TrackStatus status = TrackStatus::kLost;
+  std::uint32_t flags = 0;
+  Pose pose;                       ///< T_c_m; the prediction when lost
+  Mat6 covariance = Mat6::Zero();  ///< over (omega, dt), CONVENTIONS.md
+  double quality = 0.0;            ///< [0, 1]: share of usable lines x mean inlier ratio x residual term
+  int tracked_surfaces = 0;
+  std::uint64_t tracked_surface_mask = 0;  ///< bit i: surface i (first 64 surfaces)
+  int lines_total = 0;
+  int lines_used = 0;
+  int edge_points = 0;
+  int inlier_points = 0;
+  int texture_points = 0;
+  int vertices = 0;
+  double rms_px = 0.0;
+  int lm_iterations = 0;
+  NearRangeTiming timing;
+};
+
+/// What the tracker saw on the last frame, for overlays (paper fig. 3). Views into tracker memory.
+struct EdgeDebug {
+  int model_edge = -1;
+  int first_point = 0;  ///< range [first_point, first_point + point_count) in the point arrays
+  int point_count = 0;
+  bool line_ok = false;
+  Line2d line;          ///< fitted line, ideal pixels
+  Vec2 predicted_a_px;  ///< projected model edge endpoints, raw pixels
+  Vec2 predicted_b_px;
+};
+struct ScanPointDebug {
+  Vec2 scan_centre_px;  ///< raw pixels
+  Vec2 scan_normal;     ///< unit, raw pixels
+  Vec2 edge_px;         ///< measured edge point, raw pixels (valid when method != kNone)
+  EdgeMethod method = EdgeMethod::kNone;
+  bool inlier = false;
+  std::int8_t polarity = 0;       ///< brightness step sign along scan_normal (outwards)
+  std::uint8_t polarity_bin = 0;  ///< position along the edge, for the learned polarity
+};
+
+using MonotonicClockNs = std::int64_t (*)();
+
+class NearRangeTracker {
+ public:
+  /// Allocates every buffer from the model and params. Returns an error naming the offending setting.
+  LoadError init(const PinholeCamera& camera, const PolygonModel& model, const NearRangeParams& params);
+  /// Per-stage timing source (e.g. CLOCK_MONOTONIC). nullptr (default) reports zero timings.
+  void setClock(MonotonicClockNs clock) { m_clock = clock; }
+  /// Forget surface visibility and polarity history (e.g. after re-acquisition).
+  void reset();
+
+  /// One frame. `predicted` is the pose to project with (the last pose or a filter prediction);
+  /// `frame_index` seeds RANSAC so the same frame gives the same result.
+  Status track(const MonoImage& image, const Pose& predicted, std::uint64_t frame_index, NearRangeResult& out);
+
+  const NearRangeParams& params() const { return m_params; }
+  const PolygonModel& model() const { return m_model; }
+  const PinholeCamera& camera() const { return m_camera; }
+  const BoundedBuffer<EdgeDebug>& lastEdges() const { return m_edges; }
+  const BoundedBuffer<ScanPointDebug>& lastScanPoints() const { return m_scan_points; }
+
+ private:
+  struct Stamp;
+  double elapsedUs(std::int64_t& since) const;
+  void updateSurfaces(const Pose& predicted);
+  void measureEdge(const MonoImage& image, const Pose& predicted, int model_edge, NearRangeResult& out);
+  void fitLines(std::uint64_t frame_index, NearRangeResult& out);
+  int collectVertices();
+  int collectEdgePoints();
+  void finishLost(const Pose& predicted, NearRangeResult& out) const;
+
+  static constexpr int kPolarityBins = 16;
+
+  PinholeCamera m_camera;
+  PolygonModel m_model;
+  NearRangeParams m_params;
+  EdgeSearchParams m_edge_params;
+  VisibilityThresholds m_visibility;
+  MonotonicClockNs m_clock = nullptr;
+  Pcg32 m_rng;
+
+  BoundedBuffer<std::uint8_t> m_surface_tracked;  ///< hysteresis state per surface
+  BoundedBuffer<std::uint8_t> m_edge_selected;    ///< per model edge, this frame
+  BoundedBuffer<std::int8_t> m_polarity;          ///< per model edge x kPolarityBins, last frame
+  BoundedBuffer<std::int8_t> m_polarity_next;
+  BoundedBuffer<int> m_edge_slot;                 ///< model edge -> index in m_edges, -1 if not measured
+
+  BoundedBuffer<EdgeDebug> m_edges;
+  BoundedBuffer<ScanPointDebug> m_scan_points;
+  BoundedBuffer<Vec2> m_points_ideal;              ///< edge points in ideal pixels, parallel to m_scan_points
+  BoundedBuffer<std::uint8_t> m_inlier;
+  BoundedBuffer<Vec2> m_scratch;
+  BoundedBuffer<VertexObservation> m_vertex_obs;
+  BoundedBuffer<EdgePointObservation> m_edge_obs;
+  bool m_first_frame = true;
+};
+
+}  // namespace visnav

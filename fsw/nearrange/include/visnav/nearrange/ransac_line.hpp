@@ -1,0 +1,29 @@
+// RANSAC line fit on the edge points of one edge (paper sec. II-E, Fischler & Bolles [3]), then a total
+// least-squares refit on the largest consensus set. Deterministic: the caller seeds the generator.
+#pragma once
+
+#include <cstdint>
+
+#include "visnav/core/rng.hpp"
+#include "visnav/geometry/line2d.hpp"
+
+namespace visnav {
+
+struct RansacParams {
+  double threshold_px = 0.9;  ///< alpha
+  int iterations = 100;       ///< n
+};
+
+struct RansacResult {
+  bool ok = false;
+  Line2d line;
+  int inliers = 0;
+  double rms_px = 0.0;  ///< of the inliers about the refitted line
+};
+
+/// `inlier` (size count) receives the consensus flags of the final line; `scratch` (size count) is work
+/// space owned by the caller. No allocation.
+RansacResult fitLineRansac(const Vec2* points, int count, const RansacParams& params, Pcg32& rng,
+                           std::uint8_t* inlier, Vec2* scratch);
+
+}  // namespace visnav

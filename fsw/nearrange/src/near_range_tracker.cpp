@@ -1,0 +1,314 @@
+#include "visnav/nearrange/near_range_tracker.hpp"
+
+#include <cmath>
+
+namespace visnav {
+
+const char* toString(TrackStatus status) {
+  switch (status) {
+    case TrackStatus::kTracking: return "tracking";
+    case TrackStatus::kDegraded: return "degraded";
+    case TrackStatus::kLost: return "lost";
+  }
+  return "unknown";
+}
+
+LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel& model,
+                                 const NearRangeParams& params) {
+  if (const char* problem = params.crossCheck()) return LoadError::failure(std::string("nearrange: ") + problem);
+  if (params.scanline_half_length_px * 2 + 1 > kMaxScanlineSamples)
+    return LoadError::failure("nearrange: scanline_half_length_px exceeds the supported maximum of 64");
+  if (camera.width() <= 0 || camera.height() <= 0) return LoadError::failure("nearrange: camera has no size");
+  if (model.edges().empty()) return LoadError::failure("nearrange: model has no edges");
+  m_camera = camera;
+  m_model = model;
+  m_params = params;
+  m_edge_params.contrast_delta = params.contrast_delta;
+  m_edge_params.texture_bins = params.texture_bins;
+  m_edge_params.subpixel = params.subpixel;
+  m_visibility = {params.visibility_enter_low_deg, params.visibility_enter_high_deg,
+                  params.visibility_exit_low_deg, params.visibility_exit_high_deg};
+
+  const std::size_t surfaces = model.surfaces().size();
+  const std::size_t edges = model.edges().size();
+  const std::size_t points = edges * static_cast<std::size_t>(params.max_scanlines_per_edge);
+  m_surface_tracked.reserve(surfaces);
+  m_edge_selected.reserve(edges);
+  m_polarity.reserve(edges * kPolarityBins);
+  m_polarity_next.reserve(edges * kPolarityBins);
+  m_edge_slot.reserve(edges);
+  m_edges.reserve(edges);
+  m_scan_points.reserve(points);
+  m_points_ideal.reserve(points);
+  m_inlier.reserve(params.max_scanlines_per_edge);
+  m_scratch.reserve(params.max_scanlines_per_edge);
+  m_vertex_obs.reserve(surfaces * static_cast<std::size_t>(model.maxSurfaceVertices()));
+  m_edge_obs.reserve(points);
+  for (std::size_t i = 0; i < surfaces; ++i) m_surface_tracked.push(0);
+  for (std::size_t i = 0; i < edges; ++i) {
+    m_edge_selected.push(0);
+    m_edge_slot.push(-1);
+  }
+  for (std::size_t i = 0; i < edges * kPolarityBins; ++i) {
+    m_polarity.push(0);
+    m_polarity_next.push(0);
+  }
+  reset();
+  return LoadError::success();
+}
+
+void NearRangeTracker::reset() {
+  for (auto& tracked : m_surface_tracked) tracked = 0;
+  for (auto& p : m_polarity) p = 0;
+  m_first_frame = true;
+}
+
+double NearRangeTracker::elapsedUs(std::int64_t& since) const {
+  if (m_clock == nullptr) return 0.0;
+  const std::int64_t now = m_clock();
+  const double us = static_cast<double>(now - since) * 1e-3;
+  since = now;
+  return us;
+}
+
+void NearRangeTracker::updateSurfaces(const Pose& predicted) {
+  const auto& surfaces = m_model.surfaces();
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    const SurfaceView view = viewSurface(surfaces[s], predicted);
+    // On the first frame there is no history: enter thresholds decide.
+    const bool was = !m_first_frame && m_surface_tracked[s] != 0U;
+    m_surface_tracked[s] = updateVisibility(was, view, m_visibility) ? 1U : 0U;
+  }
+  m_first_frame = false;
+}
+
+void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted, int e, NearRangeResult& out) {
+  const ModelEdge& edge = m_model.edges()[e];
+  const Vec3 a_c = predicted.transform(m_model.vertices()[edge.v0]);
+  const Vec3 b_c = predicted.transform(m_model.vertices()[edge.v1]);
+  EdgeDebug slot;
+  slot.model_edge = e;
+  slot.first_point = static_cast<int>(m_scan_points.size());
+  if (!m_camera.project(a_c, slot.predicted_a_px) || !m_camera.project(b_c, slot.predicted_b_px)) {
+    out.flags |= kFlagOutOfImage;
+    return;
+  }
+  // Outward side: away from the projected centroid of a tracked surface owning this edge.
+  const int owner = (edge.surface_left >= 0 && m_surface_tracked[edge.surface_left] != 0U) ? edge.surface_left
+                                                                                             : edge.surface_right;
+  Vec2 centroid_px;
+  if (owner < 0 || !m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px)) return;
+
+  const double length_px = (slot.predicted_b_px - slot.predicted_a_px).norm();
+  m_edge_slot[e] = static_cast<int>(m_edges.size());
+  if (length_px >= m_params.min_edge_length_px) {
+    const double usable_px = length_px - 2.0 * m_params.vertex_margin_px;
+    int count = usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0;
+    if (count > m_params.max_scanlines_per_edge) count = m_params.max_scanlines_per_edge;
+    const int half = m_params.scanline_half_length_px;
+    double samples[kMaxScanlineSamples];
+    for (int i = 0; i < count; ++i) {
+      // Scanlines spread evenly over the edge between the vertex margins.
+      const double along_px = count == 1 ? 0.5 * length_px
+                                         : m_params.vertex_margin_px + usable_px * i / static_cast<double>(count - 1);
+      const double t = along_px / length_px;
+      const Vec3 p_c = a_c + t * (b_c - a_c);
+      const Vec3 q_c = p_c + 1e-3 * (b_c - a_c);
+      ScanPointDebug sp;
+      Vec2 ahead;
+      if (!m_camera.project(p_c, sp.scan_centre_px) || !m_camera.project(q_c, ahead)) continue;
+      const Vec2 tangent = ahead - sp.scan_centre_px;
+      if (tangent.squaredNorm() < 1e-18) continue;
+      sp.scan_normal = Vec2(-tangent.y(), tangent.x()).normalized();
+      if (sp.scan_normal.dot(sp.scan_centre_px - centroid_px) < 0.0) sp.scan_normal = -sp.scan_normal;
+      const int bin = static_cast<int>(t * kPolarityBins) < kPolarityBins ? static_cast<int>(t * kPolarityBins)
+                                                                          : kPolarityBins - 1;
+      sp.polarity_bin = static_cast<std::uint8_t>(bin);
+      const int expected = m_params.polarity_mode == static_cast<int>(EdgePolarityMode::kLearned)
+                               ? m_polarity[e * kPolarityBins + bin]
+                               : 0;
+      if (!sampleScanline(image, sp.scan_centre_px, sp.scan_normal, half, samples)) continue;
+      const EdgeHit hit = findEdge(samples, 2 * half + 1, m_edge_params, expected);
+      if (hit.method == EdgeMethod::kNone) continue;
+      sp.method = hit.method;
+      sp.polarity = static_cast<std::int8_t>(hit.polarity);
+      sp.edge_px = sp.scan_centre_px + hit.offset_px * sp.scan_normal;
+      if (hit.method == EdgeMethod::kTexture) ++out.texture_points;
+      if (!m_scan_points.push(sp)) break;
+      m_points_ideal.push(m_camera.undistortPixel(sp.edge_px));
+    }
+  }
+  slot.point_count = static_cast<int>(m_scan_points.size()) - slot.first_point;
+  out.edge_points += slot.point_count;
+  m_edges.push(slot);
+}
+
+void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out) {
+  const RansacParams ransac{m_params.ransac_threshold_px, m_params.ransac_iterations};
+  double ratio_sum = 0.0;
+  for (EdgeDebug& slot : m_edges) {
+    ++out.lines_total;
+    if (slot.point_count < m_params.min_points_per_line) {
+      out.flags |= kFlagLineRejected;
+      continue;
+    }
+    // Seeded per frame and edge: identical input gives identical output, whatever ran before.
+    m_rng.reseed(static_cast<std::uint64_t>(m_params.ransac_seed) ^ (frame_index * 0x9E3779B97F4A7C15ULL),
+                 static_cast<std::uint64_t>(slot.model_edge));
+    const RansacResult fit = fitLineRansac(m_points_ideal.data() + slot.first_point, slot.point_count, ransac,
+                                           m_rng, m_inlier.data(), m_scratch.data());
+    const double ratio = fit.ok ? static_cast<double>(fit.inliers) / slot.point_count : 0.0;
+    slot.line = fit.line;
+    slot.line_ok = fit.ok && fit.inliers >= m_params.min_points_per_line && ratio >= m_params.min_inlier_ratio;
+    if (!slot.line_ok) {
+      out.flags |= kFlagLineRejected;
+      continue;
+    }
+    ++out.lines_used;
+    out.inlier_points += fit.inliers;
+    ratio_sum += ratio;
+    // Remember each inlier's polarity at its place on the edge for the next frame.
+    int votes[kPolarityBins] = {};
+    for (int i = 0; i < slot.point_count; ++i) {
+      ScanPointDebug& sp = m_scan_points[slot.first_point + i];
+      sp.inlier = m_inlier[i] != 0U;
+      if (sp.inlier) votes[sp.polarity_bin] += sp.polarity;
+    }
+    for (int b = 0; b < kPolarityBins; ++b)
+      m_polarity_next[slot.model_edge * kPolarityBins + b] =
+          static_cast<std::int8_t>(votes[b] > 0 ? 1 : (votes[b] < 0 ? -1 : 0));
+  }
+  out.quality = out.lines_total > 0 && out.lines_used > 0
+                    ? (static_cast<double>(out.lines_used) / out.lines_total) * (ratio_sum / out.lines_used)
+                    : 0.0;
+}
+
+int NearRangeTracker::collectVertices() {
+  m_vertex_obs.clear();
+  const auto& surfaces = m_model.surfaces();
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    if (m_surface_tracked[s] == 0U) continue;
+    const auto& idx = surfaces[s].vertex_indices;
+    const int n = static_cast<int>(idx.size());
+    for (int k = 0; k < n; ++k) {
+      // Vertex idx[k] joins side k-1 (idx[k-1] -> idx[k]) and side k (idx[k] -> idx[k+1]).
+      const int in_slot = m_edge_slot[m_model.surfaceEdge(static_cast<int>(s), (k + n - 1) % n)];
+      const int out_slot = m_edge_slot[m_model.surfaceEdge(static_cast<int>(s), k)];
+      if (in_slot < 0 || out_slot < 0 || !m_edges[in_slot].line_ok || !m_edges[out_slot].line_ok) continue;
+      VertexObservation obs;
+      obs.vertex = idx[k];
+      // Eq. 6 (Cramer form); nearly parallel neighbours give no vertex.
+      if (!intersect(m_edges[in_slot].line, m_edges[out_slot].line, obs.px_ideal, 0.05)) continue;
+      m_vertex_obs.push(obs);
+    }
+  }
+  return static_cast<int>(m_vertex_obs.size());
+}
+
+int NearRangeTracker::collectEdgePoints() {
+  m_edge_obs.clear();
+  for (const EdgeDebug& slot : m_edges) {
+    if (!slot.line_ok) continue;
+    for (int i = 0; i < slot.point_count; ++i) {
+      if (!m_scan_points[slot.first_point + i].inlier) continue;
+      m_edge_obs.push({slot.model_edge, m_points_ideal[slot.first_point + i]});
+    }
+  }
+  return static_cast<int>(m_edge_obs.size());
+}
+
+void NearRangeTracker::finishLost(const Pose& predicted, NearRangeResult& out) const {
+  out.status = TrackStatus::kLost;
+  out.pose = predicted;
+  out.covariance = Mat6::Identity() * 1e6;  // "do not trust": a prediction, not a measurement
+  out.quality = 0.0;
+}
+
+Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, std::uint64_t frame_index,
+                               NearRangeResult& out) {
+  out = NearRangeResult{};
+  std::int64_t start = m_clock != nullptr ? m_clock() : 0;
+  std::int64_t stamp = start;
+  if (image.empty() || image.width() != m_camera.width() || image.height() != m_camera.height()) {
+    finishLost(predicted, out);
+    return Status::kInvalidArgument;
+  }
+
+  updateSurfaces(predicted);
+  m_edges.clear();
+  m_scan_points.clear();
+  m_points_ideal.clear();
+  const auto& edges = m_model.edges();
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const ModelEdge& edge = edges[e];
+    const bool left = edge.surface_left >= 0 && m_surface_tracked[edge.surface_left] != 0U;
+    const bool right = edge.surface_right >= 0 && m_surface_tracked[edge.surface_right] != 0U;
+    m_edge_selected[e] = (left || right) ? 1U : 0U;
+    m_edge_slot[e] = -1;
+  }
+  for (std::size_t s = 0; s < m_surface_tracked.size(); ++s) {
+    if (m_surface_tracked[s] == 0U) continue;
+    ++out.tracked_surfaces;
+    if (s < 64) out.tracked_surface_mask |= 1ULL << s;
+  }
+  out.timing.project_us = elapsedUs(stamp);
+  if (out.tracked_surfaces == 0) {
+    out.flags |= kFlagNoSurface;
+    finishLost(predicted, out);
+    out.timing.total_us = elapsedUs(start);
+    return Status::kOk;
+  }
+
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (m_edge_selected[e] != 0U) measureEdge(image, predicted, static_cast<int>(e), out);
+  if (out.texture_points > 0) out.flags |= kFlagTextureFallback;
+  out.timing.scan_us = elapsedUs(stamp);
+
+  for (std::size_t i = 0; i < m_polarity_next.size(); ++i) m_polarity_next[i] = 0;
+  fitLines(frame_index, out);
+  out.timing.ransac_us = elapsedUs(stamp);
+
+  Pose pose = predicted;
+  PoseFitResult fit;
+  bool solved = false;
+  const LmOptions lm{m_params.lm_max_iterations};
+  out.vertices = collectVertices();
+  if (m_params.pose_residual == static_cast<int>(PoseResidualMode::kPointToLine)) {
+    const int n = collectEdgePoints();
+    if (out.lines_used >= 4 && n >= 8)
+      solved = fitPoseToEdgePoints(m_camera, m_model, m_edge_obs.data(), n, lm, m_params.pixel_sigma_px, pose, fit);
+    else
+      out.flags |= kFlagTooFewLines;
+  } else if (out.lines_used >= 4 && out.vertices >= 4) {
+    solved = fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), out.vertices, lm, m_params.pixel_sigma_px,
+                               pose, fit);
+  } else {
+    out.flags |= kFlagTooFewLines;
+  }
+  out.timing.pose_us = elapsedUs(stamp);
+  out.rms_px = fit.rms_px;
+  out.lm_iterations = fit.lm.iterations;
+
+  if ((out.flags & kFlagTooFewLines) == 0U && !solved) out.flags |= kFlagSolverFailed;
+  if (solved && fit.rms_px > m_params.max_rms_px) out.flags |= kFlagResidualTooHigh;
+  if (solved && fit.rms_px > m_params.degraded_rms_px) out.flags |= kFlagResidualHigh;
+  if (solved && !(pose.t_c_m.z() > 0.0)) out.flags |= kFlagOutOfImage;
+
+  constexpr std::uint32_t kLostFlags = kFlagTooFewLines | kFlagSolverFailed | kFlagResidualTooHigh | kFlagOutOfImage;
+  if ((out.flags & kLostFlags) != 0U) {
+    finishLost(predicted, out);
+  } else {
+    out.pose = pose;
+    out.covariance = fit.covariance;
+    const double r = fit.rms_px / m_params.degraded_rms_px;
+    out.quality *= 1.0 / (1.0 + r * r);
+    out.status = (out.flags & (kFlagLineRejected | kFlagResidualHigh)) != 0U ? TrackStatus::kDegraded
+                                                                              : TrackStatus::kTracking;
+    // Only a trusted frame teaches the polarity of the next one.
+    for (std::size_t i = 0; i < m_polarity.size(); ++i) m_polarity[i] = m_polarity_next[i];
+  }
+  out.timing.total_us = elapsedUs(start);
+  return Status::kOk;
+}
+
+}  // namespace visnav

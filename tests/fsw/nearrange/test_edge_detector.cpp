@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "visnav/core/rng.hpp"
+#include "visnav/nearrange/edge_detector.hpp"
+
+namespace visnav {
+namespace {
+
+/// Scanline across an ideal step at `edge` (in samples from sample 0's centre), each sample the mean of its
+/// unit cell (area coverage), blurred by a 3-tap [0.25 0.5 0.25] kernel like a mild optical PSF.
+void stepProfile(double edge, double low, double high, int count, double* out) {
+  double raw[kMaxScanlineSamples];
+  for (int k = 0; k < count; ++k) {
+    const double cover = std::clamp(k + 0.5 - edge, 0.0, 1.0);  // share of cell [k-0.5,k+0.5) beyond edge
+    raw[k] = low + (high - low) * cover;
+  }
+  for (int k = 0; k < count; ++k) {
+    const double l = raw[std::max(k - 1, 0)], r = raw[std::min(k + 1, count - 1)];
+    out[k] = 0.25 * l + 0.5 * raw[k] + 0.25 * r;
+  }
+}
+
+TEST(EdgeDetector, GradientEdgeIsSubPixelAccurate) {
+  constexpr int kCount = 15;
+  double s[kCount];
+  double worst = 0.0;
+  for (double edge = 5.0; edge <= 9.0; edge += 0.05) {
+    stepProfile(edge, 0.1, 0.8, kCount, s);
+    const EdgeHit hit = findEdge(s, kCount, EdgeSearchParams{}, 0);
+    ASSERT_EQ(hit.method, EdgeMethod::kGradient);
+    EXPECT_EQ(hit.polarity, 1);
+    // offset is relative to the centre sample (index 7)
+    worst = std::max(worst, std::fabs(hit.offset_px - (edge - 7.0)));
+  }
+  EXPECT_LT(worst, 0.08);
+}
+
+TEST(EdgeDetector, PixelLevelModeIsQuantised) {
+  constexpr int kCount = 15;
+  double s[kCount];
+  stepProfile(7.3, 0.1, 0.8, kCount, s);
+  EdgeSearchParams params;
+  params.subpixel = false;
+  const EdgeHit hit = findEdge(s, kCount, params, 0);
+  EXPECT_DOUBLE_EQ(hit.offset_px - std::floor(hit.offset_px), 0.5);
+}
+
+TEST(EdgeDetector, ExpectedPolaritySelectsTheMatchingStep) {
+  // Bright -> dark at 4.0 (strong), dark -> bright at 10.0 (weaker but still above delta).
+  constexpr int kCount = 15;
+  double s[kCount];
+  for (int k = 0; k < kCount; ++k) s[k] = k < 4 ? 0.9 : (k < 10 ? 0.1 : 0.45);
+  EXPECT_EQ(findEdge(s, kCount, EdgeSearchParams{}, 0).polarity, -1);
+  const EdgeHit rising = findEdge(s, kCount, EdgeSearchParams{}, +1);
+  EXPECT_EQ(rising.polarity, 1);
+  EXPECT_NEAR(rising.offset_px, 9.5 - 7.0, 0.3);
+}
+
+TEST(EdgeDetector, WeakContrastFallsBackToTextureSplit) {
+  // Same mean brightness, different texture: uniform grey vs. strongly alternating pixels.
+  constexpr int kCount = 21;
+  double s[kCount];
+  Pcg32 rng(7);
+  for (int k = 0; k < kCount; ++k) s[k] = k < 12 ? 0.5 + 0.01 * rng.uniform() : (k % 2 == 0 ? 0.35 : 0.62);
+  const EdgeHit hit = findEdge(s, kCount, EdgeSearchParams{}, 0);
+  EXPECT_EQ(hit.method, EdgeMethod::kTexture);
+  EXPECT_NEAR(hit.offset_px + 10.0, 11.5, 1.01);
+}
+
+TEST(EdgeDetector, TextureLikelihoodIsDirichletMultinomial) {
+  // All samples in one bin: p = prod_k (1 + k) / (bins + k).
+  double s[6] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
+  double out[6];
+  textureLogLikelihoodPrefix(s, 6, 32, out);
+  double expected = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    expected += std::log((1.0 + k) / (32.0 + k));
+    EXPECT_NEAR(out[k], expected, 1e-12);
+  }
+}
+
+TEST(EdgeDetector, TextureSplitFindsMeanShiftToo) {
+  double s[20];
+  for (int k = 0; k < 20; ++k) s[k] = k < 8 ? 0.2 : 0.7;
+  EXPECT_DOUBLE_EQ(textureSplit(s, 20, 32), 7.5);
+}
+
+TEST(EdgeDetector, BilinearSamplingUsesPixelCentresAtHalf) {
+  std::uint8_t pixels[4 * 4] = {0, 100, 200, 250, 0, 100, 200, 250, 0, 100, 200, 250, 0, 100, 200, 250};
+  const MonoImage image = MonoImage::from8(ImageView8(pixels, 4, 4));
+  double v = 0.0;
+  ASSERT_TRUE(sampleBrightness(image, Vec2(1.5, 1.5), v));
+  EXPECT_NEAR(v, 100.0 / 255.0, 1e-12);
+  ASSERT_TRUE(sampleBrightness(image, Vec2(2.0, 2.2), v));
+  EXPECT_NEAR(v, 150.0 / 255.0, 1e-12);
+  EXPECT_FALSE(sampleBrightness(image, Vec2(0.2, 1.0), v));
+  std::uint16_t deep[4] = {0, 1023, 0, 1023};
+  const MonoImage image16 = MonoImage::from16(ImageView16(deep, 2, 2), 1023);
+  ASSERT_TRUE(sampleBrightness(image16, Vec2(1.0, 1.0), v));
+  EXPECT_NEAR(v, 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace visnav

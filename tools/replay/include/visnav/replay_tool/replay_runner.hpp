@@ -1,0 +1,45 @@
+// visnav-replay's engine: the flight pipeline over a recorded sequence as fast as the CPU allows, on the
+// sequence's own timestamps (simulated clock). A library so tests run exactly what the tool runs.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "visnav/core/status.hpp"
+#include "visnav/geometry/pose.hpp"
+#include "visnav/nearrange/near_range_params.hpp"
+
+namespace visnav::replay_tool {
+
+struct ReplayOptions {
+  std::string sequence_dir;
+  std::string config_path;   ///< optional: TOML config ([nearrange] table); built-in defaults otherwise
+  std::string camera_path;   ///< optional: overrides the sequence's camera
+  std::string model_path;    ///< optional: overrides the sequence's model
+  std::string output_csv;    ///< required
+  std::string overlay_dir;   ///< optional: PNG overlays (paper fig. 3) go here
+  int overlay_every = 10;    ///< every N-th frame gets an overlay
+  bool have_initial_pose = false;
+  Pose initial_pose;         ///< else the sequence's first truth row
+  int max_frames = -1;       ///< -1: all
+  bool progress = false;     ///< progress bar on stderr
+  bool timing = true;        ///< false: timing columns are 0 (byte-identical CSVs across runs)
+  bool override_residual = false;
+  PoseResidualMode residual = PoseResidualMode::kVertex;
+};
+
+struct ReplaySummary {
+  int frames = 0;
+  int tracking = 0;
+  int degraded = 0;
+  int lost = 0;
+  double median_total_us = 0.0;
+  double p95_total_us = 0.0;
+};
+
+LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary);
+
+/// "x,y,z,yaw_deg,pitch_deg,roll_deg" -> pose. False on malformed text.
+bool parsePoseArgument(const std::string& text, Pose& out);
+
+}  // namespace visnav::replay_tool
