@@ -1,0 +1,131 @@
+// Binary PGM (P5) reading into a caller-owned buffer and writing. readPgm's success path builds no strings
+// and allocates nothing beyond what fopen itself needs: it runs once per replayed frame.
+#include <cstdio>
+#include <cstring>
+
+#include "visnav/replay/sequence.hpp"
+
+namespace visnav::replay {
+namespace {
+
+struct File {
+  std::FILE* f = nullptr;
+  ~File() {
+    if (f != nullptr) std::fclose(f);
+  }
+};
+
+bool isSpace(int c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
+
+// Reads one unsigned header integer, skipping whitespace and '#' comments. Consumes the single whitespace
+// character that terminates the number (for maxval this is the one byte before the raster).
+bool readHeaderInt(std::FILE* f, long& out) {
+  int c = std::fgetc(f);
+  for (;;) {
+    if (c == '#') {
+      while (c != '\n' && c != EOF) c = std::fgetc(f);
+    } else if (isSpace(c)) {
+      c = std::fgetc(f);
+    } else {
+      break;
+    }
+  }
+  if (c < '0' || c > '9') return false;
+  long value = 0;
+  while (c >= '0' && c <= '9') {
+    value = value * 10 + (c - '0');
+    if (value > 1000000000L) return false;
+    c = std::fgetc(f);
+  }
+  if (!isSpace(c)) return false;
+  out = value;
+  return true;
+}
+
+LoadError fail(const std::string& path, const char* problem) {
+  return LoadError::failure(path + ": " + problem);
+}
+
+}  // namespace
+
+LoadError readPgm(const std::string& path, std::uint8_t* buffer, std::size_t capacity_bytes, int& width,
+                  int& height, int& maxval) {
+  File file;
+  file.f = std::fopen(path.c_str(), "rb");
+  if (file.f == nullptr) return fail(path, "cannot open file");
+  if (std::fgetc(file.f) != 'P' || std::fgetc(file.f) != '5') return fail(path, "not a binary PGM (P5)");
+  long w = 0;
+  long h = 0;
+  long m = 0;
+  if (!readHeaderInt(file.f, w) || !readHeaderInt(file.f, h) || !readHeaderInt(file.f, m)) {
+    return fail(path, "malformed PGM header");
+  }
+  if (w <= 0 || h <= 0 || w > 65536 || h > 65536) return fail(path, "invalid PGM width/height");
+  if (m <= 0 || m > 65535) return fail(path, "PGM maxval must be in [1, 65535]");
+  const std::size_t bytes_per_sample = m > 255 ? 2U : 1U;
+  const std::size_t samples = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  const std::size_t bytes = samples * bytes_per_sample;
+  if (buffer == nullptr || bytes > capacity_bytes) return fail(path, "image does not fit the buffer");
+  if (std::fread(buffer, 1, bytes, file.f) != bytes) return fail(path, "truncated PGM raster");
+  if (bytes_per_sample == 2U) {
+    // Big-endian on disk -> host order, in place, via memcpy to stay alignment- and aliasing-safe.
+    for (std::size_t i = 0; i < samples; ++i) {
+      const std::uint8_t* p = buffer + 2U * i;
+      const auto value = static_cast<std::uint16_t>((p[0] << 8U) | p[1]);
+      std::memcpy(buffer + 2U * i, &value, sizeof value);
+    }
+  }
+  width = static_cast<int>(w);
+  height = static_cast<int>(h);
+  maxval = static_cast<int>(m);
+  return LoadError::success();
+}
+
+LoadError writePgm8(const std::string& path, const ImageView8& image) {
+  if (image.empty()) return fail(path, "empty image");
+  File file;
+  file.f = std::fopen(path.c_str(), "wb");
+  if (file.f == nullptr) return fail(path, "cannot create file");
+  std::fprintf(file.f, "P5\n%d %d\n255\n", image.width(), image.height());
+  const auto w = static_cast<std::size_t>(image.width());
+  for (int y = 0; y < image.height(); ++y) {
+    if (std::fwrite(image.row(y), 1, w, file.f) != w) return fail(path, "write failed");
+  }
+  if (std::fflush(file.f) != 0) return fail(path, "write failed");
+  return LoadError::success();
+}
+
+LoadError writePgm16(const std::string& path, const ImageView16& image, std::uint16_t maxval) {
+  if (image.empty()) return fail(path, "empty image");
+  if (maxval == 0U) return fail(path, "maxval must be >= 1");
+  File file;
+  file.f = std::fopen(path.c_str(), "wb");
+  if (file.f == nullptr) return fail(path, "cannot create file");
+  std::fprintf(file.f, "P5\n%d %d\n%u\n", image.width(), image.height(), static_cast<unsigned>(maxval));
+  // 16-bit PGM is big-endian; a PGM with maxval < 256 has 1-byte samples, so those are written narrow.
+  const bool wide = maxval > 255U;
+  std::uint8_t chunk[4096];
+  const std::size_t per_chunk = wide ? sizeof chunk / 2U : sizeof chunk;
+  for (int y = 0; y < image.height(); ++y) {
+    const std::uint16_t* row = image.row(y);
+    for (std::size_t x0 = 0; x0 < static_cast<std::size_t>(image.width()); x0 += per_chunk) {
+      std::size_t n = static_cast<std::size_t>(image.width()) - x0;
+      if (n > per_chunk) n = per_chunk;
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::uint16_t v = row[x0 + i] > maxval ? maxval : row[x0 + i];
+        if (wide) {
+          chunk[2U * i] = static_cast<std::uint8_t>(v >> 8U);
+          chunk[2U * i + 1U] = static_cast<std::uint8_t>(v & 0xFFU);
+        } else {
+          chunk[i] = static_cast<std::uint8_t>(v);
+        }
+      }
+      const std::size_t bytes = wide ? 2U * n : n;
+      if (std::fwrite(chunk, 1, bytes, file.f) != bytes) return fail(path, "write failed");
+    }
+  }
+  if (std::fflush(file.f) != 0) return fail(path, "write failed");
+  return LoadError::success();
+}
+
+}  // namespace visnav::replay
