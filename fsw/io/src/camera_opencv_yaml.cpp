@@ -87,6 +87,11 @@ class YamlReader {
     if (m_error.ok) m_error = LoadError::failure(m_path + ":" + std::to_string(line) + ": " + problem);
     return false;
   }
+  // A missing top-level key has no line of its own.
+  bool missing(const char* key) {
+    if (m_error.ok) m_error = LoadError::failure(m_path + ": missing key '" + key + "'");
+    return false;
+  }
 
   bool parseEntries(const std::vector<Line>& lines, std::map<std::string, Entry>& entries) {
     if (lines.empty() || lines[0].number != 1 || lines[0].text.compare(0, 8, "%YAML:1.") != 0)
@@ -131,7 +136,7 @@ class YamlReader {
 
   bool requiredInt(const std::map<std::string, Entry>& entries, const char* key, int& out) {
     const auto it = entries.find(key);
-    if (it == entries.end()) return fail(1, std::string("missing key '") + key + "'");
+    if (it == entries.end()) return missing(key);
     if (!it->second.children.empty())
       return fail(it->second.children[0].number, std::string("unexpected indented line under '") + key + "'");
     return integer(it->second.value, it->second.line, key, 1, 1 << 20, out);
@@ -141,7 +146,7 @@ class YamlReader {
   bool matrix(const std::map<std::string, Entry>& entries, const char* key, Matrix& m,
               std::vector<int>& lines) {
     const auto it = entries.find(key);
-    if (it == entries.end()) return fail(1, std::string("missing key '") + key + "'");
+    if (it == entries.end()) return missing(key);
     const Entry& e = it->second;
     const std::string name(key);
     if (e.value != "!!opencv-matrix")

@@ -52,6 +52,20 @@ LoadError writeTextFile(const std::string& path, const std::string& text) {
   return LoadError::success();
 }
 
+LoadError buildError(const std::string& path, const std::string& message,
+                     const std::vector<int>& surface_lines) {
+  const std::string prefix = "surface ";
+  if (message.compare(0, prefix.size(), prefix) == 0) {
+    const std::size_t end = message.find_first_not_of("0123456789", prefix.size());
+    if (end != prefix.size() && end != std::string::npos && end - prefix.size() < 9) {
+      const std::size_t index = std::stoul(message.substr(prefix.size(), end - prefix.size()));
+      if (index < surface_lines.size() && surface_lines[index] > 0)
+        return LoadError::failure(path + ":" + std::to_string(surface_lines[index]) + ": " + message);
+    }
+  }
+  return LoadError::failure(path + ": " + message);
+}
+
 bool checkIntrinsics(const CameraIntrinsics& k, std::string& problem) {
   const Distortion& d = k.distortion;
   if (k.width_px <= 0 || k.height_px <= 0) {

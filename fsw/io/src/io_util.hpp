@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "visnav/core/status.hpp"
 #include "visnav/core/types.hpp"
@@ -24,6 +25,11 @@ bool readFile(const std::string& path, std::string& text);
 std::string formatDouble(double value);
 /// Writes `text` to `path` (truncating). Failure message names the file.
 LoadError writeTextFile(const std::string& path, const std::string& text);
+
+/// Prefixes a PolygonModel::build message with the file and, when it starts with "surface <i>", with the
+/// line where that surface is defined (`surface_lines[i]`, 0 if unknown).
+LoadError buildError(const std::string& path, const std::string& message,
+                     const std::vector<int>& surface_lines);
 
 /// Range checks shared by the camera writers: sizes > 0, fx, fy > 0, everything finite. False + `problem`.
 bool checkIntrinsics(const CameraIntrinsics& k, std::string& problem);

@@ -177,7 +177,8 @@ void orientOutwards(const std::vector<Vec3>& points, std::vector<ModelSurface>& 
   }
 }
 
-bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>& surfaces) {
+bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>& surfaces,
+              std::vector<int>& surface_lines) {
   Token header;
   if (!p.next("header 'V1'", header)) return false;
   if (header.text != "V1")
@@ -232,6 +233,7 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
     if (!p.trailingParams(line, &s.name)) return false;
     if (!chainLines(p, face_line, surfaces.size(), face_segments, s.vertex_indices)) return false;
     surfaces.push_back(std::move(s));
+    surface_lines.push_back(face_line);
   }
 
   if (!p.integer("number of faces from points", 0, kMaxCount, num_faces, &line) ||
@@ -240,6 +242,7 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
   for (long f = 0; f < num_faces; ++f) {
     long n = 0;
     if (!p.integer("number of points of face " + std::to_string(f), 3, kMaxCount, n, &line)) return false;
+    surface_lines.push_back(line);
     ModelSurface s;
     for (long k = 0; k < n; ++k) {
       long index = 0;
@@ -270,11 +273,12 @@ LoadError loadModelCao(const std::string& path, PolygonModel& out) {
   CaoParser parser(path, tokenize(text));
   std::vector<Vec3> points;
   std::vector<ModelSurface> surfaces;
-  if (!parseCao(parser, points, surfaces)) return parser.error();
+  std::vector<int> surface_lines;
+  if (!parseCao(parser, points, surfaces, surface_lines)) return parser.error();
   orientOutwards(points, surfaces);
   PolygonModel built;
   if (LoadError e = PolygonModel::build(points, std::move(surfaces), built); !e.ok)
-    return LoadError::failure(path + ": " + e.message);
+    return detail::buildError(path, e.message, surface_lines);
   out = std::move(built);
   return LoadError::success();
 }

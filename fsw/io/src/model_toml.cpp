@@ -93,6 +93,7 @@ LoadError loadModelToml(const std::string& path, PolygonModel& out) {
 
   std::vector<Vec3> vertices;
   std::vector<ModelSurface> surfaces;
+  std::vector<int> surface_lines;
   const toml::table* model = nullptr;
   bool ok = check.onlyKeys(root, "top level", {"model", "surface"}) &&
             check.table(root, "top level", "model", true, model) &&
@@ -116,6 +117,7 @@ LoadError loadModelToml(const std::string& path, PolygonModel& out) {
         ModelSurface surface;
         ok = readSurface(check, *arr[s].as_table(), s, vertices.size(), surface);
         surfaces.push_back(std::move(surface));
+        surface_lines.push_back(static_cast<int>(arr[s].source().begin.line));
       }
     }
   }
@@ -123,7 +125,7 @@ LoadError loadModelToml(const std::string& path, PolygonModel& out) {
 
   PolygonModel built;
   if (LoadError e = PolygonModel::build(vertices, std::move(surfaces), built); !e.ok)
-    return LoadError::failure(path + ": " + e.message);
+    return detail::buildError(path, e.message, surface_lines);
   out = std::move(built);
   return LoadError::success();
 }
