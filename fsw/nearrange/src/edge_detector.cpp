@@ -83,7 +83,7 @@ void textureLogLikelihoodPrefix(const double* samples, int count, int bins, doub
   }
 }
 
-double textureSplit(const double* samples, int count, int bins) {
+double textureSplit(const double* samples, int count, int bins, double* log_gain) {
   double prefix[kMaxScanlineSamples];
   double suffix[kMaxScanlineSamples];
   double reversed[kMaxScanlineSamples];
@@ -100,6 +100,7 @@ double textureSplit(const double* samples, int count, int bins) {
       best_n = n;
     }
   }
+  if (log_gain != nullptr) *log_gain = best - prefix[count - 1];
   return best_n + 0.5;
 }
 
@@ -133,7 +134,9 @@ EdgeHit findEdge(const double* samples, int count, const EdgeSearchParams& param
     return hit;
   }
   // Contrast too weak: texture segmentation (eq. 5, Algorithm 1).
-  const double split = textureSplit(samples, count, params.texture_bins);
+  double gain = 0.0;
+  const double split = textureSplit(samples, count, params.texture_bins, &gain);
+  if (gain < params.texture_min_log_gain) return hit;  // no edge on this scanline
   hit.method = EdgeMethod::kTexture;
   hit.offset_px = split - centre_index;
   hit.strength = 0.0;

@@ -25,6 +25,7 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_params = params;
   m_edge_params.contrast_delta = params.contrast_delta;
   m_edge_params.texture_bins = params.texture_bins;
+  m_edge_params.texture_min_log_gain = params.texture_min_log_gain;
   m_edge_params.subpixel = params.subpixel;
   m_visibility = {params.visibility_enter_low_deg, params.visibility_enter_high_deg,
                   params.visibility_exit_low_deg, params.visibility_exit_high_deg};

@@ -70,6 +70,13 @@ TEST(EdgeDetector, WeakContrastFallsBackToTextureSplit) {
   EXPECT_NEAR(hit.offset_px + 10.0, 11.5, 1.01);
 }
 
+TEST(EdgeDetector, UniformScanlineHasNoEdge) {
+  double s[15];
+  Pcg32 rng(9);
+  for (double& v : s) v = 0.3 + 0.02 * rng.uniform();
+  EXPECT_EQ(findEdge(s, 15, EdgeSearchParams{}, 0).method, EdgeMethod::kNone);
+}
+
 TEST(EdgeDetector, TextureLikelihoodIsDirichletMultinomial) {
   // All samples in one bin: p = prod_k (1 + k) / (bins + k).
   double s[6] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};

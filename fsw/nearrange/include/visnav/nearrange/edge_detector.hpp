@@ -24,6 +24,9 @@ enum class EdgeMethod : std::uint8_t { kNone = 0, kGradient = 1, kTexture = 2 };
 struct EdgeSearchParams {
   double contrast_delta = 0.2;  ///< delta of sec. II-D
   int texture_bins = 32;        ///< n_bins of Algorithm 1
+  /// A texture split must beat "one texture everywhere" by this log-likelihood margin [nats], else the
+  /// scanline has no edge (a uniform patch must not produce a confident edge point).
+  double texture_min_log_gain = 1.0;
   bool subpixel = true;
 };
 
@@ -43,7 +46,8 @@ EdgeHit findEdge(const double* samples, int count, const EdgeSearchParams& param
 void textureLogLikelihoodPrefix(const double* samples, int count, int bins, double* out);
 
 /// Eq. 5: split index n maximising f(S, 0, n) * f(S, n + 1, end); returns the edge position in samples
-/// (between n and n + 1, i.e. n + 0.5). At least 2 samples on each side.
-double textureSplit(const double* samples, int count, int bins);
+/// (between n and n + 1, i.e. n + 0.5). At least 2 samples on each side. `log_gain` (optional) receives
+/// log f(split) - log f(S, 0, end): how much better two textures explain the samples than one.
+double textureSplit(const double* samples, int count, int bins, double* log_gain = nullptr);
 
 }  // namespace visnav

@@ -18,6 +18,7 @@ struct NearRangeParams {
   // Edge point on a scanline (eq. 4, eq. 5 / Algorithm 1).
   double contrast_delta = 0.2;
   int texture_bins = 32;
+  double texture_min_log_gain = 1.0;
   bool subpixel = true;
   int polarity_mode = static_cast<int>(EdgePolarityMode::kLearned);
   // RANSAC line fit (sec. II-E).
@@ -59,6 +60,10 @@ struct NearRangeParams {
             "delta of sec. II-D: texture split (eq. 5) when max(w) - mean(w) < delta (brightness 0..1)"},
            contrast_delta);
     v.integer({"nearrange", "texture_bins", "count", 2, 256, "brightness classes of Algorithm 1"}, texture_bins);
+    v.real({"nearrange", "texture_min_log_gain", "nats", 0.0, 1000.0,
+            "a texture split must explain the scanline better than one texture by this log-likelihood margin, "
+            "else the scanline yields no point (a uniform patch has no edge)"},
+           texture_min_log_gain);
     v.boolean({"nearrange", "subpixel", "-", 0, 1,
                "refine the eq. 4 maximum to sub-pixel with a Gaussian/parabola fit of w"},
               subpixel);

@@ -1,0 +1,138 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "tracker_fixture.hpp"
+
+namespace visnav {
+namespace {
+
+using test::plateAt;
+using test::renderFrame;
+using test::vgaCamera;
+
+class TrackerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    model = makeRectanglePlate(2.3, 1.8);
+    ASSERT_TRUE(renderer.init(vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    ASSERT_TRUE(tracker.init(vgaCamera(), model, NearRangeParams{}).ok);
+  }
+  PolygonModel model;
+  synthetic::Renderer renderer;
+  NearRangeTracker tracker;
+};
+
+TEST_F(TrackerTest, FollowsAnApproachWithSubPixelAccuracy) {
+  Pose pose = plateAt(20.0);
+  double worst_range_rel = 0.0;
+  double worst_lateral_m = 0.0;
+  double worst_roll_deg = 0.0;
+  double worst_tilt_deg = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    const double d = 20.0 - 0.2 * i;
+    const Pose truth = plateAt(d, 0.1 * std::sin(0.1 * i), 2.0 * std::sin(0.05 * i), 1.5 * std::cos(0.07 * i));
+    const test::RenderedFrame frame = renderFrame(renderer, truth, 1000U + static_cast<std::uint64_t>(i));
+    NearRangeResult r;
+    ASSERT_EQ(tracker.track(frame.image(), pose, static_cast<std::uint64_t>(i), r), Status::kOk);
+    ASSERT_NE(r.status, TrackStatus::kLost) << "frame " << i;
+    pose = r.pose;
+    const Vec6 err = truth.boxMinus(r.pose);  // (omega_c, dt_c): axes of the camera frame
+    worst_range_rel = std::max(worst_range_rel, std::fabs(err[5]) / d);
+    worst_lateral_m = std::max(worst_lateral_m, err.segment<2>(3).norm());
+    worst_roll_deg = std::max(worst_roll_deg, std::fabs(err[2]) * kDegPerRad);
+    worst_tilt_deg = std::max(worst_tilt_deg, err.head<2>().norm() * kDegPerRad);
+    EXPECT_EQ(r.lines_total, 4);
+    EXPECT_EQ(r.vertices, 4);
+  }
+  // Bounds from the geometry of a 2.3 m plate at 8-20 m seen with fx = 1000 px: a 0.25 px vertex error
+  // moves the range by ~0.5 %, the boresight rotation by ~0.15 deg and the out-of-plane tilt by ~3 deg.
+  EXPECT_LT(worst_range_rel, 0.01);
+  EXPECT_LT(worst_lateral_m, 0.01);
+  EXPECT_LT(worst_roll_deg, 0.2);
+  EXPECT_LT(worst_tilt_deg, 4.0);
+}
+
+TEST_F(TrackerTest, ConvergesFromAnOffsetPrediction) {
+  const Pose truth = plateAt(12.0, 0.2, 3.0, -2.0);
+  const test::RenderedFrame frame = renderFrame(renderer, truth, 7);
+  Vec6 offset;
+  offset << 0.01, -0.01, 0.02, 0.05, -0.04, 0.3;  // ~3-4 px of image motion
+  Pose pose = truth.boxPlus(offset);
+  NearRangeResult r;
+  for (int k = 0; k < 3; ++k) {
+    tracker.track(frame.image(), pose, 1, r);
+    pose = r.pose;
+  }
+  EXPECT_EQ(r.status, TrackStatus::kTracking);
+  EXPECT_LT(truth.boxMinus(r.pose).tail<3>().norm(), 0.05);
+}
+
+TEST_F(TrackerTest, EmptySceneIsLostAndReportsThePrediction) {
+  // The paper's noisy background with the target far outside the field of view.
+  const test::RenderedFrame empty = renderFrame(renderer, plateAt(10.0, 50.0), 5);
+  const Pose predicted = plateAt(10.0);
+  NearRangeResult r;
+  tracker.track(empty.image(), predicted, 0, r);
+  EXPECT_EQ(r.status, TrackStatus::kLost);
+  EXPECT_NE(r.flags & kFlagTooFewLines, 0U);
+  EXPECT_EQ(r.pose.t_c_m, predicted.t_c_m);
+  EXPECT_GT(r.covariance(5, 5), 1e3);
+  EXPECT_EQ(r.quality, 0.0);
+}
+
+TEST_F(TrackerTest, WrongImageSizeIsAnError) {
+  std::vector<std::uint8_t> small(100U * 100U, 0U);
+  NearRangeResult r;
+  EXPECT_EQ(tracker.track(MonoImage::from8(ImageView8(small.data(), 100, 100)), plateAt(10.0), 0, r),
+            Status::kInvalidArgument);
+  EXPECT_EQ(r.status, TrackStatus::kLost);
+}
+
+TEST_F(TrackerTest, BackFacingPlateIsNotTracked) {
+  const Pose away = Pose::fromYpr({}, Vec3(0, 0, 10));
+  const test::RenderedFrame frame = renderFrame(renderer, plateAt(10.0), 3);
+  NearRangeResult r;
+  tracker.track(frame.image(), away, 0, r);
+  EXPECT_EQ(r.status, TrackStatus::kLost);
+  EXPECT_NE(r.flags & kFlagNoSurface, 0U);
+}
+
+TEST_F(TrackerTest, SameInputGivesBitIdenticalOutput) {
+  const Pose truth = plateAt(15.0, 0.1, 1.0, 1.0);
+  const test::RenderedFrame frame = renderFrame(renderer, truth, 11);
+  NearRangeTracker other;
+  ASSERT_TRUE(other.init(vgaCamera(), model, NearRangeParams{}).ok);
+  NearRangeResult a, b;
+  tracker.track(frame.image(), truth, 5, a);
+  other.track(frame.image(), truth, 5, b);
+  EXPECT_EQ(std::memcmp(a.pose.t_c_m.data(), b.pose.t_c_m.data(), sizeof(double) * 3), 0);
+  EXPECT_EQ(std::memcmp(a.pose.R_c_m.data(), b.pose.R_c_m.data(), sizeof(double) * 9), 0);
+  EXPECT_EQ(std::memcmp(a.covariance.data(), b.covariance.data(), sizeof(double) * 36), 0);
+}
+
+TEST_F(TrackerTest, PointToLineResidualAlsoTracks) {
+  NearRangeParams params;
+  params.pose_residual = static_cast<int>(PoseResidualMode::kPointToLine);
+  NearRangeTracker p2l;
+  ASSERT_TRUE(p2l.init(vgaCamera(), model, params).ok);
+  const Pose truth = plateAt(10.0, -0.2, -2.0, 3.0);
+  const test::RenderedFrame frame = renderFrame(renderer, truth, 13);
+  NearRangeResult r;
+  p2l.track(frame.image(), truth, 0, r);
+  EXPECT_EQ(r.status, TrackStatus::kTracking);
+  EXPECT_LT(truth.boxMinus(r.pose).tail<3>().norm(), 0.05);
+}
+
+TEST_F(TrackerTest, InitRejectsBrokenHysteresis) {
+  NearRangeParams params;
+  params.visibility_exit_low_deg = 50.0;  // above enter_low: no hysteresis
+  NearRangeTracker t;
+  const LoadError e = t.init(vgaCamera(), model, params);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("visibility_exit_low_deg"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace visnav
