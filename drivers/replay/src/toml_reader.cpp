@@ -171,6 +171,27 @@ void TomlReader::getVector(const std::string& key, double* out, int n, bool requ
   for (int i = 0; i < n; ++i) out[i] = values[i];
 }
 
+void TomlReader::getArray(const std::string& key, std::vector<double>& out, std::size_t max_size,
+                          bool required) {
+  if (!m_error.ok) return;
+  m_used.insert(key);
+  const toml::node* node = m_impl->find(key);
+  if (node == nullptr) {
+    if (required) fail(key, "missing required key");
+    return;
+  }
+  const auto* a = node->as_array();
+  if (a == nullptr || a->size() > max_size) {
+    return fail(key, "expected an array of at most " + std::to_string(max_size) + " numbers");
+  }
+  std::vector<double> values(a->size());
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    if (!numberOf(*a->get(i), values[i]))
+      return fail(key, "element " + std::to_string(i) + " is not a finite number");
+  }
+  out = std::move(values);
+}
+
 LoadError TomlReader::finish() {
   if (!m_error.ok) return m_error;
   std::vector<std::pair<std::string, int>> keys;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "visnav/core/status.hpp"
 
@@ -31,6 +32,9 @@ class TomlReader {
   void getString(const std::string& key, std::string& out, bool required = false);
   /// Array of exactly n numbers.
   void getVector(const std::string& key, double* out, int n, bool required = false);
+  /// Array of numbers of any length (at most max_size).
+  void getArray(const std::string& key, std::vector<double>& out, std::size_t max_size,
+                bool required = false);
   bool has(const std::string& key) const;
   /// True while no error has been recorded (use before value checks that depend on earlier keys).
   bool good() const { return m_error.ok; }

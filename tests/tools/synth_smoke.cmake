@@ -1,0 +1,18 @@
+# Smoke test: visnav-synth renders 5 frames of approach_ci.toml and writes a complete sequence directory.
+# Invoked as: cmake -DSYNTH=<exe> -DSCENARIO=<toml> -DOUT=<dir> -P synth_smoke.cmake
+file(REMOVE_RECURSE "${OUT}")
+execute_process(COMMAND "${SYNTH}" --scenario "${SCENARIO}" --out "${OUT}" --frames 5 RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "visnav-synth failed with ${rc}")
+endif()
+foreach(f sequence.toml camera.toml model.toml frames.csv truth.csv frames/000000.pgm frames/000004.pgm)
+  if(NOT EXISTS "${OUT}/${f}")
+    message(FATAL_ERROR "missing ${OUT}/${f}")
+  endif()
+endforeach()
+file(STRINGS "${OUT}/truth.csv" rows)
+list(LENGTH rows n)
+if(NOT n EQUAL 6)
+  message(FATAL_ERROR "truth.csv has ${n} lines, expected header + 5")
+endif()
+file(REMOVE_RECURSE "${OUT}")
