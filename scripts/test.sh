@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# The README's second command: build and run every test.
+#  1. debug preset (warnings as errors, ASan + UBSan): every unit and integration test;
+#  2. release preset (the flight flags): every test again, including the accuracy scenarios (synthetic
+#     sequences rendered, replayed and scored against the issue's bounds) and the allocation counts with
+#     malloc counted too (ASan owns malloc in the debug build).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+cmake --preset debug >/dev/null
+cmake --build --preset debug
+ctest --preset debug -LE accuracy
+cmake --preset release >/dev/null
+cmake --build --preset release
+ctest --preset release
