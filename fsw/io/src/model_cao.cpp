@@ -1,4 +1,5 @@
 // ViSP .cao polygon model import, format V1 (subset documented in fsw/io/README.md).
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
