@@ -29,7 +29,7 @@ struct NearRangeParams {
   double min_inlier_ratio = 0.5;
   // Pose update (sec. II-G).
   int pose_residual = static_cast<int>(PoseResidualMode::kVertex);
-  int lm_max_iterations = 15;
+  int lm_max_iterations = 50;
   double pixel_sigma_px = 0.1;
   double max_rms_px = 1.5;
   double degraded_rms_px = 0.6;

@@ -12,11 +12,14 @@
 namespace visnav {
 
 struct LmOptions {
-  int max_iterations = 15;            ///< bounded loop
+  int max_iterations = 50;            ///< bounded loop
   double initial_lambda = 1e-4;       ///< damping relative to diag(H)
   double max_lambda = 1e8;            ///< give up beyond this damping
-  double step_tolerance = 1e-10;      ///< converged when |delta| < this
-  double cost_tolerance = 1e-12;      ///< converged when relative cost decrease < this
+  /// Converged when |delta| < this. Parameters are radians and metres: 1e-8 is far below anything a camera
+  /// can resolve, and still reachable in double precision on the ill-conditioned far end (25 m) of the range.
+  double step_tolerance = 1e-8;
+  double cost_tolerance = 1e-10;      ///< converged when the relative cost decrease is below this
+  double gradient_tolerance = 1e-12;  ///< converged when max |J^T r| is below this (already at the minimum)
 };
 
 template <int N>
@@ -50,7 +53,8 @@ LmSummary<N> solveLevenbergMarquardt(Problem& problem, State& state, const LmOpt
   }
   summary.initial_cost = cost;
   double lambda = options.initial_lambda;
-  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+  if (jtr.template lpNorm<Eigen::Infinity>() < options.gradient_tolerance) summary.converged = true;
+  for (int iteration = 0; iteration < options.max_iterations && !summary.converged; ++iteration) {
     summary.iterations = iteration + 1;
     bool accepted = false;
     // Inner damping loop, bounded by max_lambda (at most ~log10(max/initial) + 1 rounds).
@@ -90,6 +94,7 @@ LmSummary<N> solveLevenbergMarquardt(Problem& problem, State& state, const LmOpt
       summary.status = Status::kNotEnoughData;
       return summary;
     }
+    if (jtr.template lpNorm<Eigen::Infinity>() < options.gradient_tolerance) summary.converged = true;
     if (summary.converged || !accepted) {
       if (!accepted && !summary.converged) summary.converged = lambda > options.max_lambda;
       break;
