@@ -126,6 +126,8 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
   times.reserve(static_cast<std::size_t>(total));
   const bool tty = options.progress && isatty(STDERR_FILENO) != 0;
   LoadError failure;
+  bool have_previous = false;
+  Vec3 previous_t = Vec3::Zero();
   for (int i = 0; i < total; ++i) {
     const replay::FrameEntry& entry = sequence.frames[static_cast<std::size_t>(i)];
     int w = 0, h = 0, maxval = 0;
@@ -145,9 +147,14 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
                      : MonoImage::from8(ImageView8(buffer.get(), w, h));
     NearRangeResult result;
     tracker.track(image, pose, static_cast<std::uint64_t>(entry.frame), result);
-    // Without the filter of the navigation layer, the next prediction is the last pose (the lost case
-    // reports the prediction itself, so the tracker keeps looking where the target was).
+    // Stand-in for the navigation filter (issue 3): constant-velocity prediction of the translation from
+    // the last two measured frames; the attitude is held (at 25 m its frame-to-frame noise would only be
+    // amplified by extrapolation). After a lost frame the prediction is the last pose.
+    const bool measured = result.status != TrackStatus::kLost;
     pose = result.pose;
+    if (measured && have_previous) pose.t_c_m += result.pose.t_c_m - previous_t;
+    have_previous = measured;
+    previous_t = result.pose.t_c_m;
     writeRow(csv, entry.frame, entry.timestamp_ns, result);
     ++summary.frames;
     summary.tracking += result.status == TrackStatus::kTracking ? 1 : 0;

@@ -12,7 +12,7 @@ enum class PoseResidualMode : int { kVertex = 0, kPointToLine = 1 };
 struct NearRangeParams {
   // Scanlines (sec. II-D): density is the paper's accuracy/time knob.
   double scanline_spacing_px = 6.0;
-  int scanline_half_length_px = 7;
+  int scanline_half_length_px = 10;
   double vertex_margin_px = 5.0;
   double min_edge_length_px = 12.0;
   // Edge point on a scanline (eq. 4, eq. 5 / Algorithm 1).
