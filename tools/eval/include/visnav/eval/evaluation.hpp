@@ -1,0 +1,82 @@
+// Scores a replay against truth: per-frame errors, worst-case envelopes, summary and requirement checks.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "visnav/eval/envelope.hpp"
+#include "visnav/eval/metrics.hpp"
+#include "visnav/eval/replay_csv.hpp"
+
+namespace visnav::eval {
+
+struct TruthPose {
+  std::int64_t frame = 0;
+  std::int64_t timestamp_ns = 0;
+  Pose pose;  ///< T_c_m
+};
+
+struct FrameRecord {
+  std::int64_t frame = 0;
+  std::int64_t timestamp_ns = 0;
+  double distance_m = 0.0;         ///< truth t_c_m.z
+  TrackStatus status = TrackStatus::kMissing;
+  bool scored = false;             ///< tracked row with a pose: errors below are meaningful
+  AxisValues error{};              ///< estimate - truth [m | deg]
+  double attitude_error_deg = 0.0;
+  std::vector<FrameEnvelope> envelopes;  ///< one per envelope size; invalid when not computed (stride)
+  std::vector<std::uint8_t> inside;      ///< per envelope size: scored and |error| <= envelope on all axes
+};
+
+struct EnvelopeSummary {
+  double delta_px = 0.0;
+  int frames_with_envelope = 0;  ///< denominator of the inside fraction
+  int inside_count = 0;
+  double inside_fraction = 0.0;
+  AxisValues max_envelope{};
+  int failed_solves = 0;
+};
+
+struct EvaluationSummary {
+  int frames_evaluated = 0;  ///< truth frames
+  int frames_tracking = 0;
+  int frames_degraded = 0;
+  int frames_lost = 0;       ///< status lost
+  int frames_missing = 0;    ///< no replay row
+  int frames_init = 0;       ///< status init: not scored, not a loss
+  int track_loss_count = 0;  ///< lost + missing
+  int unmatched_replay_rows = 0;
+  std::array<ErrorStats, kAxisCount> axes{};
+  ErrorStats attitude{};
+  std::vector<EnvelopeSummary> envelopes;
+};
+
+struct EvaluationOptions {
+  std::vector<double> envelope_px{1.0, 0.25};
+  int envelope_stride = 1;  ///< envelope on every n-th truth frame (index in the truth list)
+  EnvelopeOptions envelope;
+};
+
+struct Evaluation {
+  std::vector<double> envelope_px;
+  std::vector<FrameRecord> frames;  ///< truth order
+  EvaluationSummary summary;
+};
+
+Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model, const std::vector<TruthPose>& truth,
+                    const std::vector<ReplayRow>& replay, const EvaluationOptions& options);
+
+struct RequirementResult {
+  std::string name;
+  bool passed = true;
+  std::string detail;
+};
+
+/// Index of `delta_px` in the evaluation's envelope sizes (-1 when not computed).
+int envelopeIndex(const Evaluation& evaluation, double delta_px);
+
+/// "inside 0.25 px envelope (all 6 axes): 99.70% (1994/2000)".
+std::string insideLine(const EnvelopeSummary& s);
+
+}  // namespace visnav::eval

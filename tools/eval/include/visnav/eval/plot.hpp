@@ -1,0 +1,27 @@
+// Paper fig. 6 style plot: six panels (x, y, z, yaw, pitch, roll) of error vs. distance (truth t_c_m.z),
+// errors as dots, worst-case envelopes as +- curves, lost frames as grey ticks on the bottom axis.
+#pragma once
+
+#include <string>
+
+#include "visnav/core/status.hpp"
+#include "visnav/eval/canvas.hpp"
+#include "visnav/eval/evaluation.hpp"
+
+namespace visnav::eval {
+
+struct PlotOptions {
+  int panel_width_px = 620;
+  int panel_height_px = 400;
+  std::string title = "pose error vs distance";
+};
+
+/// Renders into a new canvas of 3 x 2 panels plus a legend strip.
+Canvas renderErrorPlot(const Evaluation& evaluation, const PlotOptions& options = {});
+LoadError writeErrorPlot(const std::string& path, const Evaluation& evaluation, const PlotOptions& options = {});
+
+/// Tick positions at 1, 2 or 5 x 10^k covering [lo, hi] with about `target` intervals; `decimals` receives
+/// the number of decimals that label them exactly.
+std::vector<double> niceTicks(double lo, double hi, int target, int& decimals);
+
+}  // namespace visnav::eval

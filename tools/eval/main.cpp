@@ -1,0 +1,159 @@
+// visnav-eval: scores a visnav-replay CSV against a sequence's truth (README.md in this folder).
+// Exit codes: 0 all requested requirements hold, 1 a requirement failed, 2 bad input.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "visnav/eval/evaluation.hpp"
+#include "visnav/eval/plot.hpp"
+#include "visnav/eval/replay_csv.hpp"
+#include "visnav/eval/report.hpp"
+#include "visnav/replay/sequence.hpp"
+
+namespace {
+
+constexpr int kExitFail = 1;
+constexpr int kExitBadInput = 2;
+
+const char* const kUsage =
+    "usage: visnav-eval --sequence DIR --replay replay.csv [--plot errors.png] [--csv per_frame_errors.csv]\n"
+    "                   [--json summary.json] [--envelope-px 1.0,0.25] [--envelope-stride N]\n"
+    "                   [--require-tracked-all] [--min-inside-fraction F [--inside-envelope-px D]]\n";
+
+struct Args {
+  std::string sequence, replay, plot, csv, json;
+  visnav::eval::EvaluationOptions eval;
+  visnav::eval::Requirements req;
+  bool inside_px_given = false;
+};
+
+bool parseNumber(const std::string& text, double& out) {
+  char* end = nullptr;
+  out = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size();
+}
+
+// Returns an error message, empty on success.
+std::string parseArgs(int argc, char** argv, Args& a) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string opt = argv[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= argc) return false;
+      out = argv[++i];
+      return true;
+    };
+    std::string v;
+    double x = 0.0;
+    if (opt == "--require-tracked-all") {
+      a.req.require_tracked_all = true;
+    } else if (opt == "--help" || opt == "-h") {
+      return "help";
+    } else if (!value(v)) {
+      return "unknown option or missing value: " + opt;
+    } else if (opt == "--sequence") {
+      a.sequence = v;
+    } else if (opt == "--replay") {
+      a.replay = v;
+    } else if (opt == "--plot") {
+      a.plot = v;
+    } else if (opt == "--csv") {
+      a.csv = v;
+    } else if (opt == "--json") {
+      a.json = v;
+    } else if (opt == "--envelope-px") {
+      a.eval.envelope_px.clear();
+      std::size_t start = 0;
+      while (start <= v.size()) {
+        const std::size_t comma = std::min(v.find(',', start), v.size());
+        if (!parseNumber(v.substr(start, comma - start), x) || !(x >= 0.0) || x > 100.0)
+          return "--envelope-px: expected comma-separated sizes in [0, 100] px, got '" + v + "'";
+        a.eval.envelope_px.push_back(x);
+        start = comma + 1;
+      }
+    } else if (opt == "--envelope-stride") {
+      if (!parseNumber(v, x) || x < 1.0 || x != static_cast<int>(x))
+        return "--envelope-stride: expected a positive integer, got '" + v + "'";
+      a.eval.envelope_stride = static_cast<int>(x);
+    } else if (opt == "--min-inside-fraction") {
+      if (!parseNumber(v, x) || x < 0.0 || x > 1.0) return "--min-inside-fraction: expected [0, 1], got '" + v + "'";
+      a.req.check_inside = true;
+      a.req.min_inside_fraction = x;
+    } else if (opt == "--inside-envelope-px") {
+      if (!parseNumber(v, x) || x < 0.0) return "--inside-envelope-px: expected a size in px, got '" + v + "'";
+      a.req.inside_envelope_px = x;
+      a.inside_px_given = true;
+    } else {
+      return "unknown option: " + opt;
+    }
+  }
+  if (a.sequence.empty() || a.replay.empty()) return "--sequence and --replay are required";
+  std::vector<double>& env = a.eval.envelope_px;
+  if (!a.inside_px_given && !env.empty()) a.req.inside_envelope_px = *std::min_element(env.begin(), env.end());
+  if (a.req.check_inside && std::find(env.begin(), env.end(), a.req.inside_envelope_px) == env.end())
+    env.push_back(a.req.inside_envelope_px);  // the requirement needs that envelope computed
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace visnav;
+  Args args;
+  const std::string arg_error = parseArgs(argc, argv, args);
+  if (arg_error == "help") {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (!arg_error.empty()) {
+    std::cerr << "visnav-eval: " << arg_error << '\n' << kUsage;
+    return kExitBadInput;
+  }
+
+  replay::Sequence seq;
+  LoadError err = replay::loadSequence(args.sequence, seq);
+  if (!err.ok) {
+    std::cerr << "visnav-eval: " << err.message << '\n';
+    return kExitBadInput;
+  }
+  if (seq.truth.empty()) {
+    std::cerr << "visnav-eval: " << args.sequence << ": sequence has no truth (truth.csv), nothing to score\n";
+    return kExitBadInput;
+  }
+  std::vector<eval::ReplayRow> rows;
+  err = eval::loadReplayCsv(args.replay, rows);
+  if (!err.ok) {
+    std::cerr << "visnav-eval: " << err.message << '\n';
+    return kExitBadInput;
+  }
+  std::vector<eval::TruthPose> truth;
+  truth.reserve(seq.truth.size());
+  for (const replay::TruthRow& t : seq.truth) truth.push_back({t.frame, t.timestamp_ns, t.pose});
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const eval::Evaluation ev = eval::evaluate(PinholeCamera(seq.camera), seq.model, truth, rows, args.eval);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::vector<eval::RequirementResult> req = eval::checkRequirements(ev, args.req);
+
+  std::cout << "sequence " << (seq.name.empty() ? args.sequence : seq.name) << ", replay " << args.replay << '\n'
+            << eval::summaryText(ev);
+  std::printf("evaluation time: %.2f s (envelopes on every %d. frame)\n", seconds, args.eval.envelope_stride);
+
+  if (!args.plot.empty()) err = eval::writeErrorPlot(args.plot, ev);
+  if (err.ok && !args.csv.empty()) err = eval::writeFrameCsv(args.csv, ev);
+  if (err.ok && !args.json.empty()) err = eval::writeSummaryJson(args.json, ev, req, args.sequence, args.replay);
+  if (!err.ok) {
+    std::cerr << "visnav-eval: " << err.message << '\n';
+    return kExitBadInput;
+  }
+
+  bool passed = true;
+  for (const eval::RequirementResult& r : req) {
+    std::cout << (r.passed ? "PASSED" : "FAILED") << " requirement " << r.name << ": " << r.detail << '\n';
+    passed = passed && r.passed;
+  }
+  return passed ? 0 : kExitFail;
+}

@@ -1,0 +1,107 @@
+#include "visnav/eval/evaluation.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <unordered_map>
+
+namespace visnav::eval {
+
+Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model, const std::vector<TruthPose>& truth,
+                    const std::vector<ReplayRow>& replay, const EvaluationOptions& options) {
+  Evaluation ev;
+  ev.envelope_px = options.envelope_px;
+  const std::size_t n_env = options.envelope_px.size();
+  std::unordered_map<std::int64_t, const ReplayRow*> by_frame;
+  for (const ReplayRow& r : replay) by_frame[r.frame] = &r;
+
+  EnvelopeSolver solver(camera, model, options.envelope);
+  EvaluationSummary& s = ev.summary;
+  s.envelopes.resize(n_env);
+  for (std::size_t d = 0; d < n_env; ++d) s.envelopes[d].delta_px = options.envelope_px[d];
+  std::vector<std::vector<double>> axis_errors(kAxisCount);
+  std::vector<double> attitude_errors;
+  const int stride = options.envelope_stride < 1 ? 1 : options.envelope_stride;
+  int matched = 0;
+
+  ev.frames.reserve(truth.size());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const TruthPose& t = truth[i];
+    FrameRecord rec;
+    rec.frame = t.frame;
+    rec.timestamp_ns = t.timestamp_ns;
+    rec.distance_m = t.pose.t_c_m.z();
+    const auto it = by_frame.find(t.frame);
+    if (it != by_frame.end()) {
+      ++matched;
+      rec.status = it->second->status;
+      if (isTracked(rec.status) && it->second->has_pose) {
+        rec.scored = true;
+        rec.error = poseError(it->second->pose, t.pose);
+        rec.attitude_error_deg = attitudeErrorDeg(it->second->pose, t.pose);
+        for (int a = 0; a < kAxisCount; ++a) axis_errors[a].push_back(rec.error[a]);
+        attitude_errors.push_back(rec.attitude_error_deg);
+      }
+    }
+    switch (rec.status) {
+      case TrackStatus::kTracking:
+        ++s.frames_tracking;
+        break;
+      case TrackStatus::kDegraded:
+        ++s.frames_degraded;
+        break;
+      case TrackStatus::kLost:
+        ++s.frames_lost;
+        break;
+      case TrackStatus::kInit:
+        ++s.frames_init;
+        break;
+      case TrackStatus::kMissing:
+        ++s.frames_missing;
+        break;
+    }
+    if (i % static_cast<std::size_t>(stride) == 0 && n_env > 0) {
+      solver.compute(t.pose, options.envelope_px, rec.envelopes);
+    } else {
+      rec.envelopes.assign(n_env, FrameEnvelope{});
+    }
+    rec.inside.assign(n_env, 0);
+    for (std::size_t d = 0; d < n_env; ++d) {
+      const FrameEnvelope& env = rec.envelopes[d];
+      if (!env.valid) continue;
+      EnvelopeSummary& es = s.envelopes[d];
+      ++es.frames_with_envelope;
+      es.failed_solves += env.failed_solves;
+      bool inside = rec.scored;
+      for (int a = 0; a < kAxisCount; ++a) {
+        es.max_envelope[a] = std::max(es.max_envelope[a], env.max_abs[a]);
+        if (std::fabs(rec.error[a]) > env.max_abs[a]) inside = false;
+      }
+      rec.inside[d] = inside ? 1 : 0;
+      if (inside) ++es.inside_count;
+    }
+    ev.frames.push_back(std::move(rec));
+  }
+  s.frames_evaluated = static_cast<int>(truth.size());
+  s.track_loss_count = s.frames_lost + s.frames_missing;
+  s.unmatched_replay_rows = static_cast<int>(replay.size()) - matched;
+  for (int a = 0; a < kAxisCount; ++a) s.axes[a] = absStats(axis_errors[a]);
+  s.attitude = absStats(attitude_errors);
+  for (EnvelopeSummary& es : s.envelopes)
+    es.inside_fraction = es.frames_with_envelope > 0 ? static_cast<double>(es.inside_count) / es.frames_with_envelope : 0.0;
+  return ev;
+}
+
+int envelopeIndex(const Evaluation& evaluation, double delta_px) {
+  for (std::size_t d = 0; d < evaluation.envelope_px.size(); ++d)
+    if (std::fabs(evaluation.envelope_px[d] - delta_px) < 1e-12) return static_cast<int>(d);
+  return -1;
+}
+
+std::string insideLine(const EnvelopeSummary& s) {
+  char buf[160];
+  std::snprintf(buf, sizeof(buf), "inside %g px envelope (all 6 axes): %.2f%% (%d/%d)", s.delta_px,
+                100.0 * s.inside_fraction, s.inside_count, s.frames_with_envelope);
+  return buf;
+}
+
+}  // namespace visnav::eval

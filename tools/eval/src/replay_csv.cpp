@@ -1,0 +1,178 @@
+#include "visnav/eval/replay_csv.hpp"
+
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <unordered_set>
+
+namespace visnav::eval {
+namespace {
+
+std::string trim(const std::string& s) {
+  std::size_t b = 0;
+  std::size_t e = s.size();
+  while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t' || s[e - 1] == '\r')) --e;
+  return s.substr(b, e - b);
+}
+
+std::string where(const std::string& name, int line) { return name + ":" + std::to_string(line) + ": "; }
+
+// Whole-field parse: "12abc" is rejected, unlike a bare strtod.
+bool parseDouble(const std::string& text, double& out) {
+  if (text.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  out = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && errno != ERANGE;
+}
+
+bool parseInt64(const std::string& text, std::int64_t& out) {
+  if (text.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (end != text.c_str() + text.size() || errno == ERANGE) return false;
+  out = static_cast<std::int64_t>(v);
+  return true;
+}
+
+constexpr std::array<const char*, 7> kPoseColumns = {"x_m", "y_m", "z_m", "qw", "qx", "qy", "qz"};
+
+}  // namespace
+
+const char* toString(TrackStatus status) {
+  switch (status) {
+    case TrackStatus::kTracking:
+      return "tracking";
+    case TrackStatus::kDegraded:
+      return "degraded";
+    case TrackStatus::kLost:
+      return "lost";
+    case TrackStatus::kInit:
+      return "init";
+    case TrackStatus::kMissing:
+      return "missing";
+  }
+  return "?";
+}
+
+bool parseTrackStatus(const std::string& text, TrackStatus& out) {
+  if (text == "tracking") {
+    out = TrackStatus::kTracking;
+  } else if (text == "degraded") {
+    out = TrackStatus::kDegraded;
+  } else if (text == "lost") {
+    out = TrackStatus::kLost;
+  } else if (text == "init") {
+    out = TrackStatus::kInit;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+std::vector<std::string> splitCsvLine(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& out) {
+  std::string line;
+  int line_no = 0;
+  // Header: first non-empty line.
+  std::vector<std::string> header;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!trim(line).empty()) {
+      header = splitCsvLine(line);
+      break;
+    }
+  }
+  if (header.empty()) return LoadError::failure(name + ": empty file, expected a header row");
+  const int header_line = line_no;
+  auto column = [&header](const char* col) {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == col) return static_cast<int>(i);
+    return -1;
+  };
+  const int frame_col = column("frame");
+  const int status_col = column("status");
+  const int time_col = column("timestamp_ns");
+  std::array<int, 7> pose_cols{};
+  for (std::size_t k = 0; k < kPoseColumns.size(); ++k) pose_cols[k] = column(kPoseColumns[k]);
+  for (const char* required : {"frame", "status", "x_m", "y_m", "z_m", "qw", "qx", "qy", "qz"}) {
+    if (column(required) < 0)
+      return LoadError::failure(where(name, header_line) + "missing column '" + required + "' in the header");
+  }
+
+  std::vector<ReplayRow> rows;
+  std::unordered_set<std::int64_t> seen;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty()) continue;
+    const std::vector<std::string> f = splitCsvLine(line);
+    if (f.size() < header.size()) {
+      return LoadError::failure(where(name, line_no) + "expected " + std::to_string(header.size()) +
+                                " fields, found " + std::to_string(f.size()));
+    }
+    ReplayRow row;
+    if (!parseInt64(f[frame_col], row.frame))
+      return LoadError::failure(where(name, line_no) + "column 'frame': bad integer '" + f[frame_col] + "'");
+    if (!seen.insert(row.frame).second)
+      return LoadError::failure(where(name, line_no) + "duplicate frame " + std::to_string(row.frame));
+    if (time_col >= 0 && !parseInt64(f[time_col], row.timestamp_ns))
+      return LoadError::failure(where(name, line_no) + "column 'timestamp_ns': bad integer '" + f[time_col] + "'");
+    if (!parseTrackStatus(f[status_col], row.status)) {
+      return LoadError::failure(where(name, line_no) + "column 'status': unknown status '" + f[status_col] +
+                                "' (expected tracking, degraded, lost or init)");
+    }
+    std::array<double, 7> v{};
+    bool all_finite = true;
+    for (std::size_t k = 0; k < kPoseColumns.size(); ++k) {
+      const std::string& text = f[pose_cols[k]];
+      // Lost/init rows may carry no pose at all; a tracked row must.
+      if (text.empty() && !isTracked(row.status)) {
+        all_finite = false;
+        continue;
+      }
+      if (!parseDouble(text, v[k])) {
+        return LoadError::failure(where(name, line_no) + "column '" + kPoseColumns[k] + "': bad number '" + text +
+                                  "'");
+      }
+      if (!std::isfinite(v[k])) all_finite = false;
+    }
+    if (all_finite) {
+      Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+      const double norm = q.norm();
+      // A grossly non-unit quaternion means a column mix-up, not rounding.
+      if (norm < 0.5 || norm > 1.5)
+        return LoadError::failure(where(name, line_no) + "quaternion (qw, qx, qy, qz) is not unit length");
+      q.coeffs() /= norm;
+      row.pose = Pose::fromQuaternion(q, Vec3(v[0], v[1], v[2]));
+      row.has_pose = true;
+    } else if (isTracked(row.status)) {
+      return LoadError::failure(where(name, line_no) + "non-finite pose in a '" + toString(row.status) + "' row");
+    }
+    rows.push_back(row);
+  }
+  out = std::move(rows);
+  return LoadError::success();
+}
+
+LoadError loadReplayCsv(const std::string& path, std::vector<ReplayRow>& out) {
+  std::ifstream in(path);
+  if (!in) return LoadError::failure(path + ": cannot open for reading");
+  return parseReplayCsv(in, path, out);
+}
+
+}  // namespace visnav::eval

@@ -1,0 +1,194 @@
+#include "visnav/eval/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace visnav::eval {
+namespace {
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[40];
+  std::snprintf(buf, sizeof(buf), "%.9g", v);
+  return buf;
+}
+
+std::string jnum(double v) { return std::isfinite(v) ? num(v) : "null"; }
+
+std::string jstr(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (static_cast<unsigned char>(ch) < 0x20U) {
+      char buf[8];
+      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(ch)));
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+std::string axisColumn(int a) { return std::string(axisName(a)) + "_" + axisUnit(a); }
+
+}  // namespace
+
+std::vector<RequirementResult> checkRequirements(const Evaluation& ev, const Requirements& req) {
+  std::vector<RequirementResult> out;
+  const EvaluationSummary& s = ev.summary;
+  if (req.require_tracked_all) {
+    RequirementResult r{"tracked_all", s.track_loss_count == 0, ""};
+    r.detail = std::to_string(s.frames_lost) + " lost, " + std::to_string(s.frames_missing) +
+               " missing of " + std::to_string(s.frames_evaluated) + " frames";
+    out.push_back(r);
+  }
+  if (req.check_inside) {
+    RequirementResult r{"inside_fraction", false, ""};
+    const int d = envelopeIndex(ev, req.inside_envelope_px);
+    if (d < 0) {
+      r.detail = "envelope " + num(req.inside_envelope_px) + " px was not computed";
+    } else {
+      const EnvelopeSummary& es = s.envelopes[d];
+      r.passed = es.frames_with_envelope > 0 && es.inside_fraction >= req.min_inside_fraction;
+      r.detail = insideLine(es) + ", required >= " + num(100.0 * req.min_inside_fraction) + "%";
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string envelopeTag(double delta_px) {
+  std::string t = num(delta_px);
+  for (char& ch : t)
+    if (ch == '.') ch = 'p';
+  return t + "px";
+}
+
+void writeFrameCsv(std::ostream& out, const Evaluation& ev) {
+  out << "frame,timestamp_ns,distance_m,status,scored";
+  for (int a = 0; a < kAxisCount; ++a) out << ",err_" << axisColumn(a);
+  out << ",err_att_deg,env_vertices,env_combinations";
+  for (double d : ev.envelope_px) {
+    const std::string tag = envelopeTag(d);
+    for (int a = 0; a < kAxisCount; ++a) out << ",env_" << tag << "_" << axisColumn(a);
+    out << ",env_" << tag << "_att_deg,inside_" << tag;
+  }
+  out << '\n';
+  for (const FrameRecord& f : ev.frames) {
+    out << f.frame << ',' << f.timestamp_ns << ',' << num(f.distance_m) << ',' << toString(f.status) << ','
+        << (f.scored ? 1 : 0);
+    for (int a = 0; a < kAxisCount; ++a) out << ',' << (f.scored ? num(f.error[a]) : "");
+    out << ',' << (f.scored ? num(f.attitude_error_deg) : "");
+    // Vertices and combinations of the largest-delta envelope (delta = 0 needs one solve only).
+    int vertices = 0, combinations = 0;
+    for (const FrameEnvelope& e : f.envelopes) {
+      if (!e.valid) continue;
+      vertices = e.vertex_count;
+      combinations = std::max(combinations, e.combinations);
+    }
+    out << ',' << vertices << ',' << combinations;
+    for (std::size_t d = 0; d < f.envelopes.size(); ++d) {
+      const FrameEnvelope& e = f.envelopes[d];
+      for (int a = 0; a < kAxisCount; ++a) out << ',' << (e.valid ? num(e.max_abs[a]) : "");
+      out << ',' << (e.valid ? num(e.max_angle_deg) : "") << ',' << (e.valid ? (f.inside[d] ? "1" : "0") : "");
+    }
+    out << '\n';
+  }
+}
+
+LoadError writeFrameCsv(const std::string& path, const Evaluation& ev) {
+  std::ofstream out(path);
+  if (!out) return LoadError::failure(path + ": cannot open for writing");
+  writeFrameCsv(out, ev);
+  return out ? LoadError::success() : LoadError::failure(path + ": write failed");
+}
+
+void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector<RequirementResult>& req,
+                      const std::string& sequence, const std::string& replay) {
+  const EvaluationSummary& s = ev.summary;
+  bool passed = true;
+  for (const RequirementResult& r : req) passed = passed && r.passed;
+  out << "{\n  \"sequence\": " << jstr(sequence) << ",\n  \"replay\": " << jstr(replay) << ",\n";
+  out << "  \"frames\": {\"evaluated\": " << s.frames_evaluated << ", \"tracking\": " << s.frames_tracking
+      << ", \"degraded\": " << s.frames_degraded << ", \"lost\": " << s.frames_lost
+      << ", \"missing\": " << s.frames_missing << ", \"init\": " << s.frames_init
+      << ", \"track_loss\": " << s.track_loss_count << ", \"unmatched_replay_rows\": " << s.unmatched_replay_rows
+      << "},\n  \"errors\": {\n";
+  auto stats = [&out](const std::string& name, const ErrorStats& e, bool last) {
+    out << "    " << jstr(name) << ": {\"count\": " << e.count << ", \"median\": " << jnum(e.median)
+        << ", \"p95\": " << jnum(e.p95) << ", \"max\": " << jnum(e.max) << "}" << (last ? "\n" : ",\n");
+  };
+  for (int a = 0; a < kAxisCount; ++a) stats(axisColumn(a), s.axes[a], false);
+  stats("att_deg", s.attitude, true);
+  out << "  },\n  \"envelopes\": [";
+  for (std::size_t d = 0; d < s.envelopes.size(); ++d) {
+    const EnvelopeSummary& e = s.envelopes[d];
+    out << (d ? ",\n" : "\n") << "    {\"delta_px\": " << jnum(e.delta_px)
+        << ", \"frames_with_envelope\": " << e.frames_with_envelope << ", \"inside_count\": " << e.inside_count
+        << ", \"inside_fraction\": " << jnum(e.inside_fraction) << ", \"failed_solves\": " << e.failed_solves
+        << ", \"max_envelope\": {";
+    for (int a = 0; a < kAxisCount; ++a)
+      out << (a ? ", " : "") << jstr(axisColumn(a)) << ": " << jnum(e.max_envelope[a]);
+    out << "}}";
+  }
+  out << (s.envelopes.empty() ? "],\n" : "\n  ],\n") << "  \"requirements\": [";
+  for (std::size_t i = 0; i < req.size(); ++i) {
+    out << (i ? ",\n" : "\n") << "    {\"name\": " << jstr(req[i].name)
+        << ", \"passed\": " << (req[i].passed ? "true" : "false") << ", \"detail\": " << jstr(req[i].detail) << "}";
+  }
+  out << (req.empty() ? "],\n" : "\n  ],\n") << "  \"passed\": " << (passed ? "true" : "false") << "\n}\n";
+}
+
+LoadError writeSummaryJson(const std::string& path, const Evaluation& ev, const std::vector<RequirementResult>& req,
+                           const std::string& sequence, const std::string& replay) {
+  std::ofstream out(path);
+  if (!out) return LoadError::failure(path + ": cannot open for writing");
+  writeSummaryJson(out, ev, req, sequence, replay);
+  return out ? LoadError::success() : LoadError::failure(path + ": write failed");
+}
+
+std::string summaryText(const Evaluation& ev) {
+  const EvaluationSummary& s = ev.summary;
+  std::ostringstream o;
+  char buf[200];
+  std::snprintf(buf, sizeof(buf),
+                "frames evaluated: %d (tracking %d, degraded %d, init %d, lost %d, missing %d); track losses: %d\n",
+                s.frames_evaluated, s.frames_tracking, s.frames_degraded, s.frames_init, s.frames_lost,
+                s.frames_missing, s.track_loss_count);
+  o << buf;
+  if (s.unmatched_replay_rows > 0) o << "replay rows without a truth frame (ignored): " << s.unmatched_replay_rows << '\n';
+  std::snprintf(buf, sizeof(buf), "%-10s %12s %12s %12s", "|error|", "median", "p95", "max");
+  o << buf;
+  for (const EnvelopeSummary& e : s.envelopes) {
+    std::snprintf(buf, sizeof(buf), " %12s", ("env " + num(e.delta_px) + " px").c_str());
+    o << buf;
+  }
+  o << '\n';
+  for (int a = 0; a < kAxisCount; ++a) {
+    std::snprintf(buf, sizeof(buf), "%-10s %12.6g %12.6g %12.6g", axisColumn(a).c_str(), s.axes[a].median,
+                  s.axes[a].p95, s.axes[a].max);
+    o << buf;
+    for (const EnvelopeSummary& e : s.envelopes) {
+      std::snprintf(buf, sizeof(buf), " %12.6g", e.max_envelope[a]);
+      o << buf;
+    }
+    o << '\n';
+  }
+  std::snprintf(buf, sizeof(buf), "%-10s %12.6g %12.6g %12.6g\n", "att_deg", s.attitude.median, s.attitude.p95,
+                s.attitude.max);
+  o << buf << "(" << s.axes[0].count << " scored frames; envelope columns: largest envelope over the frames)\n";
+  for (const EnvelopeSummary& e : s.envelopes) {
+    o << insideLine(e);
+    if (e.failed_solves > 0) o << "  [" << e.failed_solves << " envelope LM solves did not converge]";
+    o << '\n';
+  }
+  return o.str();
+}
+
+}  // namespace visnav::eval
