@@ -274,17 +274,21 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
   bool solved = false;
   const LmOptions lm{m_params.lm_max_iterations};
   out.vertices = collectVertices();
-  if (m_params.pose_residual == static_cast<int>(PoseResidualMode::kPointToLine)) {
-    const int n = collectEdgePoints();
-    if (out.lines_used >= 4 && n >= 8)
-      solved = fitPoseToEdgePoints(m_camera, m_model, m_edge_obs.data(), n, lm, m_params.pixel_sigma_px, pose, fit);
-    else
-      out.flags |= kFlagTooFewLines;
-  } else if (out.lines_used >= 4 && out.vertices >= 4) {
+  const bool vertex_mode = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex);
+  if (vertex_mode && out.lines_used >= 4 && out.vertices >= 4) {
     solved = fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), out.vertices, lm, m_params.pixel_sigma_px,
                                pose, fit);
   } else {
-    out.flags |= kFlagTooFewLines;
+    // Point-to-line needs no complete corner: three non-parallel lines with many points still fix 6 DOF.
+    // When the vertex residual lacks corners this is the fallback, and the frame is marked degraded.
+    const int n = collectEdgePoints();
+    const int min_lines = vertex_mode ? 3 : 4;
+    if (out.lines_used >= min_lines && n >= 12) {
+      solved = fitPoseToEdgePoints(m_camera, m_model, m_edge_obs.data(), n, lm, m_params.pixel_sigma_px, pose, fit);
+      if (vertex_mode) out.flags |= kFlagResidualFallback;
+    } else {
+      out.flags |= kFlagTooFewLines;
+    }
   }
   out.timing.pose_us = elapsedUs(stamp);
   out.rms_px = fit.rms_px;
@@ -303,7 +307,8 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
     out.covariance = fit.covariance;
     const double r = fit.rms_px / m_params.degraded_rms_px;
     out.quality *= 1.0 / (1.0 + r * r);
-    out.status = (out.flags & (kFlagLineRejected | kFlagResidualHigh)) != 0U ? TrackStatus::kDegraded
+    out.status = (out.flags & (kFlagLineRejected | kFlagResidualHigh | kFlagResidualFallback)) != 0U
+                     ? TrackStatus::kDegraded
                                                                               : TrackStatus::kTracking;
     // Only a trusted frame teaches the polarity of the next one.
     for (std::size_t i = 0; i < m_polarity.size(); ++i) m_polarity[i] = m_polarity_next[i];

@@ -40,6 +40,7 @@ enum TrackFlag : std::uint32_t {
   kFlagResidualTooHigh = 1U << 5,  ///< rms above max_rms_px
   kFlagOutOfImage = 1U << 6,       ///< projected model leaves the image
   kFlagTextureFallback = 1U << 7,  ///< some edge points came from the texture split (information)
+  kFlagResidualFallback = 1U << 8, ///< vertex residual lacked corners: point-to-line residual used instead
 };
 
 /// Per-stage execution time of one track() call [us] (zeros when no clock is set).
