@@ -96,6 +96,7 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
     io::ConfigFile config;
     if (LoadError e = config.open(options.config_path); !e.ok) return e;
     if (LoadError e = config.apply(params); !e.ok) return e;
+    if (LoadError e = config.checkNoUnknownKeys(); !e.ok) return e;
   }
   if (options.override_residual) params.pose_residual = static_cast<int>(options.residual);
 

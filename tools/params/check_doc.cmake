@@ -1,0 +1,8 @@
+execute_process(COMMAND "${EXE}" OUTPUT_VARIABLE generated RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "visnav-params failed")
+endif()
+file(READ "${DOC}" committed)
+if(NOT generated STREQUAL committed)
+  message(FATAL_ERROR "${DOC} is stale: regenerate it with visnav-params > config/PARAMETERS.md")
+endif()
