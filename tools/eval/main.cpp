@@ -79,11 +79,13 @@ std::string parseArgs(int argc, char** argv, Args& a) {
         return "--envelope-stride: expected a positive integer, got '" + v + "'";
       a.eval.envelope_stride = static_cast<int>(x);
     } else if (opt == "--min-inside-fraction") {
-      if (!parseNumber(v, x) || x < 0.0 || x > 1.0) return "--min-inside-fraction: expected [0, 1], got '" + v + "'";
+      if (!parseNumber(v, x) || x < 0.0 || x > 1.0)
+        return "--min-inside-fraction: expected [0, 1], got '" + v + "'";
       a.req.check_inside = true;
       a.req.min_inside_fraction = x;
     } else if (opt == "--inside-envelope-px") {
-      if (!parseNumber(v, x) || x < 0.0) return "--inside-envelope-px: expected a size in px, got '" + v + "'";
+      if (!parseNumber(v, x) || x < 0.0)
+        return "--inside-envelope-px: expected a size in px, got '" + v + "'";
       a.req.inside_envelope_px = x;
       a.inside_px_given = true;
     } else {
@@ -92,7 +94,8 @@ std::string parseArgs(int argc, char** argv, Args& a) {
   }
   if (a.sequence.empty() || a.replay.empty()) return "--sequence and --replay are required";
   std::vector<double>& env = a.eval.envelope_px;
-  if (!a.inside_px_given && !env.empty()) a.req.inside_envelope_px = *std::min_element(env.begin(), env.end());
+  if (!a.inside_px_given && !env.empty())
+    a.req.inside_envelope_px = *std::min_element(env.begin(), env.end());
   if (a.req.check_inside && std::find(env.begin(), env.end(), a.req.inside_envelope_px) == env.end())
     env.push_back(a.req.inside_envelope_px);  // the requirement needs that envelope computed
   return "";
@@ -120,7 +123,8 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
   if (seq.truth.empty()) {
-    std::cerr << "visnav-eval: " << args.sequence << ": sequence has no truth (truth.csv), nothing to score\n";
+    std::cerr << "visnav-eval: " << args.sequence
+              << ": sequence has no truth (truth.csv), nothing to score\n";
     return kExitBadInput;
   }
   std::vector<eval::ReplayRow> rows;
@@ -138,13 +142,15 @@ int main(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const std::vector<eval::RequirementResult> req = eval::checkRequirements(ev, args.req);
 
-  std::cout << "sequence " << (seq.name.empty() ? args.sequence : seq.name) << ", replay " << args.replay << '\n'
+  std::cout << "sequence " << (seq.name.empty() ? args.sequence : seq.name) << ", replay " << args.replay
+            << '\n'
             << eval::summaryText(ev);
   std::printf("evaluation time: %.2f s (envelopes on every %d. frame)\n", seconds, args.eval.envelope_stride);
 
   if (!args.plot.empty()) err = eval::writeErrorPlot(args.plot, ev);
   if (err.ok && !args.csv.empty()) err = eval::writeFrameCsv(args.csv, ev);
-  if (err.ok && !args.json.empty()) err = eval::writeSummaryJson(args.json, ev, req, args.sequence, args.replay);
+  if (err.ok && !args.json.empty())
+    err = eval::writeSummaryJson(args.json, ev, req, args.sequence, args.replay);
   if (!err.ok) {
     std::cerr << "visnav-eval: " << err.message << '\n';
     return kExitBadInput;

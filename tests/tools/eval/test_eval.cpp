@@ -11,7 +11,9 @@
 namespace visnav::eval {
 namespace {
 
-PinholeCamera vga() { return PinholeCamera(CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320, 240)); }
+PinholeCamera vga() {
+  return PinholeCamera(CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320, 240));
+}
 
 // The plate's outward normal is +z in the model frame: roll near 180 deg turns it towards the camera.
 Pose plateTruth(double distance_m, double k) {
@@ -37,7 +39,8 @@ EvaluationOptions fastOptions() {
 
 std::vector<ReplayRow> perfectReplay(const std::vector<TruthPose>& truth) {
   std::vector<ReplayRow> rows;
-  for (const TruthPose& t : truth) rows.push_back({t.frame, t.timestamp_ns, TrackStatus::kTracking, true, t.pose});
+  for (const TruthPose& t : truth)
+    rows.push_back({t.frame, t.timestamp_ns, TrackStatus::kTracking, true, t.pose});
   return rows;
 }
 
@@ -170,9 +173,9 @@ TEST(Envelope, BoxIsSampledDeterministically) {
   const PolygonModel box = makeBox(0.8, 0.6, 0.5);
   // Camera 20 m out along model (1, 1, 0), looking at the origin: faces +x and +y at ~46 deg obliquity,
   // 6 vertices -> 12 offsets -> sampled.
-  const double a = 1.0 / std::sqrt(2.0);
+  const double h = 1.0 / std::sqrt(2.0);
   Pose truth;
-  truth.R_c_m << -a, a, 0.0, 0.0, 0.0, -1.0, -a, -a, 0.0;  // rows: camera x, y, z in the model frame
+  truth.R_c_m << -h, h, 0.0, 0.0, 0.0, -1.0, -h, -h, 0.0;  // rows: camera x, y, z in the model frame
   truth.t_c_m = Vec3(0.0, 0.0, 20.0);
   EXPECT_EQ(envelopeVertices(box, truth, 50.0).size(), 6U);
   EnvelopeSolver solver(cam, box, EnvelopeOptions{});
@@ -218,7 +221,7 @@ TEST(Evaluation, OneFrameOffAndLostFramesAreDetected) {
   std::vector<ReplayRow> rows = perfectReplay(truth);
   rows[3].pose.t_c_m.x() += 0.5;
   rows[6].status = TrackStatus::kLost;
-  rows.erase(rows.begin() + 10);  // frame 10 has no row
+  rows.erase(rows.begin() + 10);         // frame 10 has no row
   rows[12].status = TrackStatus::kInit;  // frame 13
   EvaluationOptions options = fastOptions();
   options.envelope_stride = 2;

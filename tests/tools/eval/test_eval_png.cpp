@@ -13,8 +13,8 @@ namespace visnav::eval {
 namespace {
 
 std::uint32_t readU32(const std::vector<std::uint8_t>& b, std::size_t at) {
-  return (std::uint32_t{b[at]} << 24U) | (std::uint32_t{b[at + 1]} << 16U) | (std::uint32_t{b[at + 2]} << 8U) |
-         b[at + 3];
+  return (std::uint32_t{b[at]} << 24U) | (std::uint32_t{b[at + 1]} << 16U) |
+         (std::uint32_t{b[at + 2]} << 8U) | b[at + 3];
 }
 
 // Walks the chunks, checks every CRC with zlib's crc32, returns IHDR fields and the inflated IDAT payload.
@@ -91,7 +91,7 @@ TEST(Canvas, TextLinesAndClipping) {
   c.line(0, 15, 59, 15, {255, 0, 0});
   c.resetClip();
   EXPECT_EQ(c.pixel(10, 15).g, 0);
-  EXPECT_EQ(c.pixel(40, 15).g, 255);  // clipped away
+  EXPECT_EQ(c.pixel(40, 15).g, 255);     // clipped away
   c.line(-1e9, 0, 1e9, 0, {0, 0, 255});  // far outside: bounded, no crash
   EXPECT_EQ(c.pixel(30, 0).b, 255);
   EXPECT_EQ(c.pixel(30, 0).r, 0);

@@ -89,6 +89,8 @@ void Canvas::text(int x, int y, const std::string& s, Rgb c, int scale) {
   }
 }
 
-LoadError Canvas::writePng(const std::string& path) const { return writePngRgb(path, m_width, m_height, m_rgb); }
+LoadError Canvas::writePng(const std::string& path) const {
+  return writePngRgb(path, m_width, m_height, m_rgb);
+}
 
 }  // namespace visnav::eval

@@ -84,8 +84,7 @@ void EnvelopeSolver::compute(const Pose& truth, const std::vector<double>& delta
     env.combinations = combinations;
     for (int c = 0; c < combinations; ++c) {
       const std::int8_t* s = &m_signs[static_cast<std::size_t>(c) * bits];
-      for (int i = 0; i < v; ++i)
-        obs[i].px_ideal = px[i] + deltas_px[d] * Vec2(s[2 * i], s[2 * i + 1]);
+      for (int i = 0; i < v; ++i) obs[i].px_ideal = px[i] + deltas_px[d] * Vec2(s[2 * i], s[2 * i + 1]);
       Pose pose = truth;
       PoseFitResult fit;
       if (!fitPoseToVertices(m_camera, m_model, obs.data(), v, m_options.lm, 1.0, pose, fit))

@@ -6,8 +6,9 @@
 
 namespace visnav::eval {
 
-Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model, const std::vector<TruthPose>& truth,
-                    const std::vector<ReplayRow>& replay, const EvaluationOptions& options) {
+Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
+                    const std::vector<TruthPose>& truth, const std::vector<ReplayRow>& replay,
+                    const EvaluationOptions& options) {
   Evaluation ev;
   ev.envelope_px = options.envelope_px;
   const std::size_t n_env = options.envelope_px.size();
@@ -87,7 +88,8 @@ Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model, cons
   for (int a = 0; a < kAxisCount; ++a) s.axes[a] = absStats(axis_errors[a]);
   s.attitude = absStats(attitude_errors);
   for (EnvelopeSummary& es : s.envelopes)
-    es.inside_fraction = es.frames_with_envelope > 0 ? static_cast<double>(es.inside_count) / es.frames_with_envelope : 0.0;
+    es.inside_fraction =
+        es.frames_with_envelope > 0 ? static_cast<double>(es.inside_count) / es.frames_with_envelope : 0.0;
   return ev;
 }
 

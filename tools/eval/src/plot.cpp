@@ -49,8 +49,8 @@ double yHalfRange(const Evaluation& ev, int axis) {
   return r > 0.0 && std::isfinite(r) ? r : 1.0;
 }
 
-void drawPanel(Canvas& c, const Evaluation& ev, int axis, int x0, int y0, int w, int h, double x_lo, double x_hi,
-               const std::vector<std::size_t>& by_distance) {
+void drawPanel(Canvas& c, const Evaluation& ev, int axis, int x0, int y0, int w, int h, double x_lo,
+               double x_hi, const std::vector<std::size_t>& by_distance) {
   const double half = yHalfRange(ev, axis);
   Frame f{x0 + 100, y0 + 34, x0 + w - 20, y0 + h - 52, x_lo, x_hi, -half, half};
   const std::string title = std::string(axisName(axis)) + " error [" + axisUnit(axis) + "]";
@@ -71,7 +71,8 @@ void drawPanel(Canvas& c, const Evaluation& ev, int axis, int x0, int y0, int w,
     c.text(static_cast<int>(x) - Canvas::textWidth(label, kText) / 2, f.bottom + 9, label, kBlack, kText);
   }
   const std::string xlabel = "distance [m]";
-  c.text(f.left + (f.right - f.left - Canvas::textWidth(xlabel, kText)) / 2, f.bottom + 30, xlabel, kBlack, kText);
+  c.text(f.left + (f.right - f.left - Canvas::textWidth(xlabel, kText)) / 2, f.bottom + 30, xlabel, kBlack,
+         kText);
 
   c.setClip(f.left, f.top, f.right, f.bottom);
   for (std::size_t i : by_distance) {  // lost / missing frames: grey ticks at the bottom
@@ -154,8 +155,9 @@ Canvas renderErrorPlot(const Evaluation& ev, const PlotOptions& options) {
 
   std::vector<std::size_t> by_distance(ev.frames.size());
   std::iota(by_distance.begin(), by_distance.end(), std::size_t{0});
-  std::stable_sort(by_distance.begin(), by_distance.end(),
-                   [&ev](std::size_t a, std::size_t b) { return ev.frames[a].distance_m < ev.frames[b].distance_m; });
+  std::stable_sort(by_distance.begin(), by_distance.end(), [&ev](std::size_t a, std::size_t b) {
+    return ev.frames[a].distance_m < ev.frames[b].distance_m;
+  });
   double x_lo = 0.0, x_hi = 1.0;
   if (!ev.frames.empty()) {
     x_lo = ev.frames[by_distance.front()].distance_m;

@@ -83,7 +83,8 @@ std::vector<std::uint8_t> encodePngRgb(int width, int height, const std::vector<
   std::vector<std::uint8_t> ihdr;
   putU32(ihdr, static_cast<std::uint32_t>(width));
   putU32(ihdr, static_cast<std::uint32_t>(height));
-  ihdr.insert(ihdr.end(), {8U, 2U, 0U, 0U, 0U});  // bit depth 8, colour type RGB, deflate, filter 0, no interlace
+  ihdr.insert(ihdr.end(),
+              {8U, 2U, 0U, 0U, 0U});  // bit depth 8, colour type RGB, deflate, filter 0, no interlace
   putChunk(png, "IHDR", ihdr);
   putChunk(png, "IDAT", z);
   putChunk(png, "IEND", {});

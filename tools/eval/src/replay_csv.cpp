@@ -79,7 +79,8 @@ std::vector<std::string> splitCsvLine(const std::string& line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    fields.push_back(
+        trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -131,7 +132,8 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
     if (!seen.insert(row.frame).second)
       return LoadError::failure(where(name, line_no) + "duplicate frame " + std::to_string(row.frame));
     if (time_col >= 0 && !parseInt64(f[time_col], row.timestamp_ns))
-      return LoadError::failure(where(name, line_no) + "column 'timestamp_ns': bad integer '" + f[time_col] + "'");
+      return LoadError::failure(where(name, line_no) + "column 'timestamp_ns': bad integer '" + f[time_col] +
+                                "'");
     if (!parseTrackStatus(f[status_col], row.status)) {
       return LoadError::failure(where(name, line_no) + "column 'status': unknown status '" + f[status_col] +
                                 "' (expected tracking, degraded, lost or init)");
@@ -146,8 +148,8 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
         continue;
       }
       if (!parseDouble(text, v[k])) {
-        return LoadError::failure(where(name, line_no) + "column '" + kPoseColumns[k] + "': bad number '" + text +
-                                  "'");
+        return LoadError::failure(where(name, line_no) + "column '" + kPoseColumns[k] + "': bad number '" +
+                                  text + "'");
       }
       if (!std::isfinite(v[k])) all_finite = false;
     }
@@ -161,7 +163,8 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
       row.pose = Pose::fromQuaternion(q, Vec3(v[0], v[1], v[2]));
       row.has_pose = true;
     } else if (isTracked(row.status)) {
-      return LoadError::failure(where(name, line_no) + "non-finite pose in a '" + toString(row.status) + "' row");
+      return LoadError::failure(where(name, line_no) + "non-finite pose in a '" + toString(row.status) +
+                                "' row");
     }
     rows.push_back(row);
   }

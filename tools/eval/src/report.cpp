@@ -44,8 +44,8 @@ std::vector<RequirementResult> checkRequirements(const Evaluation& ev, const Req
   const EvaluationSummary& s = ev.summary;
   if (req.require_tracked_all) {
     RequirementResult r{"tracked_all", s.track_loss_count == 0, ""};
-    r.detail = std::to_string(s.frames_lost) + " lost, " + std::to_string(s.frames_missing) +
-               " missing of " + std::to_string(s.frames_evaluated) + " frames";
+    r.detail = std::to_string(s.frames_lost) + " lost, " + std::to_string(s.frames_missing) + " missing of " +
+               std::to_string(s.frames_evaluated) + " frames";
     out.push_back(r);
   }
   if (req.check_inside) {
@@ -96,7 +96,8 @@ void writeFrameCsv(std::ostream& out, const Evaluation& ev) {
     for (std::size_t d = 0; d < f.envelopes.size(); ++d) {
       const FrameEnvelope& e = f.envelopes[d];
       for (int a = 0; a < kAxisCount; ++a) out << ',' << (e.valid ? num(e.max_abs[a]) : "");
-      out << ',' << (e.valid ? num(e.max_angle_deg) : "") << ',' << (e.valid ? (f.inside[d] ? "1" : "0") : "");
+      out << ',' << (e.valid ? num(e.max_angle_deg) : "") << ','
+          << (e.valid ? (f.inside[d] ? "1" : "0") : "");
     }
     out << '\n';
   }
@@ -118,8 +119,8 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
   out << "  \"frames\": {\"evaluated\": " << s.frames_evaluated << ", \"tracking\": " << s.frames_tracking
       << ", \"degraded\": " << s.frames_degraded << ", \"lost\": " << s.frames_lost
       << ", \"missing\": " << s.frames_missing << ", \"init\": " << s.frames_init
-      << ", \"track_loss\": " << s.track_loss_count << ", \"unmatched_replay_rows\": " << s.unmatched_replay_rows
-      << "},\n  \"errors\": {\n";
+      << ", \"track_loss\": " << s.track_loss_count
+      << ", \"unmatched_replay_rows\": " << s.unmatched_replay_rows << "},\n  \"errors\": {\n";
   auto stats = [&out](const std::string& name, const ErrorStats& e, bool last) {
     out << "    " << jstr(name) << ": {\"count\": " << e.count << ", \"median\": " << jnum(e.median)
         << ", \"p95\": " << jnum(e.p95) << ", \"max\": " << jnum(e.max) << "}" << (last ? "\n" : ",\n");
@@ -130,9 +131,9 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
   for (std::size_t d = 0; d < s.envelopes.size(); ++d) {
     const EnvelopeSummary& e = s.envelopes[d];
     out << (d ? ",\n" : "\n") << "    {\"delta_px\": " << jnum(e.delta_px)
-        << ", \"frames_with_envelope\": " << e.frames_with_envelope << ", \"inside_count\": " << e.inside_count
-        << ", \"inside_fraction\": " << jnum(e.inside_fraction) << ", \"failed_solves\": " << e.failed_solves
-        << ", \"max_envelope\": {";
+        << ", \"frames_with_envelope\": " << e.frames_with_envelope
+        << ", \"inside_count\": " << e.inside_count << ", \"inside_fraction\": " << jnum(e.inside_fraction)
+        << ", \"failed_solves\": " << e.failed_solves << ", \"max_envelope\": {";
     for (int a = 0; a < kAxisCount; ++a)
       out << (a ? ", " : "") << jstr(axisColumn(a)) << ": " << jnum(e.max_envelope[a]);
     out << "}}";
@@ -140,13 +141,15 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
   out << (s.envelopes.empty() ? "],\n" : "\n  ],\n") << "  \"requirements\": [";
   for (std::size_t i = 0; i < req.size(); ++i) {
     out << (i ? ",\n" : "\n") << "    {\"name\": " << jstr(req[i].name)
-        << ", \"passed\": " << (req[i].passed ? "true" : "false") << ", \"detail\": " << jstr(req[i].detail) << "}";
+        << ", \"passed\": " << (req[i].passed ? "true" : "false") << ", \"detail\": " << jstr(req[i].detail)
+        << "}";
   }
   out << (req.empty() ? "],\n" : "\n  ],\n") << "  \"passed\": " << (passed ? "true" : "false") << "\n}\n";
 }
 
-LoadError writeSummaryJson(const std::string& path, const Evaluation& ev, const std::vector<RequirementResult>& req,
-                           const std::string& sequence, const std::string& replay) {
+LoadError writeSummaryJson(const std::string& path, const Evaluation& ev,
+                           const std::vector<RequirementResult>& req, const std::string& sequence,
+                           const std::string& replay) {
   std::ofstream out(path);
   if (!out) return LoadError::failure(path + ": cannot open for writing");
   writeSummaryJson(out, ev, req, sequence, replay);
@@ -157,12 +160,14 @@ std::string summaryText(const Evaluation& ev) {
   const EvaluationSummary& s = ev.summary;
   std::ostringstream o;
   char buf[200];
-  std::snprintf(buf, sizeof(buf),
-                "frames evaluated: %d (tracking %d, degraded %d, init %d, lost %d, missing %d); track losses: %d\n",
-                s.frames_evaluated, s.frames_tracking, s.frames_degraded, s.frames_init, s.frames_lost,
-                s.frames_missing, s.track_loss_count);
+  std::snprintf(
+      buf, sizeof(buf),
+      "frames evaluated: %d (tracking %d, degraded %d, init %d, lost %d, missing %d); track losses: %d\n",
+      s.frames_evaluated, s.frames_tracking, s.frames_degraded, s.frames_init, s.frames_lost,
+      s.frames_missing, s.track_loss_count);
   o << buf;
-  if (s.unmatched_replay_rows > 0) o << "replay rows without a truth frame (ignored): " << s.unmatched_replay_rows << '\n';
+  if (s.unmatched_replay_rows > 0)
+    o << "replay rows without a truth frame (ignored): " << s.unmatched_replay_rows << '\n';
   std::snprintf(buf, sizeof(buf), "%-10s %12s %12s %12s", "|error|", "median", "p95", "max");
   o << buf;
   for (const EnvelopeSummary& e : s.envelopes) {
@@ -180,9 +185,10 @@ std::string summaryText(const Evaluation& ev) {
     }
     o << '\n';
   }
-  std::snprintf(buf, sizeof(buf), "%-10s %12.6g %12.6g %12.6g\n", "att_deg", s.attitude.median, s.attitude.p95,
-                s.attitude.max);
-  o << buf << "(" << s.axes[0].count << " scored frames; envelope columns: largest envelope over the frames)\n";
+  std::snprintf(buf, sizeof(buf), "%-10s %12.6g %12.6g %12.6g\n", "att_deg", s.attitude.median,
+                s.attitude.p95, s.attitude.max);
+  o << buf << "(" << s.axes[0].count
+    << " scored frames; envelope columns: largest envelope over the frames)\n";
   for (const EnvelopeSummary& e : s.envelopes) {
     o << insideLine(e);
     if (e.failed_solves > 0) o << "  [" << e.failed_solves << " envelope LM solves did not converge]";

@@ -33,7 +33,7 @@ class Canvas {
   void fillRect(int x0, int y0, int x1, int y1, Rgb c);  ///< [x0, x1) x [y0, y1)
   void rect(int x0, int y0, int x1, int y1, Rgb c);      ///< outline
   void line(double x0, double y0, double x1, double y1, Rgb c, int thickness = 1);
-  void dot(double x, double y, int radius, Rgb c);        ///< filled square of side 2 * radius + 1
+  void dot(double x, double y, int radius, Rgb c);  ///< filled square of side 2 * radius + 1
 
   /// Text with its top-left corner at (x, y); each font pixel becomes scale x scale pixels.
   void text(int x, int y, const std::string& s, Rgb c, int scale = 1);

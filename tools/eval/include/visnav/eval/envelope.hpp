@@ -28,12 +28,12 @@ struct EnvelopeOptions {
 };
 
 struct FrameEnvelope {
-  bool valid = false;      ///< false: fewer than 3 usable vertices (nothing tracked at this pose)
+  bool valid = false;  ///< false: fewer than 3 usable vertices (nothing tracked at this pose)
   bool exhaustive = false;
   int vertex_count = 0;
   int combinations = 0;
-  int failed_solves = 0;   ///< LM runs that did not report convergence (their pose is still used)
-  AxisValues max_abs{};    ///< per-axis envelope: max |error| [m | deg]
+  int failed_solves = 0;  ///< LM runs that did not report convergence (their pose is still used)
+  AxisValues max_abs{};   ///< per-axis envelope: max |error| [m | deg]
   double max_angle_deg = 0.0;
 };
 

@@ -20,10 +20,10 @@ struct TruthPose {
 struct FrameRecord {
   std::int64_t frame = 0;
   std::int64_t timestamp_ns = 0;
-  double distance_m = 0.0;         ///< truth t_c_m.z
+  double distance_m = 0.0;  ///< truth t_c_m.z
   TrackStatus status = TrackStatus::kMissing;
-  bool scored = false;             ///< tracked row with a pose: errors below are meaningful
-  AxisValues error{};              ///< estimate - truth [m | deg]
+  bool scored = false;  ///< tracked row with a pose: errors below are meaningful
+  AxisValues error{};   ///< estimate - truth [m | deg]
   double attitude_error_deg = 0.0;
   std::vector<FrameEnvelope> envelopes;  ///< one per envelope size; invalid when not computed (stride)
   std::vector<std::uint8_t> inside;      ///< per envelope size: scored and |error| <= envelope on all axes
@@ -64,8 +64,9 @@ struct Evaluation {
   EvaluationSummary summary;
 };
 
-Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model, const std::vector<TruthPose>& truth,
-                    const std::vector<ReplayRow>& replay, const EvaluationOptions& options);
+Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
+                    const std::vector<TruthPose>& truth, const std::vector<ReplayRow>& replay,
+                    const EvaluationOptions& options);
 
 struct RequirementResult {
   std::string name;

@@ -18,7 +18,8 @@ struct PlotOptions {
 
 /// Renders into a new canvas of 3 x 2 panels plus a legend strip.
 Canvas renderErrorPlot(const Evaluation& evaluation, const PlotOptions& options = {});
-LoadError writeErrorPlot(const std::string& path, const Evaluation& evaluation, const PlotOptions& options = {});
+LoadError writeErrorPlot(const std::string& path, const Evaluation& evaluation,
+                         const PlotOptions& options = {});
 
 /// Tick positions at 1, 2 or 5 x 10^k covering [lo, hi] with about `target` intervals; `decimals` receives
 /// the number of decimals that label them exactly.

@@ -1,5 +1,5 @@
-// Reader for the per-frame CSV written by visnav-replay. Columns are located by header name so the replay tool
-// may add or reorder columns without breaking the evaluation; unknown columns are ignored.
+// Reader for the per-frame CSV written by visnav-replay. Columns are located by header name so the replay
+// tool may add or reorder columns without breaking the evaluation; unknown columns are ignored.
 #pragma once
 
 #include <cstdint>
@@ -34,7 +34,8 @@ struct ReplayRow {
 LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& out);
 LoadError loadReplayCsv(const std::string& path, std::vector<ReplayRow>& out);
 
-/// Splits one CSV line on commas (no quoting: the replay CSV never quotes) and trims blanks and a trailing CR.
+/// Splits one CSV line on commas (no quoting: the replay CSV never quotes) and trims blanks and a trailing
+/// CR.
 std::vector<std::string> splitCsvLine(const std::string& line);
 
 }  // namespace visnav::eval

@@ -25,8 +25,9 @@ std::string envelopeTag(double delta_px);
 void writeFrameCsv(std::ostream& out, const Evaluation& evaluation);
 LoadError writeFrameCsv(const std::string& path, const Evaluation& evaluation);
 
-void writeSummaryJson(std::ostream& out, const Evaluation& evaluation, const std::vector<RequirementResult>& req,
-                      const std::string& sequence, const std::string& replay);
+void writeSummaryJson(std::ostream& out, const Evaluation& evaluation,
+                      const std::vector<RequirementResult>& req, const std::string& sequence,
+                      const std::string& replay);
 LoadError writeSummaryJson(const std::string& path, const Evaluation& evaluation,
                            const std::vector<RequirementResult>& req, const std::string& sequence,
                            const std::string& replay);
