@@ -19,10 +19,11 @@ struct EnvelopeOptions {
   int sampled_combinations = 256;      ///< random sign patterns otherwise, plus 8 structured ones
   std::uint64_t seed = 0x76697365ULL;  ///< Pcg32 seed; reseeded per frame so results ignore stride/order
   /// Near-frontal planar targets have a flat, two-fold pitch/roll minimum (the worst case itself): allow
-  /// more iterations than the tracker's default so the solves converge instead of stopping half way.
+  /// more iterations than the tracker so the solves converge instead of stopping half way (measured on the
+  /// approach: 200 leaves ~20x fewer unconverged solves than 50 at no measurable cost).
   LmOptions lm = [] {
     LmOptions o;
-    o.max_iterations = 50;
+    o.max_iterations = 200;
     return o;
   }();
 };
