@@ -52,7 +52,7 @@ double yHalfRange(const Evaluation& ev, int axis) {
 void drawPanel(Canvas& c, const Evaluation& ev, int axis, int x0, int y0, int w, int h, double x_lo,
                double x_hi, const std::vector<std::size_t>& by_distance) {
   const double half = yHalfRange(ev, axis);
-  Frame f{x0 + 100, y0 + 34, x0 + w - 20, y0 + h - 52, x_lo, x_hi, -half, half};
+  Frame f{x0 + 100, y0 + 34, x0 + w - 32, y0 + h - 52, x_lo, x_hi, -half, half};
   const std::string title = std::string(axisName(axis)) + " error [" + axisUnit(axis) + "]";
   c.text(f.left + (f.right - f.left - Canvas::textWidth(title, kText)) / 2, y0 + 10, title, kBlack, kText);
 
