@@ -7,26 +7,8 @@
 #include <numeric>
 #include <vector>
 
+#include "../support/alloc_counter.hpp"
 #include "visnav/synthetic/renderer.hpp"
-
-// Counts every global operator new so the test can assert that render() never allocates.
-namespace {
-std::atomic<long> g_new_calls{0};
-}
-void* operator new(std::size_t size) {
-  ++g_new_calls;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  ++g_new_calls;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace visnav::synthetic {
 namespace {
@@ -279,7 +261,7 @@ TEST(Renderer, RenderDoesNotAllocate) {
   ASSERT_TRUE(r.init(vga(true), makeBox(0.8, 0.6, 0.5, 0.7), o).ok);
   std::vector<std::uint8_t> img8(kW * kH);
   std::vector<std::uint16_t> img16(kW * kH);
-  const long before = g_new_calls.load();
+  const std::uint64_t before = visnav::test::allocationCount();
   for (int i = 0; i < 50; ++i) {
     const Pose p = Pose::fromYpr({0.01 * i, 0.3, 0.5 + 0.02 * i}, Vec3(0.1, -0.1, 8.0 - 0.01 * i));
     if (i % 2 == 0) {
@@ -288,7 +270,7 @@ TEST(Renderer, RenderDoesNotAllocate) {
       r.render(p, Renderer::frameSeed(1, static_cast<std::uint64_t>(i)), img16.data(), kW * 2, 1023);
     }
   }
-  EXPECT_EQ(g_new_calls.load() - before, 0);
+  EXPECT_EQ(visnav::test::allocationCount() - before, 0U);
 }
 
 }  // namespace
