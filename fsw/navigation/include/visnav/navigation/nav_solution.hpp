@@ -1,0 +1,109 @@
+// What the pipeline returns per frame (NavSolution) and the health record FDIR keeps (HealthRecord). These
+// are the only navigation types telemetry sees: fsw/telemetry maps them to the idl/ samples, so nothing
+// upstream knows DDS exists. Fixed-size members only (no heap): copied by value every cycle.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "visnav/core/types.hpp"
+#include "visnav/geometry/pose.hpp"
+
+namespace visnav::nav {
+
+enum class NavMode : std::uint8_t { kStandby = 0, kFarRange = 1, kAcquisition = 2, kNearRange = 3 };
+const char* toString(NavMode mode);
+
+/// Ground commands (ModeCommand topic).
+enum class ModeCommandKind : std::uint8_t { kForceFarRange = 0, kReacquire = 1, kStandby = 2, kResume = 3 };
+const char* toString(ModeCommandKind kind);
+
+/// FDIR fault bits (HealthRecord::fault_bits, NavSolution::fault_bits).
+enum FaultBit : std::uint32_t {
+  kFaultInlierRatio = 1U << 0,    ///< edge-point inlier ratio of a line below threshold
+  kFaultTooFewLines = 1U << 1,    ///< usable lines below threshold
+  kFaultResidual = 1U << 2,       ///< LM residual above threshold
+  kFaultNotConverged = 1U << 3,   ///< LM did not converge
+  kFaultInnovation = 1U << 4,     ///< NIS against the Kalman prediction above the gate
+  kFaultImplausible = 1U << 5,    ///< range or image-bounds check failed
+  kFaultFrameAge = 1U << 6,       ///< frame older than allowed when processed
+  kFaultNoFrame = 1U << 7,        ///< camera delivered no frame this cycle
+  kFaultFarRangeNoTarget = 1U << 8,  ///< far range found no acceptable cluster
+  kFaultAcquisitionFailed = 1U << 9, ///< acquisition gave up on a candidate
+  kFaultCycleSlip = 1U << 10,     ///< the executive missed a deadline
+};
+constexpr int kFaultBitCount = 11;
+
+struct FarRangeSolution {
+  bool valid = false;
+  Vec3 direction_c = Vec3::UnitZ();  ///< unit line of sight in the camera frame (CONVENTIONS.md)
+  double azimuth_rad = 0.0;          ///< atan2(x, z)
+  double elevation_rad = 0.0;        ///< atan2(-y, hypot(x, z)): up in the image is positive
+  double distance_m = 0.0;           ///< eq. 16, gamma / sqrt(n)
+  int cluster_pixels = 0;            ///< n of eq. 16
+  double circularity = 0.0;          ///< eq. 15
+  int cluster_count = 0;
+  double quality = 0.0;              ///< [0, 1]
+};
+
+/// Per-stage time of this frame [us].
+struct StageTimes {
+  double acquire_us = 0.0;
+  double process_us = 0.0;
+  double publish_us = 0.0;
+  double health_us = 0.0;
+};
+
+struct NavSolution {
+  std::uint64_t frame_number = 0;
+  std::int64_t exposure_time_ns = 0;   ///< from the Frame
+  NavMode mode = NavMode::kStandby;
+  bool pose_valid = false;             ///< a 6-DOF pose is reported (near range, or acquisition's first pose)
+  Pose pose;                           ///< T_c_m (CONVENTIONS.md)
+  Mat6 covariance = Mat6::Zero();      ///< over (omega, dt)
+  double quality = 0.0;                ///< [0, 1]
+  int tracked_surfaces = 0;
+  int lines_used = 0;
+  int lines_total = 0;
+  FarRangeSolution far;
+  std::uint32_t fault_bits = 0;        ///< FaultBit set this frame
+  StageTimes timing;
+};
+
+/// Timing statistics of one executive task, from fixed storage [us].
+struct TaskTimingSummary {
+  double min_us = 0.0;
+  double mean_us = 0.0;
+  double max_us = 0.0;
+  double p99_us = 0.0;
+};
+constexpr int kTaskCount = 4;  ///< acquire, process, publish, health
+
+struct ModeTransition {
+  NavMode from = NavMode::kStandby;
+  NavMode to = NavMode::kStandby;
+  std::uint64_t frame_number = 0;
+  std::array<char, 64> reason{};       ///< NUL-terminated
+};
+
+struct CommandAck {
+  std::uint32_t command_id = 0;        ///< echoed from the ModeCommand
+  ModeCommandKind kind = ModeCommandKind::kResume;
+  bool accepted = false;
+  std::array<char, 64> reason{};       ///< NUL-terminated: why rejected, or "ok"
+};
+
+struct HealthRecord {
+  NavMode mode = NavMode::kStandby;
+  std::uint32_t fault_bits = 0;                             ///< faults active now
+  std::array<std::uint32_t, kFaultBitCount> fault_counts{}; ///< frames each fault was raised
+  std::uint64_t frames_processed = 0;
+  std::uint64_t frames_dropped = 0;
+  std::uint64_t cycle_slips = 0;
+  std::uint64_t mode_transitions = 0;
+  ModeTransition last_transition;
+  CommandAck last_command;
+  std::array<TaskTimingSummary, kTaskCount> task_timing{};
+};
+
+}  // namespace visnav::nav
