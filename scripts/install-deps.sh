@@ -3,7 +3,8 @@
 # present). Run as root or with sudo available.
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkgconf libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libtomlplusplus-dev zlib1g-dev)
+          libtomlplusplus-dev zlib1g-dev
+          libcamera-dev linux-libc-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
