@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/camera/camera_params.hpp"
 #include "visnav/io/config_io.hpp"
 #include "visnav/io/param_docs.hpp"
 #include "visnav/nearrange/near_range_params.hpp"
@@ -12,8 +13,10 @@ int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--check") == 0) {
     visnav::io::ConfigFile config;
     visnav::NearRangeParams nearrange;
+    visnav::camera::CameraParams camera;
     visnav::LoadError e = config.open(argv[2]);
     if (e.ok) e = config.apply(nearrange);
+    if (e.ok) e = config.apply(camera);
     if (e.ok) e = config.checkNoUnknownKeys();
     if (!e.ok) {
       std::fprintf(stderr, "visnav-params: %s\n", e.message.c_str());
@@ -36,5 +39,7 @@ int main(int argc, char** argv) {
       "value or an unknown key is an error naming file, line and key.\n\n"
       "## [nearrange]: near-range 6-DOF tracker (paper sec. II)\n\n%s",
       visnav::io::parameterTableMarkdown(visnav::NearRangeParams{}).c_str());
+  std::printf("\n## [camera]: frame source (drivers/README.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::camera::CameraParams{}).c_str());
   return 0;
 }

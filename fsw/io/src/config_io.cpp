@@ -78,6 +78,19 @@ class TomlReader final : public ParamVisitor {
     }
     fail(*node, info, "'" + given + "' is not one of: " + names);
   }
+  void text(const ParamInfo& info, std::string& value) override {
+    const toml::node* node = find(info);
+    if (node == nullptr) return;
+    if (!node->is_string()) return fail(*node, info, "must be a string");
+    std::string given = *node->value<std::string>();
+    const auto length = static_cast<double>(given.size());
+    if (length < info.min || length > info.max) {
+      std::ostringstream msg;
+      msg << "has " << given.size() << " characters, outside [" << info.min << ", " << info.max << "]";
+      return fail(*node, info, msg.str());
+    }
+    value = std::move(given);
+  }
 
   LoadError error() const { return m_error; }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace visnav {
 
@@ -18,7 +19,8 @@ struct ParamInfo {
 };
 
 /// Implemented by loaders and documenters. Enumerations are passed as an int index into a
-/// '|'-separated list of names (e.g. "vertex|point_to_line").
+/// '|'-separated list of names (e.g. "vertex|point_to_line"). Text values (device paths, ids) take their
+/// length range from ParamInfo min/max; they are init-time settings (a std::string copy allocates).
 class ParamVisitor {
  public:
   virtual ~ParamVisitor() = default;
@@ -26,6 +28,7 @@ class ParamVisitor {
   virtual void integer(const ParamInfo& info, int& value) = 0;
   virtual void boolean(const ParamInfo& info, bool& value) = 0;
   virtual void enumeration(const ParamInfo& info, const char* names, int& value) = 0;
+  virtual void text(const ParamInfo& info, std::string& value) = 0;
 };
 
 }  // namespace visnav

@@ -24,6 +24,9 @@ class MarkdownParamWriter final : public ParamVisitor {
       if (i == value) break;
     row(info, "enum", "\"" + chosen + "\"", list);
   }
+  void text(const ParamInfo& info, std::string& value) override {
+    row(info, "string", "\"" + value + "\"", number(info.min) + " .. " + number(info.max) + " chars");
+  }
   std::string text() const { return m_out.str(); }
 
  private:
