@@ -34,6 +34,7 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   const std::size_t edges = model.edges().size();
   const std::size_t points = edges * static_cast<std::size_t>(params.max_scanlines_per_edge);
   m_surface_tracked.reserve(surfaces);
+  m_surface_front.reserve(surfaces);
   m_edge_selected.reserve(edges);
   m_polarity.reserve(edges * kPolarityBins);
   m_polarity_next.reserve(edges * kPolarityBins);
@@ -45,7 +46,16 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_scratch.reserve(params.max_scanlines_per_edge);
   m_vertex_obs.reserve(surfaces * static_cast<std::size_t>(model.maxSurfaceVertices()));
   m_edge_obs.reserve(points);
-  for (std::size_t i = 0; i < surfaces; ++i) m_surface_tracked.push(0);
+  m_vertex_best_sin.reserve(model.vertices().size());
+  m_vertex_best_px.reserve(model.vertices().size());
+  for (std::size_t i = 0; i < model.vertices().size(); ++i) {
+    m_vertex_best_sin.push(0.0);
+    m_vertex_best_px.push(Vec2::Zero());
+  }
+  for (std::size_t i = 0; i < surfaces; ++i) {
+    m_surface_tracked.push(0);
+    m_surface_front.push(0);
+  }
   for (std::size_t i = 0; i < edges; ++i) {
     m_edge_selected.push(0);
     m_edge_slot.push(-1);
@@ -79,6 +89,7 @@ void NearRangeTracker::updateSurfaces(const Pose& predicted) {
     // On the first frame there is no history: enter thresholds decide.
     const bool was = !m_first_frame && m_surface_tracked[s] != 0U;
     m_surface_tracked[s] = updateVisibility(was, view, m_visibility) ? 1U : 0U;
+    m_surface_front[s] = view.front_facing ? 1U : 0U;
   }
   m_first_frame = false;
 }
@@ -94,9 +105,11 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
     out.flags |= kFlagOutOfImage;
     return;
   }
-  // Outward side: away from the projected centroid of a tracked surface owning this edge.
-  const int owner = (edge.surface_left >= 0 && m_surface_tracked[edge.surface_left] != 0U) ? edge.surface_left
-                                                                                             : edge.surface_right;
+  // Outward side: away from the projected centroid of a tracked (else front-facing) surface owning the edge.
+  const auto owns = [&](int s, const BoundedBuffer<std::uint8_t>& flag) { return s >= 0 && flag[s] != 0U; };
+  int owner = owns(edge.surface_left, m_surface_tracked) ? edge.surface_left : -1;
+  if (owner < 0) owner = owns(edge.surface_right, m_surface_tracked) ? edge.surface_right : -1;
+  if (owner < 0) owner = owns(edge.surface_left, m_surface_front) ? edge.surface_left : edge.surface_right;
   Vec2 centroid_px;
   if (owner < 0 || !m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px)) return;
 
@@ -122,6 +135,11 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
       if (tangent.squaredNorm() < 1e-18) continue;
       sp.scan_normal = Vec2(-tangent.y(), tangent.x()).normalized();
       if (sp.scan_normal.dot(sp.scan_centre_px - centroid_px) < 0.0) sp.scan_normal = -sp.scan_normal;
+      // Dither each scanline's sample phase by a low-discrepancy offset in [-0.5, 0.5) px: a pixel-level
+      // hit (texture split, n + 0.5) is then quantised differently on every scanline and the line fit
+      // averages the quantisation out instead of inheriting one shared bias of up to 0.5 px.
+      const double golden = 0.6180339887498949 * (i + 1);
+      sp.scan_centre_px += (golden - std::floor(golden) - 0.5) * sp.scan_normal;
       const int bin = static_cast<int>(t * kPolarityBins) < kPolarityBins ? static_cast<int>(t * kPolarityBins)
                                                                           : kPolarityBins - 1;
       sp.polarity_bin = static_cast<std::uint8_t>(bin);
@@ -184,38 +202,115 @@ void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out)
                     : 0.0;
 }
 
-int NearRangeTracker::collectVertices() {
+int NearRangeTracker::collectVertices(int excluded_slot) {
+  // A vertex is observed where two measured lines of edges meeting at it intersect (eq. 6, Cramer form).
+  // With outline edges a vertex may join three measured edges: the best-conditioned pair (largest |sin| of
+  // the angle between the lines) gives its one observation, so no corner is counted twice.
   m_vertex_obs.clear();
-  const auto& surfaces = m_model.surfaces();
-  for (std::size_t s = 0; s < surfaces.size(); ++s) {
-    if (m_surface_tracked[s] == 0U) continue;
-    const auto& idx = surfaces[s].vertex_indices;
-    const int n = static_cast<int>(idx.size());
-    for (int k = 0; k < n; ++k) {
-      // Vertex idx[k] joins side k-1 (idx[k-1] -> idx[k]) and side k (idx[k] -> idx[k+1]).
-      const int in_slot = m_edge_slot[m_model.surfaceEdge(static_cast<int>(s), (k + n - 1) % n)];
-      const int out_slot = m_edge_slot[m_model.surfaceEdge(static_cast<int>(s), k)];
-      if (in_slot < 0 || out_slot < 0 || !m_edges[in_slot].line_ok || !m_edges[out_slot].line_ok) continue;
-      VertexObservation obs;
-      obs.vertex = idx[k];
-      // Eq. 6 (Cramer form); nearly parallel neighbours give no vertex.
-      if (!intersect(m_edges[in_slot].line, m_edges[out_slot].line, obs.px_ideal, 0.05)) continue;
-      m_vertex_obs.push(obs);
+  for (double& best : m_vertex_best_sin) best = 0.0;
+  const auto& edges = m_model.edges();
+  const int slots = static_cast<int>(m_edges.size());
+  for (int i = 0; i < slots; ++i) {
+    if (!m_edges[i].line_ok || i == excluded_slot) continue;
+    const ModelEdge& ei = edges[m_edges[i].model_edge];
+    for (int j = i + 1; j < slots; ++j) {
+      if (!m_edges[j].line_ok || j == excluded_slot) continue;
+      const ModelEdge& ej = edges[m_edges[j].model_edge];
+      const int shared = (ei.v0 == ej.v0 || ei.v0 == ej.v1) ? ei.v0 : ((ei.v1 == ej.v0 || ei.v1 == ej.v1) ? ei.v1 : -1);
+      if (shared < 0) continue;
+      const Line2d& a = m_edges[i].line;
+      const Line2d& b = m_edges[j].line;
+      const double sin_angle = std::fabs(std::sin(a.theta_rad - b.theta_rad));
+      Vec2 px;
+      // Nearly parallel neighbours give no vertex.
+      if (sin_angle <= m_vertex_best_sin[shared] || !intersect(a, b, px, 0.05)) continue;
+      m_vertex_best_sin[shared] = sin_angle;
+      m_vertex_best_px[shared] = px;
     }
+  }
+  for (std::size_t v = 0; v < m_vertex_best_sin.size(); ++v) {
+    if (m_vertex_best_sin[v] <= 0.0) continue;
+    VertexObservation obs;
+    obs.vertex = static_cast<int>(v);
+    obs.px_ideal = m_vertex_best_px[v];
+    m_vertex_obs.push(obs);
   }
   return static_cast<int>(m_vertex_obs.size());
 }
 
-int NearRangeTracker::collectEdgePoints() {
+int NearRangeTracker::collectEdgePoints(int excluded_slot) {
   m_edge_obs.clear();
-  for (const EdgeDebug& slot : m_edges) {
-    if (!slot.line_ok) continue;
+  for (int k = 0; k < static_cast<int>(m_edges.size()); ++k) {
+    const EdgeDebug& slot = m_edges[k];
+    if (!slot.line_ok || k == excluded_slot) continue;
     for (int i = 0; i < slot.point_count; ++i) {
       if (!m_scan_points[slot.first_point + i].inlier) continue;
       m_edge_obs.push({slot.model_edge, m_points_ideal[slot.first_point + i]});
     }
   }
   return static_cast<int>(m_edge_obs.size());
+}
+
+bool NearRangeTracker::solvePose(const Pose& predicted, int excluded_slot, int lines_used, Pose& pose,
+                                 PoseFitResult& fit, int& vertices, std::uint32_t& flags) {
+  pose = predicted;
+  fit = PoseFitResult{};
+  const LmOptions lm{m_params.lm_max_iterations};
+  vertices = collectVertices(excluded_slot);
+  const bool vertex_mode = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex);
+  if (vertex_mode && lines_used >= 4 && vertices >= 4)
+    return fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), vertices, lm, m_params.pixel_sigma_px, pose,
+                             fit);
+  // Point-to-line needs no complete corner: three non-parallel lines with many points still fix 6 DOF.
+  // When the vertex residual lacks corners this is the fallback, and the frame is marked degraded.
+  const int n = collectEdgePoints(excluded_slot);
+  const int min_lines = vertex_mode ? 3 : 4;
+  if (lines_used < min_lines || n < 12) {
+    flags |= kFlagTooFewLines;
+    return false;
+  }
+  if (vertex_mode) flags |= kFlagResidualFallback;
+  return fitPoseToEdgePoints(m_camera, m_model, m_edge_obs.data(), n, lm, m_params.pixel_sigma_px, pose, fit);
+}
+
+bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose& pose, PoseFitResult& fit,
+                                       NearRangeResult& out) {
+  // One wrong line (e.g. locked onto the parallel neighbour edge of a face seen at a grazing angle) spoils
+  // every vertex it touches. Refit without each used line in turn (bounded: one LM per line) and keep the
+  // best, if it explains the rest clearly better; the frame is then degraded (kFlagLineRejected).
+  if (out.lines_used < 5) return solved;
+  int best_slot = -1;
+  Pose best_pose = pose;
+  PoseFitResult best_fit = fit;
+  std::uint32_t best_flags = 0;
+  for (int k = 0; k < static_cast<int>(m_edges.size()); ++k) {
+    if (!m_edges[k].line_ok) continue;
+    Pose trial_pose;
+    PoseFitResult trial_fit;
+    int trial_vertices = 0;  // unused: recounted for the kept solution
+    std::uint32_t trial_flags = 0;
+    if (!solvePose(predicted, k, out.lines_used - 1, trial_pose, trial_fit, trial_vertices, trial_flags)) continue;
+    const bool better = best_slot < 0 && !solved ? true : trial_fit.rms_px < 0.5 * best_fit.rms_px;
+    if (better) {
+      best_slot = k;
+      best_pose = trial_pose;
+      best_fit = trial_fit;
+      best_flags = trial_flags;
+    }
+  }
+  if (best_slot < 0) {
+    out.vertices = collectVertices(-1);  // leave the buffers as the kept solution saw them
+    return solved;
+  }
+  EdgeDebug& rejected = m_edges[best_slot];
+  rejected.line_ok = false;
+  for (int b = 0; b < kPolarityBins; ++b) m_polarity_next[rejected.model_edge * kPolarityBins + b] = 0;
+  --out.lines_used;
+  out.flags |= kFlagLineRejected | best_flags;
+  out.vertices = collectVertices(-1);
+  pose = best_pose;
+  fit = best_fit;
+  return true;
 }
 
 void NearRangeTracker::finishLost(const Pose& predicted, NearRangeResult& out) const {
@@ -244,8 +339,16 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
     const ModelEdge& edge = edges[e];
     const bool left = edge.surface_left >= 0 && m_surface_tracked[edge.surface_left] != 0U;
     const bool right = edge.surface_right >= 0 && m_surface_tracked[edge.surface_right] != 0U;
-    m_edge_selected[e] = (left || right) ? 1U : 0U;
     m_edge_slot[e] = -1;
+    m_edge_selected[e] = (left || right) ? 1U : 0U;
+    if (m_edge_selected[e] != 0U || !m_params.silhouette_edges) continue;
+    // Outline: exactly one side front-facing (an open boundary counts as a back side).
+    const bool front_left = edge.surface_left >= 0 && m_surface_front[edge.surface_left] != 0U;
+    const bool front_right = edge.surface_right >= 0 && m_surface_front[edge.surface_right] != 0U;
+    if (front_left != front_right) {
+      m_edge_selected[e] = 1U;
+      ++out.silhouette_lines;
+    }
   }
   for (std::size_t s = 0; s < m_surface_tracked.size(); ++s) {
     if (m_surface_tracked[s] == 0U) continue;
@@ -253,7 +356,8 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
     if (s < 64) out.tracked_surface_mask |= 1ULL << s;
   }
   out.timing.project_us = elapsedUs(stamp);
-  if (out.tracked_surfaces == 0) {
+  if (out.tracked_surfaces == 0 && out.silhouette_lines > 0) out.flags |= kFlagSilhouetteOnly;
+  if (out.tracked_surfaces == 0 && out.silhouette_lines == 0) {
     out.flags |= kFlagNoSurface;
     finishLost(predicted, out);
     out.timing.total_us = elapsedUs(start);
@@ -271,25 +375,10 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
 
   Pose pose = predicted;
   PoseFitResult fit;
-  bool solved = false;
-  const LmOptions lm{m_params.lm_max_iterations};
-  out.vertices = collectVertices();
-  const bool vertex_mode = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex);
-  if (vertex_mode && out.lines_used >= 4 && out.vertices >= 4) {
-    solved = fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), out.vertices, lm, m_params.pixel_sigma_px,
-                               pose, fit);
-  } else {
-    // Point-to-line needs no complete corner: three non-parallel lines with many points still fix 6 DOF.
-    // When the vertex residual lacks corners this is the fallback, and the frame is marked degraded.
-    const int n = collectEdgePoints();
-    const int min_lines = vertex_mode ? 3 : 4;
-    if (out.lines_used >= min_lines && n >= 12) {
-      solved = fitPoseToEdgePoints(m_camera, m_model, m_edge_obs.data(), n, lm, m_params.pixel_sigma_px, pose, fit);
-      if (vertex_mode) out.flags |= kFlagResidualFallback;
-    } else {
-      out.flags |= kFlagTooFewLines;
-    }
-  }
+  bool solved = solvePose(predicted, -1, out.lines_used, pose, fit, out.vertices, out.flags);
+  const bool solver_failed = !solved && (out.flags & kFlagTooFewLines) == 0U;
+  if (solver_failed || (solved && fit.rms_px > m_params.degraded_rms_px))
+    solved = rejectWorstLine(predicted, solved, pose, fit, out);
   out.timing.pose_us = elapsedUs(stamp);
   out.rms_px = fit.rms_px;
   out.lm_iterations = fit.lm.iterations;

@@ -70,6 +70,40 @@ TEST(EdgeDetector, WeakContrastFallsBackToTextureSplit) {
   EXPECT_NEAR(hit.offset_px + 10.0, 11.5, 1.01);
 }
 
+/// Mean signed error of texture hits across a weak step from a uniform target (0.40, sigma 0.005) to a
+/// noisy brighter background (0.50, sigma 0.04), over sub-pixel edge positions and noise draws.
+double textureBias(bool subpixel, int& texture_hits) {
+  constexpr int kCount = 21;
+  EdgeSearchParams params;
+  params.subpixel = subpixel;
+  Pcg32 rng(17);
+  double sum = 0.0;
+  texture_hits = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const double edge = 9.5 + (trial % 20) * 0.05;
+    double s[kCount];
+    stepProfile(edge, 0.40, 0.50, kCount, s);
+    for (int k = 0; k < kCount; ++k) s[k] += (k < edge ? 0.005 : 0.04) * (2.0 * rng.uniform() - 1.0) * 1.732;
+    const EdgeHit hit = findEdge(s, kCount, params, 0);
+    if (hit.method != EdgeMethod::kTexture) continue;
+    ++texture_hits;
+    sum += hit.offset_px - (edge - 10.0);
+  }
+  return texture_hits > 0 ? sum / texture_hits : 1e9;
+}
+
+TEST(EdgeDetector, TextureSplitIsRefinedToAnUnbiasedSubPixelEdge) {
+  // The pixel-level split gives the blurred straddling samples to the wider (noisier) class, which pulls
+  // the edge towards the uniform side; the sub-pixel refinement must remove that bias.
+  int pixel_hits = 0, subpixel_hits = 0;
+  const double pixel_bias = textureBias(false, pixel_hits);
+  const double subpixel_bias = textureBias(true, subpixel_hits);
+  ASSERT_GT(pixel_hits, 300);
+  ASSERT_GT(subpixel_hits, 300);
+  EXPECT_LT(pixel_bias, -0.15);  // the bias is real (this is what made low_contrast fail the 0.25 px bound)
+  EXPECT_LT(std::fabs(subpixel_bias), 0.08);
+}
+
 TEST(EdgeDetector, UniformScanlineHasNoEdge) {
   double s[15];
   Pcg32 rng(9);

@@ -136,3 +136,60 @@ TEST_F(TrackerTest, InitRejectsBrokenHysteresis) {
 
 }  // namespace
 }  // namespace visnav
+
+namespace visnav {
+namespace {
+
+/// A box seen along its body diagonal: every visible face is at 54.7 deg from head-on, outside the
+/// sec. II-H gate (v within 45..135 deg), and all faces have the same brightness (no interior contrast).
+class DiagonalBoxTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    model = makeBox(0.8, 0.6, 0.5);
+    ASSERT_TRUE(renderer.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3(0, 0, -1));
+    truth.R_c_m = q.toRotationMatrix();
+    truth.t_c_m = Vec3(0.1, -0.05, 8.0);
+  }
+  NearRangeResult trackFromOffset(const NearRangeParams& params) {
+    NearRangeTracker tracker;
+    EXPECT_TRUE(tracker.init(test::vgaCamera(), model, params).ok);
+    Vec6 offset;
+    offset << 0.01, -0.01, 0.015, 0.03, -0.02, 0.1;  // (omega [rad], dt [m])
+    const Pose predicted = truth.boxPlus(offset);
+    const test::RenderedFrame frame = test::renderFrame(renderer, truth, 31);
+    NearRangeResult r;
+    Pose pose = predicted;
+    for (int i = 0; i < 3; ++i) {  // the same frame three times: converge from the offset
+      EXPECT_EQ(tracker.track(frame.image(), pose, static_cast<std::uint64_t>(i), r), Status::kOk);
+      pose = r.status == TrackStatus::kLost ? pose : r.pose;
+    }
+    return r;
+  }
+  PolygonModel model;
+  synthetic::Renderer renderer;
+  Pose truth;
+};
+
+TEST_F(DiagonalBoxTest, OutlineCarriesTheBoxWhenNoFacePassesTheGate) {
+  const NearRangeResult r = trackFromOffset(NearRangeParams{});
+  ASSERT_NE(r.status, TrackStatus::kLost) << "flags " << r.flags;
+  EXPECT_EQ(r.tracked_surfaces, 0);
+  EXPECT_EQ(r.silhouette_lines, 6);  // the hexagonal outline
+  EXPECT_NE(r.flags & kFlagSilhouetteOnly, 0U);
+  EXPECT_EQ(r.vertices, 6);
+  const Vec6 err = truth.boxMinus(r.pose);
+  EXPECT_LT(err.head<3>().norm() * kDegPerRad, 1.0);
+  EXPECT_LT(err.tail<3>().norm(), 0.05);
+}
+
+TEST_F(DiagonalBoxTest, PaperGateAloneLosesIt) {
+  NearRangeParams paper;
+  paper.silhouette_edges = false;
+  const NearRangeResult r = trackFromOffset(paper);
+  EXPECT_EQ(r.status, TrackStatus::kLost);
+  EXPECT_NE(r.flags & kFlagNoSurface, 0U);
+}
+
+}  // namespace
+}  // namespace visnav

@@ -29,7 +29,7 @@ struct NearRangeParams {
   double min_inlier_ratio = 0.5;
   // Pose update (sec. II-G).
   int pose_residual = static_cast<int>(PoseResidualMode::kVertex);
-  int lm_max_iterations = 50;
+  int lm_max_iterations = 100;
   double pixel_sigma_px = 0.1;
   double max_rms_px = 1.5;
   double degraded_rms_px = 0.6;
@@ -38,6 +38,7 @@ struct NearRangeParams {
   double visibility_enter_high_deg = 135.0;
   double visibility_exit_low_deg = 40.0;
   double visibility_exit_high_deg = 140.0;
+  bool silhouette_edges = true;
   // Capacities (memory is sized from these at init).
   int max_tracked_surfaces = 16;
   int max_scanlines_per_edge = 256;
@@ -85,7 +86,7 @@ struct NearRangeParams {
     v.enumeration({"nearrange", "pose_residual", "-", 0, 1,
                    "vertex: eq. 7 over intersected vertices; point_to_line: every inlier edge point"},
                   "vertex|point_to_line", pose_residual);
-    v.integer({"nearrange", "lm_max_iterations", "count", 1, 100, "Levenberg-Marquardt iteration bound"},
+    v.integer({"nearrange", "lm_max_iterations", "count", 1, 500, "Levenberg-Marquardt iteration bound"},
               lm_max_iterations);
     v.real({"nearrange", "pixel_sigma_px", "px", 0.001, 10.0,
             "1-sigma measurement noise of an edge point, scales the reported covariance"},
@@ -102,6 +103,11 @@ struct NearRangeParams {
            visibility_exit_low_deg);
     v.real({"nearrange", "visibility_exit_high_deg", "deg", 90.0, 180.0, "sec. II-H: stop tracking above"},
            visibility_exit_high_deg);
+    v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,
+               "also measure the outline of the body (edges between a front and a back face, open edges of "
+               "front faces) outside the sec. II-H gate: it has contrast against the background when a "
+               "multi-face body shows no face inside the gate or faces of equal brightness"},
+              silhouette_edges);
     v.integer({"nearrange", "max_tracked_surfaces", "count", 1, 256, "capacity: surfaces tracked at once"},
               max_tracked_surfaces);
     v.integer({"nearrange", "max_scanlines_per_edge", "count", 4, 4096, "capacity: scanlines per edge"},

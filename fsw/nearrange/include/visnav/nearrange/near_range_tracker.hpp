@@ -41,6 +41,7 @@ enum TrackFlag : std::uint32_t {
   kFlagOutOfImage = 1U << 6,       ///< projected model leaves the image
   kFlagTextureFallback = 1U << 7,  ///< some edge points came from the texture split (information)
   kFlagResidualFallback = 1U << 8, ///< vertex residual lacked corners: point-to-line residual used instead
+  kFlagSilhouetteOnly = 1U << 9,   ///< no surface passes the sec. II-H gate: only the outline was measured
 };
 
 /// Per-stage execution time of one track() call [us] (zeros when no clock is set).
@@ -62,6 +63,7 @@ struct NearRangeResult {
   std::uint64_t tracked_surface_mask = 0;  ///< bit i: surface i (first 64 surfaces)
   int lines_total = 0;
   int lines_used = 0;
+  int silhouette_lines = 0;        ///< measured edges selected as outline only (not of a tracked surface)
   int edge_points = 0;
   int inlier_points = 0;
   int texture_points = 0;
@@ -118,8 +120,11 @@ class NearRangeTracker {
   void updateSurfaces(const Pose& predicted);
   void measureEdge(const MonoImage& image, const Pose& predicted, int model_edge, NearRangeResult& out);
   void fitLines(std::uint64_t frame_index, NearRangeResult& out);
-  int collectVertices();
-  int collectEdgePoints();
+  int collectVertices(int excluded_slot);
+  int collectEdgePoints(int excluded_slot);
+  bool solvePose(const Pose& predicted, int excluded_slot, int lines_used, Pose& pose, PoseFitResult& fit,
+                 int& vertices, std::uint32_t& flags);
+  bool rejectWorstLine(const Pose& predicted, bool solved, Pose& pose, PoseFitResult& fit, NearRangeResult& out);
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
 
   static constexpr int kPolarityBins = 16;
@@ -133,6 +138,7 @@ class NearRangeTracker {
   Pcg32 m_rng;
 
   BoundedBuffer<std::uint8_t> m_surface_tracked;  ///< hysteresis state per surface
+  BoundedBuffer<std::uint8_t> m_surface_front;    ///< front-facing with the predicted pose, this frame
   BoundedBuffer<std::uint8_t> m_edge_selected;    ///< per model edge, this frame
   BoundedBuffer<std::int8_t> m_polarity;          ///< per model edge x kPolarityBins, last frame
   BoundedBuffer<std::int8_t> m_polarity_next;
@@ -144,6 +150,8 @@ class NearRangeTracker {
   BoundedBuffer<std::uint8_t> m_inlier;
   BoundedBuffer<Vec2> m_scratch;
   BoundedBuffer<VertexObservation> m_vertex_obs;
+  BoundedBuffer<double> m_vertex_best_sin;        ///< per model vertex: best |sin| of a measured line pair
+  BoundedBuffer<Vec2> m_vertex_best_px;
   BoundedBuffer<EdgePointObservation> m_edge_obs;
   bool m_first_frame = true;
 };
