@@ -29,7 +29,8 @@ struct CameraCounters {
   std::uint64_t frames_dropped = 0;   ///< from sequence-number gaps
   std::uint64_t timeouts = 0;
   std::uint64_t errors = 0;
-  std::uint64_t recoveries = 0;
+  std::uint64_t device_losses = 0;  ///< times acquire()/release() found the device gone
+  std::uint64_t recoveries = 0;     ///< successful recover() calls
 };
 
 class CameraSource {

@@ -1,0 +1,111 @@
+// Live camera through Video4Linux2 (single-planar capture, mmap streaming). open() negotiates the format,
+// sets the frame interval, maps a fixed ring of kernel buffers and starts streaming; acquire() polls with a
+// bounded timeout and hands out the newest frame as a view into its mmap buffer (GREY, Y10, Y12, Y16) or into
+// the Y plane copied at open()-sized storage (YUYV); release() queues the buffer again. Counters: sequence
+// gaps between delivered frames are dropped frames. When the device goes away (ENODEV/EIO/ENXIO) the ring is
+// torn down and acquire() says kDeviceLost until a recover() call reopens the same node with the same format.
+// Every OS call goes through V4l2Os. Nothing allocates after open(). Design note: drivers/v4l2/README.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "visnav/camera/camera_params.hpp"
+#include "visnav/camera/camera_source.hpp"
+#include "visnav/v4l2/v4l2_os.hpp"
+
+namespace visnav::camera {
+
+/// What the device granted at the last (re)open, for logs and health.
+struct V4l2StreamInfo {
+  char driver[16] = {};      ///< v4l2_capability::driver
+  char card[32] = {};        ///< v4l2_capability::card
+  std::uint32_t fourcc = 0;  ///< negotiated pixel format
+  std::uint32_t width = 0;   ///< negotiated size [px]
+  std::uint32_t height = 0;
+  std::size_t bytes_per_line = 0;        ///< row stride of the device buffers
+  std::size_t image_bytes = 0;           ///< sizeimage
+  int buffer_count = 0;                  ///< buffers granted by VIDIOC_REQBUFS
+  bool frame_interval_set = false;       ///< VIDIOC_S_PARM accepted (else the device runs at its own rate)
+  std::uint32_t interval_numerator = 0;  ///< frame interval the device reports [s] = num / den
+  std::uint32_t interval_denominator = 0;
+};
+
+class V4l2Camera final : public CameraSource {
+ public:
+  static constexpr int kMaxBuffers = 32;
+
+  explicit V4l2Camera(const CameraParams& params, V4l2Os& os = realV4l2Os());
+  ~V4l2Camera() override;
+  V4l2Camera(const V4l2Camera&) = delete;
+  V4l2Camera& operator=(const V4l2Camera&) = delete;
+
+  LoadError open() override;
+  AcquireResult acquire(std::int64_t timeout_ns, Frame& frame) override;
+  void release(const Frame& frame) override;
+  bool recover() override;
+  void close() override;
+  const CameraCounters& counters() const override { return m_counters; }
+  const char* lastError() const override { return m_last_error; }
+  const char* name() const override { return "v4l2"; }
+
+  const V4l2StreamInfo& streamInfo() const { return m_info; }
+  /// errno of the last failed OS call (0: none).
+  int lastErrno() const { return m_last_errno; }
+  /// Older ready frames requeued unseen because a newer one was ready (part of frames_dropped).
+  std::uint64_t staleFramesSkipped() const { return m_stale_skipped; }
+  /// Frames the driver flagged V4L2_BUF_FLAG_ERROR or delivered short (part of frames_dropped).
+  std::uint64_t corruptFrames() const { return m_corrupt_frames; }
+  /// Frames whose driver timestamp was not CLOCK_MONOTONIC, stamped at dequeue instead.
+  std::uint64_t timestampFallbacks() const { return m_timestamp_fallbacks; }
+
+ private:
+  enum class State : std::uint8_t { kClosed, kStreaming, kLost };
+  struct Slot {
+    const std::uint8_t* start = nullptr;
+    std::size_t length = 0;
+  };
+  enum class Dequeue : std::uint8_t { kFrame, kNothing, kCorruptOnly, kLost, kError };
+
+  // Setup (v4l2_camera.cpp): each returns nullptr or a static reason, with m_last_errno set.
+  const char* setUp(bool first_open);
+  const char* queryCapabilities();
+  const char* negotiateFormat(bool first_open);
+  const char* setFrameInterval();
+  const char* mapRing();
+  void tearDown();
+  std::string describeFailure(const char* reason) const;
+
+  // Streaming (v4l2_stream.cpp).
+  Dequeue dequeueNewest(int& index, std::uint32_t& sequence, std::int64_t& timestamp_ns);
+  bool queueBuffer(int index);
+  AcquireResult deviceFailure(const char* what, int error_number);
+  void deliver(int index, std::uint32_t sequence, std::int64_t timestamp_ns, Frame& frame);
+
+  CameraParams m_params;
+  V4l2Os& m_os;
+  PixelFormat m_format;
+  State m_state = State::kClosed;
+  int m_fd = -1;
+  std::array<Slot, kMaxBuffers> m_ring{};
+  int m_ring_size = 0;
+  int m_held = -1;                   // ring slot handed out by acquire(), -1 when none
+  std::vector<std::uint8_t> m_luma;  // YUYV only: width * height, sized in open()
+  V4l2StreamInfo m_info;
+  // Sequence bookkeeping: frame.sequence stays increasing across driver restarts (recover()).
+  bool m_have_sequence = false;
+  std::uint32_t m_last_driver_sequence = 0;
+  std::uint64_t m_last_sequence = 0;
+  int m_recovery_attempts_used = 0;
+  CameraCounters m_counters;
+  std::uint64_t m_stale_skipped = 0;
+  std::uint64_t m_corrupt_frames = 0;
+  std::uint64_t m_timestamp_fallbacks = 0;
+  const char* m_last_error = "";
+  int m_last_errno = 0;
+};
+
+}  // namespace visnav::camera
