@@ -84,9 +84,11 @@ void textureLogLikelihoodPrefix(const double* samples, int count, int bins, doub
 }
 
 double textureSplit(const double* samples, int count, int bins, double* log_gain) {
-  double prefix[kMaxScanlineSamples];
-  double suffix[kMaxScanlineSamples];
-  double reversed[kMaxScanlineSamples];
+  if (log_gain != nullptr) *log_gain = 0.0;
+  if (count < 4 || count > kMaxScanlineSamples || bins < 2 || bins > 256) return 0.5 * (count - 1);
+  double prefix[kMaxScanlineSamples] = {};
+  double suffix[kMaxScanlineSamples] = {};
+  double reversed[kMaxScanlineSamples] = {};
   textureLogLikelihoodPrefix(samples, count, bins, prefix);
   for (int i = 0; i < count; ++i) reversed[i] = samples[count - 1 - i];
   textureLogLikelihoodPrefix(reversed, count, bins, suffix);  // suffix[k] = log f of the last k+1 samples

@@ -47,7 +47,8 @@ void textureLogLikelihoodPrefix(const double* samples, int count, int bins, doub
 
 /// Eq. 5: split index n maximising f(S, 0, n) * f(S, n + 1, end); returns the edge position in samples
 /// (between n and n + 1, i.e. n + 0.5). At least 2 samples on each side. `log_gain` (optional) receives
-/// log f(split) - log f(S, 0, end): how much better two textures explain the samples than one.
+/// log f(split) - log f(S, 0, end): how much better two textures explain the samples than one. Invalid input
+/// (count outside 4..kMaxScanlineSamples, bins outside 2..256) returns the centre with a zero gain.
 double textureSplit(const double* samples, int count, int bins, double* log_gain = nullptr);
 
 }  // namespace visnav
