@@ -25,6 +25,10 @@ struct TomlReader::Impl {
     return node;
   }
 
+  // Shared by every getter: nothing after the first error, the key counts as known, a missing required key
+  // is the error. nullptr: nothing to read.
+  static const toml::node* lookup(TomlReader& reader, const std::string& key, bool required);
+
   // Collects every leaf key (dotted) with its line.
   static void leaves(const toml::table& t, const std::string& prefix,
                      std::vector<std::pair<std::string, int>>& out) {
@@ -58,6 +62,14 @@ LoadError TomlReader::open(const std::string& path) {
 
 bool TomlReader::has(const std::string& key) const { return m_impl->find(key) != nullptr; }
 
+const toml::node* TomlReader::Impl::lookup(TomlReader& reader, const std::string& key, bool required) {
+  if (!reader.m_error.ok) return nullptr;
+  reader.m_used.insert(key);
+  const toml::node* node = reader.m_impl->find(key);
+  if (node == nullptr && required) reader.fail(key, "missing required key");
+  return node;
+}
+
 void TomlReader::fail(const std::string& key, const std::string& problem) {
   if (!m_error.ok) return;
   const toml::node* node = m_impl->find(key);
@@ -90,26 +102,16 @@ bool numberOf(const toml::node& node, double& out) {
 }  // namespace
 
 void TomlReader::getDouble(const std::string& key, double& out, bool required) {
-  if (!m_error.ok) return;
-  m_used.insert(key);
-  const toml::node* node = m_impl->find(key);
-  if (node == nullptr) {
-    if (required) fail(key, "missing required key");
-    return;
-  }
+  const toml::node* node = Impl::lookup(*this, key, required);
+  if (node == nullptr) return;
   double value = 0.0;
   if (!numberOf(*node, value)) return fail(key, "expected a finite number");
   out = value;
 }
 
 void TomlReader::getInt(const std::string& key, std::int64_t& out, bool required) {
-  if (!m_error.ok) return;
-  m_used.insert(key);
-  const toml::node* node = m_impl->find(key);
-  if (node == nullptr) {
-    if (required) fail(key, "missing required key");
-    return;
-  }
+  const toml::node* node = Impl::lookup(*this, key, required);
+  if (node == nullptr) return;
   const auto* i = node->as_integer();
   if (i == nullptr) return fail(key, "expected an integer");
   out = i->get();
@@ -124,39 +126,24 @@ void TomlReader::getInt(const std::string& key, int& out, bool required) {
 }
 
 void TomlReader::getBool(const std::string& key, bool& out, bool required) {
-  if (!m_error.ok) return;
-  m_used.insert(key);
-  const toml::node* node = m_impl->find(key);
-  if (node == nullptr) {
-    if (required) fail(key, "missing required key");
-    return;
-  }
+  const toml::node* node = Impl::lookup(*this, key, required);
+  if (node == nullptr) return;
   const auto* b = node->as_boolean();
   if (b == nullptr) return fail(key, "expected true or false");
   out = b->get();
 }
 
 void TomlReader::getString(const std::string& key, std::string& out, bool required) {
-  if (!m_error.ok) return;
-  m_used.insert(key);
-  const toml::node* node = m_impl->find(key);
-  if (node == nullptr) {
-    if (required) fail(key, "missing required key");
-    return;
-  }
+  const toml::node* node = Impl::lookup(*this, key, required);
+  if (node == nullptr) return;
   const auto* s = node->as_string();
   if (s == nullptr) return fail(key, "expected a string");
   out = s->get();
 }
 
 void TomlReader::getVector(const std::string& key, double* out, int n, bool required) {
-  if (!m_error.ok) return;
-  m_used.insert(key);
-  const toml::node* node = m_impl->find(key);
-  if (node == nullptr) {
-    if (required) fail(key, "missing required key");
-    return;
-  }
+  const toml::node* node = Impl::lookup(*this, key, required);
+  if (node == nullptr) return;
   const auto* a = node->as_array();
   if (a == nullptr || a->size() != static_cast<std::size_t>(n)) {
     return fail(key, "expected an array of " + std::to_string(n) + " numbers");
@@ -173,13 +160,8 @@ void TomlReader::getVector(const std::string& key, double* out, int n, bool requ
 
 void TomlReader::getArray(const std::string& key, std::vector<double>& out, std::size_t max_size,
                           bool required) {
-  if (!m_error.ok) return;
-  m_used.insert(key);
-  const toml::node* node = m_impl->find(key);
-  if (node == nullptr) {
-    if (required) fail(key, "missing required key");
-    return;
-  }
+  const toml::node* node = Impl::lookup(*this, key, required);
+  if (node == nullptr) return;
   const auto* a = node->as_array();
   if (a == nullptr || a->size() > max_size) {
     return fail(key, "expected an array of at most " + std::to_string(max_size) + " numbers");
