@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
   std::vector<std::uint8_t> img8(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   std::vector<std::uint16_t> img16(sc.bit_depth == 16 ? img8.size() : 0U);
   const int total = sc.trajectory.frameCount();
+  std::vector<int> rendered;  // frame numbers, for clutter.csv
   long long written = 0;
   int outside = 0;
   int first_outside = -1;
@@ -119,6 +120,7 @@ int main(int argc, char** argv) {
     const std::uint64_t frame_seed =
         synthetic::Renderer::frameSeed(sc.seed, static_cast<std::uint64_t>(frame));
     const std::string path = writer.framePath(frame);
+    renderer.setFrameIndex(frame);
     if (sc.bit_depth == 8) {
       renderer.render(pose, frame_seed, img8.data(), w);
       render_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -133,8 +135,10 @@ int main(int argc, char** argv) {
       return 1;
     }
     writer.addFrame(frame, sc.trajectory.timestampNs(frame), &pose);
+    rendered.push_back(frame);
   }
   if (!dry_run) e = writer.close();
+  if (e.ok && !dry_run) e = synth::writeClutterCsv(out_dir, sc.render, rendered, w, h);
   if (!e.ok) {
     std::fprintf(stderr, "visnav-synth: %s\n", e.message.c_str());
     return 1;

@@ -25,8 +25,13 @@ Pose Trajectory::pose(int frame) const {
   const YawPitchRoll ypr{(base_yaw_deg + wave(yaw_amp_deg, yaw_period_frames, frame)) * kRadPerDeg,
                          (base_pitch_deg + wave(pitch_amp_deg, pitch_period_frames, frame)) * kRadPerDeg,
                          (base_roll_deg + wave(roll_amp_deg, roll_period_frames, frame)) * kRadPerDeg};
-  Pose p = Pose::fromYpr(ypr, Vec3(wave(lateral_x_amp_m, lateral_x_period_frames, frame),
-                                   wave(lateral_y_amp_m, lateral_y_period_frames, frame), distance));
+  Vec3 t(wave(lateral_x_amp_m, lateral_x_period_frames, frame), wave(lateral_y_amp_m, lateral_y_period_frames, frame),
+         distance);
+  if (lateral_x_amp_deg != 0.0)
+    t.x() += distance * std::tan(wave(lateral_x_amp_deg, lateral_x_period_frames, frame) * kRadPerDeg);
+  if (lateral_y_amp_deg != 0.0)
+    t.y() += distance * std::tan(wave(lateral_y_amp_deg, lateral_y_period_frames, frame) * kRadPerDeg);
+  Pose p = Pose::fromYpr(ypr, t);
   if (!tumble_rate_deg_per_frame.isZero()) {
     p.R_c_m = p.R_c_m * expSo3(tumble_rate_deg_per_frame * (kRadPerDeg * frame));
   }
@@ -85,6 +90,10 @@ LoadError loadScenario(const std::string& path, Scenario& out) {
     if (r.good() && !(*w.period_value > 0.0)) r.fail(std::string("trajectory.") + w.period, "must be > 0");
   }
   r.getVector("trajectory.tumble_rate_deg_per_frame", t.tumble_rate_deg_per_frame.data(), 3);
+  r.getDouble("trajectory.lateral_x_amp_deg", t.lateral_x_amp_deg);
+  r.getDouble("trajectory.lateral_y_amp_deg", t.lateral_y_amp_deg);
+  r.checkRange("trajectory.lateral_x_amp_deg", t.lateral_x_amp_deg, -80.0, 80.0);
+  r.checkRange("trajectory.lateral_y_amp_deg", t.lateral_y_amp_deg, -80.0, 80.0);
 
   synthetic::RenderOptions& o = s.render;
   r.getDouble("render.background", o.background);
@@ -127,6 +136,7 @@ LoadError loadScenario(const std::string& path, Scenario& out) {
   r.getDouble("render.blobs.radius_max_px", o.blobs.radius_max_px);
   r.getDouble("render.blobs.brightness_min", o.blobs.brightness_min);
   r.getDouble("render.blobs.brightness_max", o.blobs.brightness_max);
+  readDynamicClutter(r, o);
   e = r.finish();
   if (!e.ok) return e;
 

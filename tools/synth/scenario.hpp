@@ -4,9 +4,11 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "visnav/core/status.hpp"
 #include "visnav/geometry/pose.hpp"
+#include "visnav/replay/toml_reader.hpp"
 #include "visnav/synthetic/renderer.hpp"
 
 namespace visnav::synth {
@@ -26,6 +28,10 @@ struct Trajectory {
   double lateral_x_period_frames = 1000.0;
   double lateral_y_amp_m = 0.0;
   double lateral_y_period_frames = 1000.0;
+  /// Angular lateral offsets (far range: the target wanders over the image at every distance):
+  /// x(i) += distance * tan(amp * sin(2 pi i / lateral_x_period_frames)), likewise y.
+  double lateral_x_amp_deg = 0.0;
+  double lateral_y_amp_deg = 0.0;
   double yaw_amp_deg = 0.0;
   double yaw_period_frames = 1000.0;
   double pitch_amp_deg = 0.0;
@@ -50,6 +56,15 @@ struct Scenario {
   Trajectory trajectory;
   synthetic::RenderOptions render;
 };
+
+/// [render.barN] / [render.glintN] tables (N = 1..8) into o.bars / o.glints (scenario_clutter.cpp).
+void readDynamicClutter(replay::TomlReader& r, synthetic::RenderOptions& o);
+
+/// Writes DIR/clutter.csv (frame,bars_in_view,glints_in_view) for the rendered frames when the scenario has
+/// per-frame clutter; nothing otherwise. "In view": the object's centre lies within the image grown by its
+/// half length (bars) or 3 sigma (glints).
+LoadError writeClutterCsv(const std::string& directory, const synthetic::RenderOptions& o,
+                          const std::vector<int>& frames, int width_px, int height_px);
 
 /// Strict: unknown keys, wrong types and out-of-range values are errors naming file, line and key.
 LoadError loadScenario(const std::string& path, Scenario& out);

@@ -57,6 +57,13 @@ LoadError Renderer::init(const PinholeCamera& camera, const PolygonModel& model,
     return bad("blur size must be odd, 1.." + std::to_string(kMaxKernel));
   }
   if (!(o.max_segment_px > 0.0) || o.max_segments_per_edge < 1) return bad("edge subdivision must be > 0");
+  for (const MovingBar& b : o.bars) {
+    if (b.last_frame < b.first_frame || !(b.length_px > 0.0 && b.width_px > 0.0))
+      return bad("bars need first_frame <= last_frame and positive length and width");
+  }
+  for (const Glint& g : o.glints) {
+    if (g.last_frame < g.first_frame || !(g.sigma_px > 0.0)) return bad("glints need first <= last, sigma > 0");
+  }
 
   m_camera = camera;
   m_model = model;
@@ -85,6 +92,9 @@ LoadError Renderer::init(const PinholeCamera& camera, const PolygonModel& model,
   }
   for (int i = 0; i < m_kernel_size; ++i) m_kernel[i] /= sum;
   buildBackground();
+  m_frame_background.assign(o.bars.empty() && o.glints.empty() ? 0U : n, 0.0);
+  findParts();
+  m_union_coverage.assign(m_part_centroid.size() > 1 ? n : 0U, 0.0);
   return LoadError::success();
 }
 
@@ -198,6 +208,8 @@ void Renderer::rasterizeSurface(const ModelSurface& surface, const Pose& T_c_m, 
 }
 
 int Renderer::rasterize(const Pose& T_c_m) {
+  const double* background = m_frame_background.empty() ? m_background.data() : frameBackground();
+  if (m_part_centroid.size() > 1) return rasterizeParts(T_c_m, background);
   int drawn = 0;
   const auto& surfaces = m_model.surfaces();
   for (std::size_t s = 0; s < surfaces.size(); ++s) {
@@ -210,7 +222,7 @@ int Renderer::rasterize(const Pose& T_c_m) {
   m_raster.resolve(m_coverage.data(), m_weighted.data());
   // Front faces of a convex body do not overlap, so coverages and weighted brightnesses simply add.
   for (std::size_t i = 0; i < m_radiance.size(); ++i) {
-    m_radiance[i] = m_background[i] * (1.0 - m_coverage[i]) + m_weighted[i];
+    m_radiance[i] = background[i] * (1.0 - m_coverage[i]) + m_weighted[i];
   }
   return drawn;
 }

@@ -15,6 +15,7 @@
 #include "visnav/geometry/polygon_model.hpp"
 #include "visnav/geometry/pose.hpp"
 #include "visnav/synthetic/coverage_raster.hpp"
+#include "visnav/synthetic/dynamic_clutter.hpp"
 
 namespace visnav::synthetic {
 
@@ -57,6 +58,8 @@ struct RenderOptions {
   Shading shading;
   LimbClutter limb;
   BlobClutter blobs;
+  std::vector<MovingBar> bars;  ///< per-frame clutter (dynamic_clutter.hpp), behind the target
+  std::vector<Glint> glints;
   double noise_sigma = 0.1;     ///< paper step 3, additive, before the blur
   int blur_size_px = 5;         ///< paper step 4: odd kernel size; 1 disables the blur
   double blur_sigma_px = 0.5;   ///< <= 0 disables the blur
@@ -69,6 +72,9 @@ class Renderer {
   /// Validates the options and allocates every buffer. The static background (level + clutter) is built
   /// here once.
   LoadError init(const PinholeCamera& camera, const PolygonModel& model, const RenderOptions& options);
+
+  /// Trajectory frame index for the per-frame clutter (bars, glints); 0 until set.
+  void setFrameIndex(std::int64_t frame) { m_frame = frame; }
 
   /// Noise-free radiance and coverage of the target at T_c_m (paper steps 1-2). Returns the faces drawn.
   int rasterize(const Pose& T_c_m);
@@ -97,6 +103,11 @@ class Renderer {
   double surfaceBrightness(int surface, const Vec3& normal_c) const;
   void rasterizeSurface(const ModelSurface& surface, const Pose& T_c_m, double brightness);
   void addNoiseAndBlur(std::uint64_t frame_seed);
+  // Models made of several separate convex parts (surfaces connected through shared edges) are composited
+  // part by part, far to near; one-part models take the single-pass path above unchanged.
+  void findParts();
+  int rasterizeParts(const Pose& T_c_m, const double* background);
+  const double* frameBackground();  // m_background plus this frame's bars and glints
 
   PinholeCamera m_camera;
   PolygonModel m_model;
@@ -110,6 +121,12 @@ class Renderer {
   std::vector<double> m_radiance;
   std::vector<double> m_image;
   std::vector<double> m_tmp;
+  std::vector<int> m_surface_part;   // part index per surface
+  std::vector<Vec3> m_part_centroid;  // model frame
+  std::vector<int> m_part_order;      // far to near, per frame
+  std::vector<double> m_frame_background;
+  std::vector<double> m_union_coverage;
+  std::int64_t m_frame = 0;
   double m_kernel[kMaxKernel] = {};
   int m_kernel_size = 1;
   Pcg32 m_rng;
