@@ -32,7 +32,7 @@ LoadError V4l2Camera::open() {
     m_luma.assign(static_cast<std::size_t>(m_params.width_px) * static_cast<std::size_t>(m_params.height_px),
                   0);
   m_counters = CameraCounters{};
-  m_have_sequence = false;
+  m_sequence.reset();
   if (const char* reason = setUp(true)) return LoadError::failure(describeFailure(reason));
   m_state = State::kStreaming;
   m_last_error = "";
@@ -56,7 +56,7 @@ bool V4l2Camera::recover() {
   }
   m_state = State::kStreaming;
   m_recovery_attempts_used = 0;
-  m_have_sequence = false;  // the driver restarts its count; frame.sequence continues from m_last_sequence
+  m_sequence.restart();  // the driver restarts its count; frame.sequence continues
   ++m_counters.recoveries;
   m_last_error = "";
   return true;

@@ -52,13 +52,9 @@ AcquireResult V4l2Camera::acquire(std::int64_t timeout_ns, Frame& frame) {
     std::uint32_t sequence = 0;
     std::int64_t timestamp_ns = 0;
     switch (dequeueNewest(index, sequence, timestamp_ns)) {
-      case Dequeue::kFrame:
-        deliver(index, sequence, timestamp_ns, frame);
-        return AcquireResult::kFrame;
-      case Dequeue::kLost:
-        return AcquireResult::kDeviceLost;
-      case Dequeue::kError:
-        return AcquireResult::kError;
+      case Dequeue::kFrame: deliver(index, sequence, timestamp_ns, frame); return AcquireResult::kFrame;
+      case Dequeue::kLost: return AcquireResult::kDeviceLost;
+      case Dequeue::kError: return AcquireResult::kError;
       case Dequeue::kCorruptOnly:
         m_last_error = "the driver delivered only corrupt frames (V4L2_BUF_FLAG_ERROR or short)";
         ++m_counters.errors;
@@ -171,28 +167,14 @@ AcquireResult V4l2Camera::deviceFailure(const char* what, int error_number) {
 }
 
 void V4l2Camera::deliver(int index, std::uint32_t sequence, std::int64_t timestamp_ns, Frame& frame) {
-  // 32-bit driver sequence -> 64-bit frame sequence; a gap of n means n frames the pipeline never saw.
-  if (!m_have_sequence) {
-    m_last_sequence = m_counters.frames_delivered == 0 ? sequence : m_last_sequence + 1;
-  } else {
-    const std::uint32_t step = sequence - m_last_driver_sequence;  // modulo 2^32: wrap-safe
-    if (step == 0U || step > 0x80000000U) {
-      m_last_sequence += 1;  // went backwards: the driver restarted its count; no gap can be known
-    } else {
-      m_counters.frames_dropped += step - 1U;
-      m_last_sequence += step;
-    }
-  }
-  m_have_sequence = true;
-  m_last_driver_sequence = sequence;
-
+  const std::uint64_t frame_sequence = m_sequence.next(sequence, m_counters.frames_dropped);
   const Slot& slot = m_ring[static_cast<std::size_t>(index)];
   frame.image = isZeroCopy(m_format) ? viewInPlace(m_format, slot.start, m_params.width_px,
                                                    m_params.height_px, m_info.bytes_per_line)
                                      : extractLumaYuyv(slot.start, m_params.width_px, m_params.height_px,
                                                        m_info.bytes_per_line, m_luma.data());
   frame.exposure_time_ns = timestamp_ns;
-  frame.sequence = m_last_sequence;
+  frame.sequence = frame_sequence;
   frame.source_format = m_format;
   frame.buffer_index = index;
   m_held = index;

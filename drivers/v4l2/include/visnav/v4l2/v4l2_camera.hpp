@@ -15,6 +15,7 @@
 
 #include "visnav/camera/camera_params.hpp"
 #include "visnav/camera/camera_source.hpp"
+#include "visnav/camera/sequence_tracker.hpp"
 #include "visnav/v4l2/v4l2_os.hpp"
 
 namespace visnav::camera {
@@ -95,10 +96,7 @@ class V4l2Camera final : public CameraSource {
   int m_held = -1;                   // ring slot handed out by acquire(), -1 when none
   std::vector<std::uint8_t> m_luma;  // YUYV only: width * height, sized in open()
   V4l2StreamInfo m_info;
-  // Sequence bookkeeping: frame.sequence stays increasing across driver restarts (recover()).
-  bool m_have_sequence = false;
-  std::uint32_t m_last_driver_sequence = 0;
-  std::uint64_t m_last_sequence = 0;
+  SequenceTracker m_sequence;  // frame.sequence stays increasing across driver restarts (recover())
   int m_recovery_attempts_used = 0;
   CameraCounters m_counters;
   std::uint64_t m_stale_skipped = 0;
