@@ -79,8 +79,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "visnav-replay: %s\n", error.message.c_str());
     return 2;
   }
-  std::printf("visnav-replay: %d frames: tracking %d, degraded %d, lost %d; step time median %.1f us, p95 %.1f us\n",
-              summary.frames, summary.tracking, summary.degraded, summary.lost, summary.median_total_us,
-              summary.p95_total_us);
+  std::printf(
+      "visnav-replay: %d frames: tracking %d, degraded %d, lost %d; step time median %.1f us, p95 %.1f us\n",
+      summary.frames, summary.tracking, summary.degraded, summary.lost, summary.median_total_us,
+      summary.p95_total_us);
   return 0;
 }

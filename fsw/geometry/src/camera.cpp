@@ -4,8 +4,9 @@
 
 namespace visnav {
 
-CameraIntrinsics CameraIntrinsics::fromSi(int width, int height, double focal_length_m, double pixel_pitch_x_m,
-                                          double pixel_pitch_y_m, double skew, double cx_px, double cy_px) {
+CameraIntrinsics CameraIntrinsics::fromSi(int width, int height, double focal_length_m,
+                                          double pixel_pitch_x_m, double pixel_pitch_y_m, double skew,
+                                          double cx_px, double cy_px) {
   CameraIntrinsics k;
   k.width_px = width;
   k.height_px = height;

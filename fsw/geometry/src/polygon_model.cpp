@@ -34,7 +34,8 @@ LoadError PolygonModel::build(const std::vector<Vec3>& vertices, std::vector<Mod
     if (idx.size() < 3) return LoadError::failure(label + " has fewer than 3 vertices");
     for (std::size_t k = 0; k < idx.size(); ++k) {
       if (idx[k] < 0 || static_cast<std::size_t>(idx[k]) >= vertices.size())
-        return LoadError::failure(label + " refers to vertex " + std::to_string(idx[k]) + ", which does not exist");
+        return LoadError::failure(label + " refers to vertex " + std::to_string(idx[k]) +
+                                  ", which does not exist");
       for (std::size_t j = 0; j < k; ++j)
         if (idx[j] == idx[k]) return LoadError::failure(label + " repeats vertex " + std::to_string(idx[k]));
     }
@@ -52,13 +53,15 @@ LoadError PolygonModel::build(const std::vector<Vec3>& vertices, std::vector<Mod
     const Vec3 n = newell.normalized();
     for (int v : idx)
       if (std::fabs(n.dot(vertices[v] - centroid)) > tol)
-        return LoadError::failure(label + " is not planar (vertex " + std::to_string(v) + " is off its plane)");
+        return LoadError::failure(label + " is not planar (vertex " + std::to_string(v) +
+                                  " is off its plane)");
     for (std::size_t k = 0; k < idx.size(); ++k) {
       const Vec3& a = vertices[idx[k]];
       const Vec3& b = vertices[idx[(k + 1) % idx.size()]];
       const Vec3& c = vertices[idx[(k + 2) % idx.size()]];
       if ((b - a).cross(c - b).dot(n) < -tol * tol)
-        return LoadError::failure(label + " is not convex at vertex " + std::to_string(idx[(k + 1) % idx.size()]));
+        return LoadError::failure(label + " is not convex at vertex " +
+                                  std::to_string(idx[(k + 1) % idx.size()]));
     }
     if (surf.normal_m.squaredNorm() == 0.0) {
       surf.normal_m = n;

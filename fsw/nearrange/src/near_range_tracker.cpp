@@ -15,7 +15,8 @@ const char* toString(TrackStatus status) {
 
 LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel& model,
                                  const NearRangeParams& params) {
-  if (const char* problem = params.crossCheck()) return LoadError::failure(std::string("nearrange: ") + problem);
+  if (const char* problem = params.crossCheck())
+    return LoadError::failure(std::string("nearrange: ") + problem);
   if (params.scanline_half_length_px * 2 + 1 > kMaxScanlineSamples)
     return LoadError::failure("nearrange: scanline_half_length_px exceeds the supported maximum of 64");
   if (camera.width() <= 0 || camera.height() <= 0) return LoadError::failure("nearrange: camera has no size");
@@ -94,7 +95,8 @@ void NearRangeTracker::updateSurfaces(const Pose& predicted) {
   m_first_frame = false;
 }
 
-void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted, int e, NearRangeResult& out) {
+void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted, int e,
+                                   NearRangeResult& out) {
   const ModelEdge& edge = m_model.edges()[e];
   const Vec3 a_c = predicted.transform(m_model.vertices()[edge.v0]);
   const Vec3 b_c = predicted.transform(m_model.vertices()[edge.v1]);
@@ -111,7 +113,8 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
   if (owner < 0) owner = owns(edge.surface_right, m_surface_tracked) ? edge.surface_right : -1;
   if (owner < 0) owner = owns(edge.surface_left, m_surface_front) ? edge.surface_left : edge.surface_right;
   Vec2 centroid_px;
-  if (owner < 0 || !m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px)) return;
+  if (owner < 0 || !m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px))
+    return;
 
   const double length_px = (slot.predicted_b_px - slot.predicted_a_px).norm();
   m_edge_slot[e] = static_cast<int>(m_edges.size());
@@ -123,8 +126,9 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
     double samples[kMaxScanlineSamples];
     for (int i = 0; i < count; ++i) {
       // Scanlines spread evenly over the edge between the vertex margins.
-      const double along_px = count == 1 ? 0.5 * length_px
-                                         : m_params.vertex_margin_px + usable_px * i / static_cast<double>(count - 1);
+      const double along_px =
+          count == 1 ? 0.5 * length_px
+                     : m_params.vertex_margin_px + usable_px * i / static_cast<double>(count - 1);
       const double t = along_px / length_px;
       const Vec3 p_c = a_c + t * (b_c - a_c);
       const Vec3 q_c = p_c + 1e-3 * (b_c - a_c);
@@ -140,8 +144,9 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
       // averages the quantisation out instead of inheriting one shared bias of up to 0.5 px.
       const double golden = 0.6180339887498949 * (i + 1);
       sp.scan_centre_px += (golden - std::floor(golden) - 0.5) * sp.scan_normal;
-      const int bin = static_cast<int>(t * kPolarityBins) < kPolarityBins ? static_cast<int>(t * kPolarityBins)
-                                                                          : kPolarityBins - 1;
+      const int bin = static_cast<int>(t * kPolarityBins) < kPolarityBins
+                          ? static_cast<int>(t * kPolarityBins)
+                          : kPolarityBins - 1;
       sp.polarity_bin = static_cast<std::uint8_t>(bin);
       const int expected = m_params.polarity_mode == static_cast<int>(EdgePolarityMode::kLearned)
                                ? m_polarity[e * kPolarityBins + bin]
@@ -178,7 +183,8 @@ void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out)
                                            m_rng, m_inlier.data(), m_scratch.data());
     const double ratio = fit.ok ? static_cast<double>(fit.inliers) / slot.point_count : 0.0;
     slot.line = fit.line;
-    slot.line_ok = fit.ok && fit.inliers >= m_params.min_points_per_line && ratio >= m_params.min_inlier_ratio;
+    slot.line_ok =
+        fit.ok && fit.inliers >= m_params.min_points_per_line && ratio >= m_params.min_inlier_ratio;
     if (!slot.line_ok) {
       out.flags |= kFlagLineRejected;
       continue;
@@ -216,7 +222,8 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     for (int j = i + 1; j < slots; ++j) {
       if (!m_edges[j].line_ok || j == excluded_slot) continue;
       const ModelEdge& ej = edges[m_edges[j].model_edge];
-      const int shared = (ei.v0 == ej.v0 || ei.v0 == ej.v1) ? ei.v0 : ((ei.v1 == ej.v0 || ei.v1 == ej.v1) ? ei.v1 : -1);
+      const int shared =
+          (ei.v0 == ej.v0 || ei.v0 == ej.v1) ? ei.v0 : ((ei.v1 == ej.v0 || ei.v1 == ej.v1) ? ei.v1 : -1);
       if (shared < 0) continue;
       const Line2d& a = m_edges[i].line;
       const Line2d& b = m_edges[j].line;
@@ -259,8 +266,8 @@ bool NearRangeTracker::solvePose(const Pose& predicted, int excluded_slot, int l
   vertices = collectVertices(excluded_slot);
   const bool vertex_mode = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex);
   if (vertex_mode && lines_used >= 4 && vertices >= 4)
-    return fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), vertices, lm, m_params.pixel_sigma_px, pose,
-                             fit);
+    return fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), vertices, lm, m_params.pixel_sigma_px,
+                             pose, fit);
   // Point-to-line needs no complete corner: three non-parallel lines with many points still fix 6 DOF.
   // When the vertex residual lacks corners this is the fallback, and the frame is marked degraded.
   const int n = collectEdgePoints(excluded_slot);
@@ -289,7 +296,8 @@ bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose&
     PoseFitResult trial_fit;
     int trial_vertices = 0;  // unused: recounted for the kept solution
     std::uint32_t trial_flags = 0;
-    if (!solvePose(predicted, k, out.lines_used - 1, trial_pose, trial_fit, trial_vertices, trial_flags)) continue;
+    if (!solvePose(predicted, k, out.lines_used - 1, trial_pose, trial_fit, trial_vertices, trial_flags))
+      continue;
     const bool better = best_slot < 0 && !solved ? true : trial_fit.rms_px < 0.5 * best_fit.rms_px;
     if (better) {
       best_slot = k;
@@ -388,7 +396,8 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
   if (solved && fit.rms_px > m_params.degraded_rms_px) out.flags |= kFlagResidualHigh;
   if (solved && !(pose.t_c_m.z() > 0.0)) out.flags |= kFlagOutOfImage;
 
-  constexpr std::uint32_t kLostFlags = kFlagTooFewLines | kFlagSolverFailed | kFlagResidualTooHigh | kFlagOutOfImage;
+  constexpr std::uint32_t kLostFlags =
+      kFlagTooFewLines | kFlagSolverFailed | kFlagResidualTooHigh | kFlagOutOfImage;
   if ((out.flags & kLostFlags) != 0U) {
     finishLost(predicted, out);
   } else {
@@ -398,7 +407,7 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
     out.quality *= 1.0 / (1.0 + r * r);
     out.status = (out.flags & (kFlagLineRejected | kFlagResidualHigh | kFlagResidualFallback)) != 0U
                      ? TrackStatus::kDegraded
-                                                                              : TrackStatus::kTracking;
+                     : TrackStatus::kTracking;
     // Only a trusted frame teaches the polarity of the next one.
     for (std::size_t i = 0; i < m_polarity.size(); ++i) m_polarity[i] = m_polarity_next[i];
   }

@@ -16,7 +16,8 @@ Eigen::Matrix<double, 3, 6> pointJacobian(const Vec3& rotated_m) {
 
 class VertexProblem {
  public:
-  VertexProblem(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation* obs, int count)
+  VertexProblem(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation* obs,
+                int count)
       : m_camera(camera), m_model(model), m_obs(obs), m_count(count) {}
 
   int linearize(const Pose& pose, Mat6& jtj, Vec6& jtr, double& cost) const {
@@ -125,8 +126,8 @@ bool finish(const LmSummary<6>& lm, double pixel_sigma_px, PoseFitResult& result
   if (lm.residual_count < 6) return false;
   result.rms_px = std::sqrt(lm.final_cost / lm.residual_count);
   const int dof = lm.residual_count - 6;
-  const double sigma2 = pixel_sigma_px > 0.0 ? pixel_sigma_px * pixel_sigma_px
-                                             : (dof > 0 ? lm.final_cost / dof : 1.0);
+  const double sigma2 =
+      pixel_sigma_px > 0.0 ? pixel_sigma_px * pixel_sigma_px : (dof > 0 ? lm.final_cost / dof : 1.0);
   Eigen::FullPivLU<Mat6> lu(lm.information);
   if (!lu.isInvertible()) {
     result.covariance = Mat6::Identity() * 1e6;
@@ -146,9 +147,9 @@ bool fitPoseToVertices(const PinholeCamera& camera, const PolygonModel& model, c
   return finish(lm, pixel_sigma_px, result);
 }
 
-bool fitPoseToEdgePoints(const PinholeCamera& camera, const PolygonModel& model, const EdgePointObservation* obs,
-                         int count, const LmOptions& options, double pixel_sigma_px, Pose& pose,
-                         PoseFitResult& result) {
+bool fitPoseToEdgePoints(const PinholeCamera& camera, const PolygonModel& model,
+                         const EdgePointObservation* obs, int count, const LmOptions& options,
+                         double pixel_sigma_px, Pose& pose, PoseFitResult& result) {
   PointToLineProblem problem(camera, model, obs, count);
   const LmSummary<6> lm = solveLevenbergMarquardt<6>(problem, pose, options);
   return finish(lm, pixel_sigma_px, result);

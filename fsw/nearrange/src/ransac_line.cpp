@@ -13,8 +13,8 @@ int countInliers(const Vec2* points, int count, const Line2d& line, double thres
 }
 
 /// Marks the consensus set of `line` and refits on it, in place; bounded by a fixed number of rounds.
-bool refit(const Vec2* points, int count, double threshold, Line2d& line, std::uint8_t* inlier,
-           Vec2* scratch, int& inliers) {
+bool refit(const Vec2* points, int count, double threshold, Line2d& line, std::uint8_t* inlier, Vec2* scratch,
+           int& inliers) {
   constexpr int kRefitRounds = 2;
   for (int round = 0; round < kRefitRounds; ++round) {
     const Vec2 n = line.normal();

@@ -5,7 +5,9 @@
 namespace visnav {
 namespace {
 
-PinholeCamera vga() { return PinholeCamera(CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320, 240)); }
+PinholeCamera vga() {
+  return PinholeCamera(CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320, 240));
+}
 
 TEST(PoseFit, VertexResidualRecoversTruthFromPerturbedStart) {
   const PinholeCamera cam = vga();

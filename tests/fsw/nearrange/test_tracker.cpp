@@ -32,7 +32,8 @@ TEST_F(TrackerTest, FollowsAnApproachWithSubPixelAccuracy) {
   double worst_tilt_deg = 0.0;
   for (int i = 0; i < 60; ++i) {
     const double d = 20.0 - 0.2 * i;
-    const Pose truth = plateAt(d, 0.1 * std::sin(0.1 * i), 2.0 * std::sin(0.05 * i), 1.5 * std::cos(0.07 * i));
+    const Pose truth =
+        plateAt(d, 0.1 * std::sin(0.1 * i), 2.0 * std::sin(0.05 * i), 1.5 * std::cos(0.07 * i));
     const test::RenderedFrame frame = renderFrame(renderer, truth, 1000U + static_cast<std::uint64_t>(i));
     NearRangeResult r;
     ASSERT_EQ(tracker.track(frame.image(), pose, static_cast<std::uint64_t>(i), r), Status::kOk);
@@ -147,7 +148,8 @@ class DiagonalBoxTest : public ::testing::Test {
   void SetUp() override {
     model = makeBox(0.8, 0.6, 0.5);
     ASSERT_TRUE(renderer.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-    const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3(0, 0, -1));
+    const Eigen::Quaterniond q =
+        Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3(0, 0, -1));
     truth.R_c_m = q.toRotationMatrix();
     truth.t_c_m = Vec3(0.1, -0.05, 8.0);
   }

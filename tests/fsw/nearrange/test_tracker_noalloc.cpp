@@ -29,8 +29,8 @@ void runAndCount(NearRangeParams params, const PolygonModel& model, const std::v
     not_lost += result.status != TrackStatus::kLost ? 1 : 0;
   }
   const std::uint64_t after = test::allocationCount();
-  EXPECT_EQ(after - before, 0U) << "allocations in " << kFrames << " frames (malloc counted: "
-                                << test::countsMalloc() << ")";
+  EXPECT_EQ(after - before, 0U) << "allocations in " << kFrames
+                                << " frames (malloc counted: " << test::countsMalloc() << ")";
   EXPECT_GT(not_lost, kFrames * 9 / 10);  // the frames really exercised the full pipeline
 }
 

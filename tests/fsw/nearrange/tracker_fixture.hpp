@@ -14,8 +14,10 @@ inline PinholeCamera vgaCamera() {
 }
 
 /// The paper's plate facing the camera (roll 180 deg flips its +z normal towards the camera).
-inline Pose plateAt(double distance_m, double lateral_x_m = 0.0, double yaw_deg = 0.0, double pitch_deg = 0.0) {
-  return Pose::fromYpr({yaw_deg * kRadPerDeg, pitch_deg * kRadPerDeg, kPi}, Vec3(lateral_x_m, 0.0, distance_m));
+inline Pose plateAt(double distance_m, double lateral_x_m = 0.0, double yaw_deg = 0.0,
+                    double pitch_deg = 0.0) {
+  return Pose::fromYpr({yaw_deg * kRadPerDeg, pitch_deg * kRadPerDeg, kPi},
+                       Vec3(lateral_x_m, 0.0, distance_m));
 }
 
 struct RenderedFrame {

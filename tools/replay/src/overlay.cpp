@@ -34,8 +34,8 @@ LoadError writeOverlayPng(const std::string& path, const MonoImage& image, const
   const PinholeCamera& camera = tracker.camera();
   const int half = tracker.params().scanline_half_length_px;
   for (const EdgeDebug& edge : tracker.lastEdges()) {
-    canvas.line(edge.predicted_a_px.x(), edge.predicted_a_px.y(), edge.predicted_b_px.x(), edge.predicted_b_px.y(),
-                kBlue);
+    canvas.line(edge.predicted_a_px.x(), edge.predicted_a_px.y(), edge.predicted_b_px.x(),
+                edge.predicted_b_px.y(), kBlue);
     for (int i = 0; i < edge.point_count; ++i) {
       const ScanPointDebug& sp = tracker.lastScanPoints()[edge.first_point + i];
       const Vec2 a = sp.scan_centre_px - half * sp.scan_normal;
@@ -64,8 +64,8 @@ LoadError writeOverlayPng(const std::string& path, const MonoImage& image, const
     }
   }
   char label[96];
-  std::snprintf(label, sizeof(label), "%s q=%.2f rms=%.2fpx lines %d/%d", toString(result.status), result.quality,
-                result.rms_px, result.lines_used, result.lines_total);
+  std::snprintf(label, sizeof(label), "%s q=%.2f rms=%.2fpx lines %d/%d", toString(result.status),
+                result.quality, result.rms_px, result.lines_used, result.lines_total);
   canvas.text(4, 4, label, kYellow, 1);
   return canvas.writePng(path);
 }

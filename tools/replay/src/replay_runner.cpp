@@ -27,12 +27,14 @@ std::int64_t monotonicNs() {
 }
 
 void writeHeader(std::FILE* f) {
-  std::fputs("frame,timestamp_ns,status,flags,mode,quality,x_m,y_m,z_m,qw,qx,qy,qz,yaw_deg,pitch_deg,roll_deg", f);
+  std::fputs(
+      "frame,timestamp_ns,status,flags,mode,quality,x_m,y_m,z_m,qw,qx,qy,qz,yaw_deg,pitch_deg,roll_deg", f);
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) std::fprintf(f, ",cov_%d_%d", i, j);
-  std::fputs(",tracked_surfaces,surface_mask,lines_total,lines_used,edge_points,inlier_points,texture_points,"
-             "vertices,rms_px,lm_iterations,t_project_us,t_scan_us,t_ransac_us,t_pose_us,t_total_us\n",
-             f);
+  std::fputs(
+      ",tracked_surfaces,surface_mask,lines_total,lines_used,edge_points,inlier_points,texture_points,"
+      "vertices,rms_px,lm_iterations,t_project_us,t_scan_us,t_ransac_us,t_pose_us,t_total_us\n",
+      f);
 }
 
 void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const NearRangeResult& r) {
@@ -41,15 +43,16 @@ void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const
   const YawPitchRoll ypr = r.pose.ypr();
   const Vec3& t = r.pose.t_c_m;
   std::fprintf(f, "%lld,%lld,%s,%u,near,%.6f,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g",
-               static_cast<long long>(frame), static_cast<long long>(timestamp_ns), toString(r.status), r.flags,
-               r.quality, t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z(), ypr.yaw_rad * kDegPerRad,
+               static_cast<long long>(frame), static_cast<long long>(timestamp_ns), toString(r.status),
+               r.flags, r.quality, t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z(), ypr.yaw_rad * kDegPerRad,
                ypr.pitch_rad * kDegPerRad, ypr.roll_rad * kDegPerRad);
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.6g", r.covariance(i, j));
   std::fprintf(f, ",%d,%llu,%d,%d,%d,%d,%d,%d,%.6f,%d,%.2f,%.2f,%.2f,%.2f,%.2f\n", r.tracked_surfaces,
-               static_cast<unsigned long long>(r.tracked_surface_mask), r.lines_total, r.lines_used, r.edge_points,
-               r.inlier_points, r.texture_points, r.vertices, r.rms_px, r.lm_iterations, r.timing.project_us,
-               r.timing.scan_us, r.timing.ransac_us, r.timing.pose_us, r.timing.total_us);
+               static_cast<unsigned long long>(r.tracked_surface_mask), r.lines_total, r.lines_used,
+               r.edge_points, r.inlier_points, r.texture_points, r.vertices, r.rms_px, r.lm_iterations,
+               r.timing.project_us, r.timing.scan_us, r.timing.ransac_us, r.timing.pose_us,
+               r.timing.total_us);
 }
 
 void drawProgress(int done, int total, const ReplaySummary& s) {
@@ -58,8 +61,8 @@ void drawProgress(int done, int total, const ReplaySummary& s) {
   char bar[kWidth + 1];
   for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '.';
   bar[kWidth] = '\0';
-  std::fprintf(stderr, "\r[%s] %d/%d  tracking %d degraded %d lost %d", bar, done, total, s.tracking, s.degraded,
-               s.lost);
+  std::fprintf(stderr, "\r[%s] %d/%d  tracking %d degraded %d lost %d", bar, done, total, s.tracking,
+               s.degraded, s.lost);
   if (done == total) std::fputc('\n', stderr);
 }
 
@@ -115,7 +118,8 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
   if (options.timing) tracker.setClock(&monotonicNs);
 
   const std::size_t bytes_per_pixel = sequence.bit_depth > 8 ? 2U : 1U;
-  const std::size_t capacity = static_cast<std::size_t>(intrinsics.width_px) * intrinsics.height_px * bytes_per_pixel;
+  const std::size_t capacity =
+      static_cast<std::size_t>(intrinsics.width_px) * intrinsics.height_px * bytes_per_pixel;
   std::unique_ptr<std::uint8_t[]> buffer(new std::uint8_t[capacity]);
   std::FILE* csv = std::fopen(options.output_csv.c_str(), "w");
   if (csv == nullptr) return LoadError::failure(options.output_csv + ": cannot open for writing");
@@ -143,9 +147,10 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
       break;
     }
     const MonoImage image =
-        maxval > 255 ? MonoImage::from16(ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.get()), w, h),
-                                         static_cast<std::uint16_t>(maxval))
-                     : MonoImage::from8(ImageView8(buffer.get(), w, h));
+        maxval > 255
+            ? MonoImage::from16(ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.get()), w, h),
+                                static_cast<std::uint16_t>(maxval))
+            : MonoImage::from8(ImageView8(buffer.get(), w, h));
     NearRangeResult result;
     tracker.track(image, pose, static_cast<std::uint64_t>(entry.frame), result);
     // Stand-in for the navigation filter (issue 3): constant-velocity prediction of the translation from
@@ -172,7 +177,8 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
     }
     if (tty && (i % 10 == 0 || i + 1 == total)) drawProgress(i + 1, total, summary);
   }
-  if (std::fclose(csv) != 0 && failure.ok) failure = LoadError::failure(options.output_csv + ": write failed");
+  if (std::fclose(csv) != 0 && failure.ok)
+    failure = LoadError::failure(options.output_csv + ": write failed");
   if (!times.empty()) {
     std::sort(times.begin(), times.end());
     summary.median_total_us = times[times.size() / 2];

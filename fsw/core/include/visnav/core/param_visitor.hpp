@@ -12,9 +12,9 @@ namespace visnav {
 struct ParamInfo {
   const char* section;
   const char* key;
-  const char* unit;         ///< "px", "m", "deg", "-" (dimensionless), "count" ...
-  double min;               ///< inclusive
-  double max;               ///< inclusive
+  const char* unit;  ///< "px", "m", "deg", "-" (dimensionless), "count" ...
+  double min;        ///< inclusive
+  double max;        ///< inclusive
   const char* description;
 };
 

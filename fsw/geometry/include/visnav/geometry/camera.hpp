@@ -16,11 +16,11 @@ struct Distortion {
 struct CameraIntrinsics {
   int width_px = 0;
   int height_px = 0;
-  double fx_px = 0.0;    ///< focal length / pixel pitch along x (f/g of eq. 2)
-  double fy_px = 0.0;    ///< focal length / pixel pitch along y
-  double skew = 0.0;     ///< shear s of eq. 2, dimensionless: K(0,1) = s * fx
-  double cx_px = 0.0;    ///< principal point x; pixel centres sit at integer + 0.5 (CONVENTIONS.md)
-  double cy_px = 0.0;    ///< principal point y
+  double fx_px = 0.0;  ///< focal length / pixel pitch along x (f/g of eq. 2)
+  double fy_px = 0.0;  ///< focal length / pixel pitch along y
+  double skew = 0.0;   ///< shear s of eq. 2, dimensionless: K(0,1) = s * fx
+  double cx_px = 0.0;  ///< principal point x; pixel centres sit at integer + 0.5 (CONVENTIONS.md)
+  double cy_px = 0.0;  ///< principal point y
   Distortion distortion;
 
   /// Paper's SI parametrisation: focal length f [m], pixel pitch g [m] (square pixels unless pitch_y given).

@@ -1,5 +1,6 @@
-// Polygon target model (paper sec. II-H): vertices, planar surfaces as vertex lists in counter-clockwise order
-// seen from outside, and stored outward normals. Built and validated once at init; read-only afterwards.
+// Polygon target model (paper sec. II-H): vertices, planar surfaces as vertex lists in counter-clockwise
+// order seen from outside, and stored outward normals. Built and validated once at init; read-only
+// afterwards.
 #pragma once
 
 #include <string>
@@ -15,7 +16,7 @@ struct ModelSurface {
   std::vector<int> vertex_indices;  ///< >= 3, counter-clockwise seen from outside (right-hand rule = normal)
   Vec3 normal_m = Vec3::Zero();     ///< outward unit normal in the model frame (stored, sec. II-H)
   Vec3 centroid_m = Vec3::Zero();
-  double albedo = 0.8;              ///< brightness in [0, 1] for rendering; optional in files
+  double albedo = 0.8;  ///< brightness in [0, 1] for rendering; optional in files
 };
 
 struct ModelEdge {
@@ -52,7 +53,8 @@ class PolygonModel {
   double m_bounding_radius = 0.0;
 };
 
-/// A flat rectangular plate of width x height [m] in the model x-y plane, normal +z (the paper's 4-edge target).
+/// A flat rectangular plate of width x height [m] in the model x-y plane, normal +z (the paper's 4-edge
+/// target).
 PolygonModel makeRectanglePlate(double width_m, double height_m, double albedo = 0.8);
 /// A closed box with half-sizes (hx, hy, hz) [m] centred on the origin.
 PolygonModel makeBox(double hx_m, double hy_m, double hz_m, double albedo = 0.8);

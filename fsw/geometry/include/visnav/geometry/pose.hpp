@@ -8,7 +8,8 @@
 
 namespace visnav {
 
-/// Yaw (psi, about z), pitch (theta, about y'), roll (phi, about x''), radians: R = Rz(yaw) Ry(pitch) Rx(roll).
+/// Yaw (psi, about z), pitch (theta, about y'), roll (phi, about x''), radians: R = Rz(yaw) Ry(pitch)
+/// Rx(roll).
 struct YawPitchRoll {
   double yaw_rad = 0.0;
   double pitch_rad = 0.0;

@@ -20,17 +20,17 @@ const char* toString(ModeCommandKind kind);
 
 /// FDIR fault bits (HealthRecord::fault_bits, NavSolution::fault_bits).
 enum FaultBit : std::uint32_t {
-  kFaultInlierRatio = 1U << 0,    ///< edge-point inlier ratio of a line below threshold
-  kFaultTooFewLines = 1U << 1,    ///< usable lines below threshold
-  kFaultResidual = 1U << 2,       ///< LM residual above threshold
-  kFaultNotConverged = 1U << 3,   ///< LM did not converge
-  kFaultInnovation = 1U << 4,     ///< NIS against the Kalman prediction above the gate
-  kFaultImplausible = 1U << 5,    ///< range or image-bounds check failed
-  kFaultFrameAge = 1U << 6,       ///< frame older than allowed when processed
-  kFaultNoFrame = 1U << 7,        ///< camera delivered no frame this cycle
-  kFaultFarRangeNoTarget = 1U << 8,  ///< far range found no acceptable cluster
-  kFaultAcquisitionFailed = 1U << 9, ///< acquisition gave up on a candidate
-  kFaultCycleSlip = 1U << 10,     ///< the executive missed a deadline
+  kFaultInlierRatio = 1U << 0,        ///< edge-point inlier ratio of a line below threshold
+  kFaultTooFewLines = 1U << 1,        ///< usable lines below threshold
+  kFaultResidual = 1U << 2,           ///< LM residual above threshold
+  kFaultNotConverged = 1U << 3,       ///< LM did not converge
+  kFaultInnovation = 1U << 4,         ///< NIS against the Kalman prediction above the gate
+  kFaultImplausible = 1U << 5,        ///< range or image-bounds check failed
+  kFaultFrameAge = 1U << 6,           ///< frame older than allowed when processed
+  kFaultNoFrame = 1U << 7,            ///< camera delivered no frame this cycle
+  kFaultFarRangeNoTarget = 1U << 8,   ///< far range found no acceptable cluster
+  kFaultAcquisitionFailed = 1U << 9,  ///< acquisition gave up on a candidate
+  kFaultCycleSlip = 1U << 10,         ///< the executive missed a deadline
 };
 constexpr int kFaultBitCount = 11;
 
@@ -43,7 +43,7 @@ struct FarRangeSolution {
   int cluster_pixels = 0;            ///< n of eq. 16
   double circularity = 0.0;          ///< eq. 15
   int cluster_count = 0;
-  double quality = 0.0;              ///< [0, 1]
+  double quality = 0.0;  ///< [0, 1]
 };
 
 /// Per-stage time of this frame [us].
@@ -56,17 +56,17 @@ struct StageTimes {
 
 struct NavSolution {
   std::uint64_t frame_number = 0;
-  std::int64_t exposure_time_ns = 0;   ///< from the Frame
+  std::int64_t exposure_time_ns = 0;  ///< from the Frame
   NavMode mode = NavMode::kStandby;
-  bool pose_valid = false;             ///< a 6-DOF pose is reported (near range, or acquisition's first pose)
-  Pose pose;                           ///< T_c_m (CONVENTIONS.md)
-  Mat6 covariance = Mat6::Zero();      ///< over (omega, dt)
-  double quality = 0.0;                ///< [0, 1]
+  bool pose_valid = false;         ///< a 6-DOF pose is reported (near range, or acquisition's first pose)
+  Pose pose;                       ///< T_c_m (CONVENTIONS.md)
+  Mat6 covariance = Mat6::Zero();  ///< over (omega, dt)
+  double quality = 0.0;            ///< [0, 1]
   int tracked_surfaces = 0;
   int lines_used = 0;
   int lines_total = 0;
   FarRangeSolution far;
-  std::uint32_t fault_bits = 0;        ///< FaultBit set this frame
+  std::uint32_t fault_bits = 0;  ///< FaultBit set this frame
   StageTimes timing;
 };
 
@@ -83,20 +83,20 @@ struct ModeTransition {
   NavMode from = NavMode::kStandby;
   NavMode to = NavMode::kStandby;
   std::uint64_t frame_number = 0;
-  std::array<char, 64> reason{};       ///< NUL-terminated
+  std::array<char, 64> reason{};  ///< NUL-terminated
 };
 
 struct CommandAck {
-  std::uint32_t command_id = 0;        ///< echoed from the ModeCommand
+  std::uint32_t command_id = 0;  ///< echoed from the ModeCommand
   ModeCommandKind kind = ModeCommandKind::kResume;
   bool accepted = false;
-  std::array<char, 64> reason{};       ///< NUL-terminated: why rejected, or "ok"
+  std::array<char, 64> reason{};  ///< NUL-terminated: why rejected, or "ok"
 };
 
 struct HealthRecord {
   NavMode mode = NavMode::kStandby;
-  std::uint32_t fault_bits = 0;                             ///< faults active now
-  std::array<std::uint32_t, kFaultBitCount> fault_counts{}; ///< frames each fault was raised
+  std::uint32_t fault_bits = 0;                              ///< faults active now
+  std::array<std::uint32_t, kFaultBitCount> fault_counts{};  ///< frames each fault was raised
   std::uint64_t frames_processed = 0;
   std::uint64_t frames_dropped = 0;
   std::uint64_t cycle_slips = 0;

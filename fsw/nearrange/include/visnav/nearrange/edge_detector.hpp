@@ -14,8 +14,8 @@ constexpr int kMaxScanlineSamples = 129;  ///< 2 * 64 + 1, the largest scanline_
 /// Bilinear brightness in [0, 1] at continuous pixel position p (pixel centres at +0.5). False outside.
 bool sampleBrightness(const MonoImage& image, const Vec2& p, double& value);
 
-/// Samples 2 * half_length + 1 points centre + k * direction, k = -half_length..half_length (unit spacing when
-/// direction is a unit vector). False when any sample falls outside the image.
+/// Samples 2 * half_length + 1 points centre + k * direction, k = -half_length..half_length (unit spacing
+/// when direction is a unit vector). False when any sample falls outside the image.
 bool sampleScanline(const MonoImage& image, const Vec2& centre, const Vec2& direction, int half_length,
                     double* samples);
 

@@ -60,11 +60,13 @@ struct NearRangeParams {
     v.real({"nearrange", "contrast_delta", "-", 0.0, 1.0,
             "delta of sec. II-D: texture split (eq. 5) when max(w) - mean(w) < delta (brightness 0..1)"},
            contrast_delta);
-    v.integer({"nearrange", "texture_bins", "count", 2, 256, "brightness classes of Algorithm 1"}, texture_bins);
-    v.real({"nearrange", "texture_min_log_gain", "nats", 0.0, 1000.0,
-            "a texture split must explain the scanline better than one texture by this log-likelihood margin, "
-            "else the scanline yields no point (a uniform patch has no edge)"},
-           texture_min_log_gain);
+    v.integer({"nearrange", "texture_bins", "count", 2, 256, "brightness classes of Algorithm 1"},
+              texture_bins);
+    v.real(
+        {"nearrange", "texture_min_log_gain", "nats", 0.0, 1000.0,
+         "a texture split must explain the scanline better than one texture by this log-likelihood margin, "
+         "else the scanline yields no point (a uniform patch has no edge)"},
+        texture_min_log_gain);
     v.boolean({"nearrange", "subpixel", "-", 0, 1,
                "refine the eq. 4 maximum to sub-pixel with a Gaussian/parabola fit of w"},
               subpixel);

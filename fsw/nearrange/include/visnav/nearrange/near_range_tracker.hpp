@@ -32,16 +32,16 @@ const char* toString(TrackStatus status);
 
 /// Why a frame is not kTracking (bit set; several may hold).
 enum TrackFlag : std::uint32_t {
-  kFlagNoSurface = 1U << 0,        ///< no surface passes the visibility hysteresis
-  kFlagTooFewLines = 1U << 1,      ///< not enough usable lines for the chosen residual
-  kFlagLineRejected = 1U << 2,     ///< at least one line failed its point count / inlier ratio
-  kFlagSolverFailed = 1U << 3,     ///< LM did not converge or had too few residuals
-  kFlagResidualHigh = 1U << 4,     ///< rms above degraded_rms_px
-  kFlagResidualTooHigh = 1U << 5,  ///< rms above max_rms_px
-  kFlagOutOfImage = 1U << 6,       ///< projected model leaves the image
-  kFlagTextureFallback = 1U << 7,  ///< some edge points came from the texture split (information)
-  kFlagResidualFallback = 1U << 8, ///< vertex residual lacked corners: point-to-line residual used instead
-  kFlagSilhouetteOnly = 1U << 9,   ///< no surface passes the sec. II-H gate: only the outline was measured
+  kFlagNoSurface = 1U << 0,         ///< no surface passes the visibility hysteresis
+  kFlagTooFewLines = 1U << 1,       ///< not enough usable lines for the chosen residual
+  kFlagLineRejected = 1U << 2,      ///< at least one line failed its point count / inlier ratio
+  kFlagSolverFailed = 1U << 3,      ///< LM did not converge or had too few residuals
+  kFlagResidualHigh = 1U << 4,      ///< rms above degraded_rms_px
+  kFlagResidualTooHigh = 1U << 5,   ///< rms above max_rms_px
+  kFlagOutOfImage = 1U << 6,        ///< projected model leaves the image
+  kFlagTextureFallback = 1U << 7,   ///< some edge points came from the texture split (information)
+  kFlagResidualFallback = 1U << 8,  ///< vertex residual lacked corners: point-to-line residual used instead
+  kFlagSilhouetteOnly = 1U << 9,    ///< no surface passes the sec. II-H gate: only the outline was measured
 };
 
 /// Per-stage execution time of one track() call [us] (zeros when no clock is set).
@@ -63,7 +63,7 @@ struct NearRangeResult {
   std::uint64_t tracked_surface_mask = 0;  ///< bit i: surface i (first 64 surfaces)
   int lines_total = 0;
   int lines_used = 0;
-  int silhouette_lines = 0;        ///< measured edges selected as outline only (not of a tracked surface)
+  int silhouette_lines = 0;  ///< measured edges selected as outline only (not of a tracked surface)
   int edge_points = 0;
   int inlier_points = 0;
   int texture_points = 0;
@@ -106,7 +106,8 @@ class NearRangeTracker {
 
   /// One frame. `predicted` is the pose to project with (the last pose or a filter prediction);
   /// `frame_index` seeds RANSAC so the same frame gives the same result.
-  Status track(const MonoImage& image, const Pose& predicted, std::uint64_t frame_index, NearRangeResult& out);
+  Status track(const MonoImage& image, const Pose& predicted, std::uint64_t frame_index,
+               NearRangeResult& out);
 
   const NearRangeParams& params() const { return m_params; }
   const PolygonModel& model() const { return m_model; }
@@ -124,7 +125,8 @@ class NearRangeTracker {
   int collectEdgePoints(int excluded_slot);
   bool solvePose(const Pose& predicted, int excluded_slot, int lines_used, Pose& pose, PoseFitResult& fit,
                  int& vertices, std::uint32_t& flags);
-  bool rejectWorstLine(const Pose& predicted, bool solved, Pose& pose, PoseFitResult& fit, NearRangeResult& out);
+  bool rejectWorstLine(const Pose& predicted, bool solved, Pose& pose, PoseFitResult& fit,
+                       NearRangeResult& out);
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
 
   static constexpr int kPolarityBins = 16;
@@ -142,15 +144,15 @@ class NearRangeTracker {
   BoundedBuffer<std::uint8_t> m_edge_selected;    ///< per model edge, this frame
   BoundedBuffer<std::int8_t> m_polarity;          ///< per model edge x kPolarityBins, last frame
   BoundedBuffer<std::int8_t> m_polarity_next;
-  BoundedBuffer<int> m_edge_slot;                 ///< model edge -> index in m_edges, -1 if not measured
+  BoundedBuffer<int> m_edge_slot;  ///< model edge -> index in m_edges, -1 if not measured
 
   BoundedBuffer<EdgeDebug> m_edges;
   BoundedBuffer<ScanPointDebug> m_scan_points;
-  BoundedBuffer<Vec2> m_points_ideal;              ///< edge points in ideal pixels, parallel to m_scan_points
+  BoundedBuffer<Vec2> m_points_ideal;  ///< edge points in ideal pixels, parallel to m_scan_points
   BoundedBuffer<std::uint8_t> m_inlier;
   BoundedBuffer<Vec2> m_scratch;
   BoundedBuffer<VertexObservation> m_vertex_obs;
-  BoundedBuffer<double> m_vertex_best_sin;        ///< per model vertex: best |sin| of a measured line pair
+  BoundedBuffer<double> m_vertex_best_sin;  ///< per model vertex: best |sin| of a measured line pair
   BoundedBuffer<Vec2> m_vertex_best_px;
   BoundedBuffer<EdgePointObservation> m_edge_obs;
   bool m_first_frame = true;

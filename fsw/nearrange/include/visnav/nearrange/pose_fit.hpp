@@ -37,8 +37,8 @@ bool fitPoseToVertices(const PinholeCamera& camera, const PolygonModel& model, c
                        PoseFitResult& result);
 
 /// Point-to-line: minimise sum_j d(e_j, projected model edge)^2 over every edge inlier point.
-bool fitPoseToEdgePoints(const PinholeCamera& camera, const PolygonModel& model, const EdgePointObservation* obs,
-                         int count, const LmOptions& options, double pixel_sigma_px, Pose& pose,
-                         PoseFitResult& result);
+bool fitPoseToEdgePoints(const PinholeCamera& camera, const PolygonModel& model,
+                         const EdgePointObservation* obs, int count, const LmOptions& options,
+                         double pixel_sigma_px, Pose& pose, PoseFitResult& result);
 
 }  // namespace visnav

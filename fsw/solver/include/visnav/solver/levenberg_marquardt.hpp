@@ -12,9 +12,9 @@
 namespace visnav {
 
 struct LmOptions {
-  int max_iterations = 50;            ///< bounded loop
-  double initial_lambda = 1e-4;       ///< damping relative to diag(H)
-  double max_lambda = 1e8;            ///< give up beyond this damping
+  int max_iterations = 50;       ///< bounded loop
+  double initial_lambda = 1e-4;  ///< damping relative to diag(H)
+  double max_lambda = 1e8;       ///< give up beyond this damping
   /// Converged when |delta| < this. Parameters are radians and metres: 1e-8 is far below anything a camera
   /// can resolve, and still reachable in double precision on the ill-conditioned far end (25 m) of the range.
   double step_tolerance = 1e-8;
@@ -26,7 +26,7 @@ template <int N>
 struct LmSummary {
   Status status = Status::kNotConverged;
   int iterations = 0;
-  int residual_count = 0;   ///< scalar residuals in the final linearisation
+  int residual_count = 0;  ///< scalar residuals in the final linearisation
   double initial_cost = 0.0;
   double final_cost = 0.0;  ///< sum of squared residuals at the solution
   bool converged = false;
@@ -34,7 +34,8 @@ struct LmSummary {
 };
 
 /// Problem concept:
-///   int linearize(const State&, Eigen::Matrix<double,N,N>& JtJ, Eigen::Matrix<double,N,1>& Jtr, double& cost)
+///   int linearize(const State&, Eigen::Matrix<double,N,N>& JtJ, Eigen::Matrix<double,N,1>& Jtr, double&
+///   cost)
 ///       returns the number of scalar residuals (0 = cannot evaluate);
 ///   bool evaluate(const State&, double& cost);
 /// State concept: State boxPlus(const Eigen::Matrix<double,N,1>&) const.

@@ -13,17 +13,17 @@ namespace visnav::replay_tool {
 
 struct ReplayOptions {
   std::string sequence_dir;
-  std::string config_path;   ///< optional: TOML config ([nearrange] table); built-in defaults otherwise
-  std::string camera_path;   ///< optional: overrides the sequence's camera
-  std::string model_path;    ///< optional: overrides the sequence's model
-  std::string output_csv;    ///< required
-  std::string overlay_dir;   ///< optional: PNG overlays (paper fig. 3) go here
-  int overlay_every = 10;    ///< every N-th frame gets an overlay
+  std::string config_path;  ///< optional: TOML config ([nearrange] table); built-in defaults otherwise
+  std::string camera_path;  ///< optional: overrides the sequence's camera
+  std::string model_path;   ///< optional: overrides the sequence's model
+  std::string output_csv;   ///< required
+  std::string overlay_dir;  ///< optional: PNG overlays (paper fig. 3) go here
+  int overlay_every = 10;   ///< every N-th frame gets an overlay
   bool have_initial_pose = false;
-  Pose initial_pose;         ///< else the sequence's first truth row
-  int max_frames = -1;       ///< -1: all
-  bool progress = false;     ///< progress bar on stderr
-  bool timing = true;        ///< false: timing columns are 0 (byte-identical CSVs across runs)
+  Pose initial_pose;      ///< else the sequence's first truth row
+  int max_frames = -1;    ///< -1: all
+  bool progress = false;  ///< progress bar on stderr
+  bool timing = true;     ///< false: timing columns are 0 (byte-identical CSVs across runs)
   bool override_residual = false;
   PoseResidualMode residual = PoseResidualMode::kVertex;
 };
