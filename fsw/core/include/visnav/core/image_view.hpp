@@ -49,14 +49,14 @@ struct MonoImage {
   /// Largest code of the sensor (255, 1023 for Y10, 4095 for Y12, 65535 for Y16).
   std::uint16_t max_code = 255;
 
-  static MonoImage from8(ImageView8 view) {
+  static MonoImage from8(const ImageView8& view) {
     MonoImage image;
     image.depth = Depth::kU8;
     image.u8 = view;
     image.max_code = 255;
     return image;
   }
-  static MonoImage from16(ImageView16 view, std::uint16_t max_code) {
+  static MonoImage from16(const ImageView16& view, std::uint16_t max_code) {
     MonoImage image;
     image.depth = Depth::kU16;
     image.u16 = view;
