@@ -62,7 +62,7 @@ void readDynamicClutter(replay::TomlReader& r, synthetic::RenderOptions& o);
 
 /// Writes DIR/clutter.csv (frame,bars_in_view,glints_in_view) for the rendered frames when the scenario has
 /// per-frame clutter; nothing otherwise. "In view": the object's centre lies within the image grown by its
-/// half length (bars) or 3 sigma (glints).
+/// half length (bars) or 3 sigma (glints). Spots with peak < 0.5 are stars and not counted as glints.
 LoadError writeClutterCsv(const std::string& directory, const synthetic::RenderOptions& o,
                           const std::vector<int>& frames, int width_px, int height_px);
 

@@ -9,6 +9,7 @@ namespace visnav::synth {
 namespace {
 
 constexpr int kMaxObjects = 8;
+constexpr double kGlintMinPeak = 0.5;  // fainter spots model stars, not glints
 
 void readWindow(replay::TomlReader& r, const std::string& key, std::int64_t& first, std::int64_t& last,
                 Vec2& start, Vec2& end) {
@@ -79,7 +80,7 @@ LoadError writeClutterCsv(const std::string& directory, const synthetic::RenderO
         ++bars;
     }
     for (const synthetic::Glint& g : o.glints) {
-      if (synthetic::clutterAt(g.first_frame, g.last_frame, frame, t) &&
+      if (g.peak >= kGlintMinPeak && synthetic::clutterAt(g.first_frame, g.last_frame, frame, t) &&
           centreInView(g.start_px, g.end_px, t, 3.0 * g.sigma_px, width_px, height_px))
         ++glints;
     }

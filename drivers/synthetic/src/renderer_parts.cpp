@@ -9,9 +9,9 @@ namespace visnav::synthetic {
 
 bool clutterAt(std::int64_t first_frame, std::int64_t last_frame, std::int64_t frame, double& fraction) {
   if (frame < first_frame || frame > last_frame) return false;
-  fraction = last_frame == first_frame ? 0.0
-                                       : static_cast<double>(frame - first_frame) /
-                                             static_cast<double>(last_frame - first_frame);
+  fraction = last_frame == first_frame
+                 ? 0.0
+                 : static_cast<double>(frame - first_frame) / static_cast<double>(last_frame - first_frame);
   return true;
 }
 

@@ -1,0 +1,144 @@
+// The far-range direction/distance estimator (paper sec. III): low-level filters (edge, histogram), their
+// weighted sum (eq. 13/14), cluster analysis (eq. 15), selection of the target cluster, direction through
+// the camera model (distortion removed) and distance d = gamma / sqrt(n) (eq. 16). It needs no
+// initialisation like a tracker; the robust method keeps a light track (last position, velocity, size) to
+// gate the next selection and to restrict the search to a region of interest (sec. V).
+// All memory is sized in init(); estimate() allocates nothing, throws nothing, and every loop is bounded by
+// the image size or a capacity fixed at init.
+#pragma once
+
+#include <cstdint>
+
+#include "visnav/core/image_view.hpp"
+#include "visnav/core/status.hpp"
+#include "visnav/core/types.hpp"
+#include "visnav/farrange/cluster_finder.hpp"
+#include "visnav/farrange/edge_filter.hpp"
+#include "visnav/farrange/far_range_params.hpp"
+#include "visnav/farrange/histogram_filter.hpp"
+#include "visnav/farrange/weighted_sum.hpp"
+#include "visnav/geometry/camera.hpp"
+
+namespace visnav::far {
+
+/// Why a frame has no target, or what is special about it (bit set; several may hold).
+enum FarRangeFlag : std::uint32_t {
+  kFlagNoCluster = 1U << 0,        ///< no response above t_in
+  kFlagNoCandidate = 1U << 1,      ///< clusters exist, none accepted (size, shape, gate)
+  kFlagClusterCapacity = 1U << 2,  ///< more spawn pixels than max_clusters
+  kFlagPixelCapacity = 1U << 3,    ///< a cluster's growth stopped at max_cluster_pixels
+  kFlagRoi = 1U << 4,              ///< searched a region of interest only
+  kFlagRoiFallback = 1U << 5,      ///< the region yielded no target: the full frame was searched
+  kFlagGated = 1U << 6,            ///< selected inside the gate of the prediction
+  kFlagCoasting = 1U << 7,         ///< no target this frame, the track is kept (robust)
+  kFlagAtBorder = 1U << 8,         ///< the target touches the image border: n is too small
+  kFlagAmbiguous = 1U << 9,        ///< a second acceptable cluster came close in score
+  kFlagUnconfirmed = 1U << 10,     ///< picked without a track (largest plausible cluster)
+};
+
+/// Execution time of one estimate() per stage [us] (zeros when no clock is set).
+struct FarRangeTiming {
+  double edge_us = 0.0;
+  double histogram_us = 0.0;
+  double combine_us = 0.0;
+  double cluster_us = 0.0;
+  double select_us = 0.0;
+  double total_us = 0.0;
+};
+
+struct FarRangeResult {
+  bool valid = false;
+  Vec3 direction_c = Vec3::UnitZ();  ///< unit line of sight, camera frame
+  double azimuth_rad = 0.0;          ///< atan2(x, z)
+  double elevation_rad = 0.0;        ///< atan2(-y, hypot(x, z)): up in the image is positive
+  double distance_m = 0.0;           ///< eq. 16
+  Vec2 centroid_px = Vec2::Zero();   ///< raw pixels
+  int cluster_pixels = 0;            ///< n used in eq. 16 (filled n for the robust method)
+  int raw_pixels = 0;                ///< n of eq. 15 (responses above t_out)
+  int boundary_pixels = 0;           ///< outline pixels of the filled cluster (robust)
+  double circularity = 0.0;          ///< eq. 15 of the selected cluster
+  int cluster_count = 0;             ///< clusters found in the searched region
+  int selected = -1;                 ///< index in clusters()
+  double quality = 0.0;              ///< [0, 1], 0 when not valid
+  std::uint32_t flags = 0;           ///< FarRangeFlag
+  Roi roi;                           ///< region searched last
+  FarRangeTiming timing;
+};
+
+using MonotonicClockNs = std::int64_t (*)();
+
+class FarRangeEstimator {
+ public:
+  /// Allocates every buffer for the camera's image size. Rejects invalid parameters (eq. 14 included).
+  LoadError init(const PinholeCamera& camera, const FarRangeParams& params);
+  void setClock(MonotonicClockNs clock) { m_clock = clock; }
+  /// Forget the track (after a mode change or a ground command).
+  void reset();
+  /// Optional prediction for the next frame from a navigation filter: gates the robust selection like a
+  /// track would (direction in the camera frame, distance for the expected size).
+  void setPrediction(const Vec3& direction_c, double distance_m);
+
+  /// One frame (size must match the camera). Returns kInvalidArgument for a wrong image, else kOk; whether a
+  /// target was found is out.valid.
+  Status estimate(const MonoImage& image, FarRangeResult& out);
+
+  const FarRangeParams& params() const { return m_params; }
+  const PinholeCamera& camera() const { return m_camera; }
+  /// Debug views of the last frame (valid until the next estimate()).
+  const ResponseImage& combinedResponse() const { return m_combined; }
+  const ResponseImage& edgeResponse() const { return m_edge_response; }
+  const ResponseImage& histogramResponse() const { return m_histogram_response; }
+  const BoundedBuffer<Cluster>& clusters() const { return m_finder.clusters(); }
+  const ClusterFinder& clusterFinder() const { return m_finder; }
+  const EdgeFilter& edgeFilter() const { return m_edge; }
+  const HistogramFilter& histogramFilter() const { return m_histogram; }
+
+ private:
+  struct Track {
+    bool active = false;
+    Vec2 position_px = Vec2::Zero();
+    Vec2 velocity_px = Vec2::Zero();  ///< per frame
+    bool has_velocity = false;
+    double size_px = 0.0;  ///< n of the last accepted target
+    double half_extent_px = 0.0;
+    int misses = 0;
+  };
+  struct Gate {
+    bool active = false;
+    Vec2 centre_px = Vec2::Zero();
+    double radius_px = 0.0;
+    double size_px = 0.0;
+    double half_extent_px = 0.0;
+  };
+
+  double elapsedUs(std::int64_t& since) const;
+  void searchRegion(const MonoImage& image, const Roi& roi, FarRangeResult& out);
+  int selectPaper() const;
+  int selectRobust(const Gate& gate, std::uint32_t& flags);
+  void prepareCandidates();
+  Gate currentGate() const;
+  int usedPixels(const Cluster& c) const;  ///< n of eq. 16 for this method
+  void report(const Cluster& c, const Gate& gate, FarRangeResult& out) const;
+  void updateTrack(const FarRangeResult& out);
+
+  PinholeCamera m_camera;
+  FarRangeParams m_params;
+  bool m_robust = true;
+  MonotonicClockNs m_clock = nullptr;
+  EdgeFilter m_edge;
+  HistogramFilter m_histogram;
+  WeightedSum m_sum;
+  ClusterFinder m_finder;
+  ResponseImage m_edge_response;
+  ResponseImage m_histogram_response;
+  ResponseImage m_combined;
+  BoundedBuffer<std::uint8_t> m_row_max;
+  std::uint8_t m_t_in_q = 229;
+  std::uint8_t m_t_out_q = 127;
+  Track m_track;
+  bool m_has_prediction = false;
+  Vec2 m_prediction_px = Vec2::Zero();
+  double m_prediction_size_px = 0.0;
+};
+
+}  // namespace visnav::far

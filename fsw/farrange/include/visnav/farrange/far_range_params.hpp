@@ -1,0 +1,131 @@
+// Every tunable of the far-range direction/distance estimator (paper sec. III), with units, ranges and
+// defaults. Table 1 values are the defaults of beta, lambda_1/2, gamma, t_in and t_out. The generated
+// reference is config/PARAMETERS.md; the values used by a run come from the [farrange] table of its config.
+#pragma once
+
+#include <cmath>
+
+#include "visnav/core/param_visitor.hpp"
+
+namespace visnav::far {
+
+/// paper: exactly as published (normalise by the single maximum, raw cluster size, most circular cluster).
+/// robust: percentile normalisation, filled clusters, size/shape checks, gating by the last estimate, ROI.
+enum class FarRangeMethod : int { kPaper = 0, kRobust = 1 };
+/// sobel: the design card's kernel; prewitt: eq. 9's kernels as printed.
+enum class EdgeKernel : int { kSobel = 0, kPrewitt = 1 };
+
+struct FarRangeParams {
+  int method = static_cast<int>(FarRangeMethod::kRobust);
+  int edge_kernel = static_cast<int>(EdgeKernel::kSobel);
+  // Table 1.
+  double beta = 100.0;
+  double edge_weight = 0.5;
+  double histogram_weight = 0.5;
+  double gamma = 3000.0;
+  double t_in = 0.9;
+  double t_out = 0.5;
+  // Robust method (ignored by method = paper).
+  double edge_percentile = 99.5;
+  double edge_ref_floor = 0.02;
+  int min_cluster_px = 6;
+  double max_axis_ratio = 12.0;
+  bool fill_holes = true;
+  double outline_discount = 1.0;
+  double gate_radius_px = 30.0;
+  double gate_extent_factor = 1.0;
+  double max_size_ratio = 2.0;
+  int max_coast_frames = 5;
+  bool use_roi = true;
+  double roi_extent_factor = 2.0;
+  int roi_min_half_px = 48;
+  // Capacities (memory is sized from these and the image size at init).
+  int max_clusters = 256;
+  int max_cluster_pixels = 262144;
+
+  template <typename Visitor>
+  void visit(Visitor& v) {
+    v.enumeration(
+        {"farrange", "method", "-", 0, 1,
+         "paper: as published (max normalisation, raw n, most circular cluster); robust: percentile "
+         "normalisation, filled clusters, size and shape checks, gating by the last estimate, ROI"},
+        "paper|robust", method);
+    v.enumeration(
+        {"farrange", "edge_kernel", "-", 0, 1,
+         "3x3 gradient kernels of the edge filter: sobel (design card) or prewitt (eq. 9 as printed)"},
+        "sobel|prewitt", edge_kernel);
+    v.real({"farrange", "beta", "-", 0.0, 1.0e6, "Table 1 beta: histogram rarity dampening of eq. 12"}, beta);
+    v.real({"farrange", "edge_weight", "-", 0.0, 1.0, "Table 1 lambda_1: weight of the edge filter (eq. 13)"},
+           edge_weight);
+    v.real({"farrange", "histogram_weight", "-", 0.0, 1.0,
+            "Table 1 lambda_2: weight of the histogram filter (eq. 13); the weights must sum to 1 (eq. 14)"},
+           histogram_weight);
+    v.real({"farrange", "gamma", "m px^0.5", 1.0e-3, 1.0e9,
+            "Table 1 gamma of eq. 16, d = gamma / sqrt(n); calibrate with visnav-calibrate-gamma"},
+           gamma);
+    v.real({"farrange", "t_in", "-", 0.0, 1.0,
+            "Table 1 t_in: a cluster is spawned where the response exceeds it"},
+           t_in);
+    v.real({"farrange", "t_out", "-", 0.0, 1.0, "Table 1 t_out: a cluster grows over responses above it"},
+           t_out);
+    v.real({"farrange", "edge_percentile", "%", 50.0, 100.0,
+            "robust: eq. 10 divides by this percentile of |Jx|+|Jy| instead of the maximum (100 = maximum), "
+            "so one bright non-target edge cannot push the target below t_in"},
+           edge_percentile);
+    v.real({"farrange", "edge_ref_floor", "brightness", 0.0, 1.0,
+            "robust: the eq. 10 divisor is at least the response of a step of this contrast (noise-free "
+            "frames)"},
+           edge_ref_floor);
+    v.integer({"farrange", "min_cluster_px", "px", 1, 1000000,
+               "robust: smaller clusters are never the target (noise, tiny glints)"},
+              min_cluster_px);
+    v.real({"farrange", "max_axis_ratio", "-", 1.0, 1000.0,
+            "robust: clusters more elongated than this (sqrt of the second-moment eigenvalue ratio) are "
+            "rejected when no track exists (line-like clutter)"},
+           max_axis_ratio);
+    v.boolean({"farrange", "fill_holes", "-", 0, 1,
+               "robust: n and centre of mass from the cluster with its holes filled (the histogram filter "
+               "drops a near target's interior, so the raw n stops following 1/d^2)"},
+              fill_holes);
+    v.real({"farrange", "outline_discount", "-", 0.0, 2.0,
+            "robust: n = filled size - this * outline pixels; the thresholded cluster reaches about one "
+            "pixel beyond the silhouette (blur halo), a term in 1/d that no gamma absorbs"},
+           outline_discount);
+    v.real({"farrange", "gate_radius_px", "px", 1.0, 10000.0,
+            "robust: a tracked target must lie within this radius of the predicted position ..."},
+           gate_radius_px);
+    v.real({"farrange", "gate_extent_factor", "-", 0.0, 100.0,
+            "robust: ... plus this factor times the last target's half extent"},
+           gate_extent_factor);
+    v.real({"farrange", "max_size_ratio", "-", 1.0, 1000.0,
+            "robust: a tracked target's n must lie within [n_pred / r, n_pred * r]"},
+           max_size_ratio);
+    v.integer({"farrange", "max_coast_frames", "count", 0, 100000,
+               "robust: frames without an accepted target before the track is dropped (then full-frame "
+               "search without gating)"},
+              max_coast_frames);
+    v.boolean({"farrange", "use_roi", "-", 0, 1,
+               "robust: filter only a region around the predicted target (sec. V); full frame when lost or "
+               "when the region yields no target"},
+              use_roi);
+    v.real({"farrange", "roi_extent_factor", "-", 0.5, 100.0,
+            "robust: ROI half size = factor * target half extent + roi_min_half_px"},
+           roi_extent_factor);
+    v.integer({"farrange", "roi_min_half_px", "px", 8, 100000, "robust: smallest ROI half size"},
+              roi_min_half_px);
+    v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
+    v.integer({"farrange", "max_cluster_pixels", "px", 16, 67108864,
+               "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},
+              max_cluster_pixels);
+  }
+
+  /// Cross-field checks the per-field ranges cannot express. Returns nullptr when valid.
+  const char* crossCheck() const {
+    if (std::abs(edge_weight + histogram_weight - 1.0) > 1e-9)
+      return "[farrange] edge_weight + histogram_weight must sum to 1 (paper eq. 14)";
+    if (!(t_out <= t_in)) return "[farrange] t_out must be <= t_in (clusters grow from spawn pixels)";
+    return nullptr;
+  }
+};
+
+}  // namespace visnav::far

@@ -1,0 +1,40 @@
+// Histogram filter of paper sec. III-B: a 256-bin integer histogram of the ROI (eq. 11) and the rarity
+// response G = exp(-h(bin) / max(h) * beta) (eq. 12), evaluated once per bin into a 256-entry lookup table
+// per frame, then one table lookup per pixel (no exp per pixel). Eq. 11's 1 / (N #J) cancels in h / max(h),
+// so raw counts are used. 16-bit images are binned to 256 as eq. 11 writes it: floor(v / max_code * 255).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "visnav/core/bounded_buffer.hpp"
+#include "visnav/farrange/response_filter.hpp"
+
+namespace visnav::far {
+
+class HistogramFilter final : public ResponseFilter {
+ public:
+  /// Init-time: allocates the 16-bit binning table.
+  void init(double beta);
+  const char* name() const override { return "histogram"; }
+  void apply(const MonoImage& image, const Roi& roi, ResponseImage& out) override;
+
+  /// Last frame's histogram (counts per bin) and response table (255 = 1.0).
+  const std::array<std::uint32_t, 256>& histogram() const { return m_histogram; }
+  const std::array<std::uint8_t, 256>& responseTable() const { return m_table; }
+  /// Eq. 11's bin of a sample of an image with the given max code.
+  static int binOf(std::uint32_t value, std::uint32_t max_code);
+
+ private:
+  void buildBins16(std::uint16_t max_code);
+  void countBins8(const ImageView8& view, const Roi& roi);
+  void countBins16(const ImageView16& view, const Roi& roi);
+
+  double m_beta = 100.0;
+  std::array<std::uint32_t, 256> m_histogram{};
+  std::array<std::uint8_t, 256> m_table{};
+  BoundedBuffer<std::uint8_t> m_bin16;  ///< 16-bit sample -> bin, for m_bin16_max_code
+  std::uint32_t m_bin16_max_code = 0;
+};
+
+}  // namespace visnav::far

@@ -1,0 +1,184 @@
+#include "visnav/farrange/far_range_estimator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace visnav::far {
+
+LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangeParams& params) {
+  if (camera.width() < 3 || camera.height() < 3 || camera.width() > 65535 || camera.height() > 65535)
+    return LoadError::failure("far range: image size must be 3..65535 px per side");
+  if (const char* problem = params.crossCheck()) return LoadError::failure(problem);
+  m_camera = camera;
+  m_params = params;
+  m_robust = params.method == static_cast<int>(FarRangeMethod::kRobust);
+  const double lambdas[2] = {params.edge_weight, params.histogram_weight};
+  LoadError error = m_sum.setWeights(lambdas, 2);
+  if (!error.ok) return error;
+  const int w = camera.width();
+  const int h = camera.height();
+  EdgeFilterSettings edge;
+  edge.kernel = static_cast<EdgeKernel>(params.edge_kernel);
+  // The published method divides by the single maximum (eq. 10).
+  edge.percentile = m_robust ? params.edge_percentile : 100.0;
+  edge.ref_floor = m_robust ? params.edge_ref_floor : 0.0;
+  m_edge.init(w, h, edge);
+  m_histogram.init(params.beta);
+  m_sum.init(w);
+  m_edge_response.init(w, h);
+  m_histogram_response.init(w, h);
+  m_combined.init(w, h);
+  m_row_max.reserve(static_cast<std::size_t>(h));
+  m_finder.init(w, h, params.max_clusters, params.max_cluster_pixels);
+  // "Exceeds t": S / 255 > t  <=>  S > floor(255 t) for the integer S.
+  m_t_in_q = static_cast<std::uint8_t>(std::floor(params.t_in * 255.0));
+  m_t_out_q = static_cast<std::uint8_t>(std::floor(params.t_out * 255.0));
+  reset();
+  return LoadError::success();
+}
+
+void FarRangeEstimator::reset() {
+  m_track = Track{};
+  m_has_prediction = false;
+}
+
+void FarRangeEstimator::setPrediction(const Vec3& direction_c, double distance_m) {
+  Vec2 px;
+  if (!(distance_m > 0.0) || !m_camera.project(direction_c, px)) return;
+  m_has_prediction = true;
+  m_prediction_px = px;
+  const double sqrt_n = m_params.gamma / distance_m;
+  m_prediction_size_px = sqrt_n * sqrt_n;
+}
+
+double FarRangeEstimator::elapsedUs(std::int64_t& since) const {
+  if (m_clock == nullptr) return 0.0;
+  const std::int64_t now = m_clock();
+  const double us = static_cast<double>(now - since) * 1e-3;
+  since = now;
+  return us;
+}
+
+void FarRangeEstimator::searchRegion(const MonoImage& image, const Roi& roi, FarRangeResult& out) {
+  std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
+  m_edge_response.setRoi(roi);
+  m_histogram_response.setRoi(roi);
+  m_combined.setRoi(roi);
+  m_edge.apply(image, roi, m_edge_response);
+  out.timing.edge_us += elapsedUs(stamp);
+  m_histogram.apply(image, roi, m_histogram_response);
+  out.timing.histogram_us += elapsedUs(stamp);
+  const ResponseImage* inputs[2] = {&m_edge_response, &m_histogram_response};
+  m_sum.apply(inputs, m_combined, m_row_max.data());
+  out.timing.combine_us += elapsedUs(stamp);
+  m_finder.find(m_combined, m_row_max.data(), m_t_in_q, m_t_out_q);
+  if (m_robust) prepareCandidates();
+  out.timing.cluster_us += elapsedUs(stamp);
+  out.roi = roi;
+  out.cluster_count = static_cast<int>(m_finder.clusters().size());
+  if (m_finder.seedsSkipped() > 0) out.flags |= kFlagClusterCapacity;
+  if (m_finder.pixelCapacityHit()) out.flags |= kFlagPixelCapacity;
+}
+
+Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) {
+  out = FarRangeResult{};
+  if (image.empty() || image.width() != m_camera.width() || image.height() != m_camera.height()) {
+    return Status::kInvalidArgument;
+  }
+  std::int64_t start = m_clock != nullptr ? m_clock() : 0;
+  const Roi full = Roi::full(m_camera.width(), m_camera.height());
+  const Gate gate = m_robust ? currentGate() : Gate{};
+  int selected = -1;
+  if (m_robust && m_params.use_roi && gate.active) {
+    // The region holds the gate and the target's expected extent with a margin (sec. V).
+    const double half =
+        std::max(gate.radius_px + gate.half_extent_px, m_params.roi_extent_factor * gate.half_extent_px) +
+        m_params.roi_min_half_px;
+    const double cx = std::clamp(gate.centre_px.x(), -half, m_camera.width() + half);
+    const double cy = std::clamp(gate.centre_px.y(), -half, m_camera.height() + half);
+    const Roi roi = Roi{static_cast<int>(std::floor(cx - half)), static_cast<int>(std::floor(cy - half)),
+                        static_cast<int>(2.0 * half) + 1, static_cast<int>(2.0 * half) + 1}
+                        .clipped(full.width, full.height);
+    if (!roi.empty() && roi.area() < full.area()) {
+      out.flags |= kFlagRoi;
+      searchRegion(image, roi, out);
+      std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
+      selected = selectRobust(gate, out.flags);
+      out.timing.select_us += elapsedUs(stamp);
+      if (selected < 0) out.flags |= kFlagRoiFallback;
+    }
+  }
+  if (selected < 0) {
+    searchRegion(image, full, out);
+    std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
+    selected = m_robust ? selectRobust(gate, out.flags) : selectPaper();
+    out.timing.select_us += elapsedUs(stamp);
+  }
+  if (selected >= 0) {
+    out.selected = selected;
+    report(m_finder.clusters()[static_cast<std::size_t>(selected)], gate, out);
+  } else {
+    out.flags |= m_finder.clusters().empty() ? kFlagNoCluster : kFlagNoCandidate;
+    if (m_robust && m_track.active) out.flags |= kFlagCoasting;
+  }
+  if (m_robust) updateTrack(out);
+  m_has_prediction = false;  // a filter prediction holds for one frame
+  out.timing.total_us = elapsedUs(start);
+  return Status::kOk;
+}
+
+void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResult& out) const {
+  const bool filled = m_robust && m_params.fill_holes && c.filled_count > 0;
+  out.centroid_px = filled ? c.filled_com_px : c.com_px;
+  out.cluster_pixels = filled ? usedPixels(c) : c.pixel_count;
+  out.raw_pixels = c.pixel_count;
+  out.boundary_pixels = c.boundary_count;
+  out.circularity = c.circularity;
+  // Direction: undistort the centre of mass, then back-project (CONVENTIONS.md).
+  out.direction_c = m_camera.bearing(out.centroid_px);
+  const Vec3& d = out.direction_c;
+  out.azimuth_rad = std::atan2(d.x(), d.z());
+  out.elevation_rad = std::atan2(-d.y(), std::hypot(d.x(), d.z()));
+  out.distance_m = m_params.gamma / std::sqrt(static_cast<double>(out.cluster_pixels));  // eq. 16
+  if (c.x_min == 0 || c.y_min == 0 || c.x_max == m_camera.width() - 1 || c.y_max == m_camera.height() - 1)
+    out.flags |= kFlagAtBorder;
+  out.valid = true;
+  if (!m_robust) {
+    out.quality = c.circularity;
+    return;
+  }
+  // Robust quality: size consistency with the prediction (0.5 without one), halved when ambiguous or cut
+  // by the image border.
+  double q = 0.5;
+  if (gate.active && gate.size_px > 0.0) q = std::exp(-std::abs(std::log(out.cluster_pixels / gate.size_px)));
+  if ((out.flags & kFlagAmbiguous) != 0U) q *= 0.5;
+  if ((out.flags & kFlagAtBorder) != 0U) q *= 0.5;
+  out.quality = q;
+}
+
+void FarRangeEstimator::updateTrack(const FarRangeResult& out) {
+  Track& t = m_track;
+  if (out.valid) {
+    const Cluster& c = m_finder.clusters()[static_cast<std::size_t>(out.selected)];
+    if (t.active) {
+      const Vec2 step = (out.centroid_px - t.position_px) / static_cast<double>(1 + t.misses);
+      t.velocity_px = t.has_velocity ? Vec2(0.5 * (t.velocity_px + step)) : step;
+      t.has_velocity = true;
+    } else {
+      t.velocity_px.setZero();
+      t.has_velocity = false;
+    }
+    t.active = true;
+    t.position_px = out.centroid_px;
+    t.size_px = out.cluster_pixels;
+    t.half_extent_px = c.halfExtentPx();
+    t.misses = 0;
+    return;
+  }
+  if (!t.active) return;
+  ++t.misses;
+  if (t.misses > m_params.max_coast_frames) t = Track{};
+}
+
+}  // namespace visnav::far

@@ -1,0 +1,117 @@
+// Which cluster is the target: the published rule (most circular, eq. 15) and the robust rule (size and
+// shape checks, gate around the prediction, size consistency). Design notes: fsw/farrange/README.md.
+#include <algorithm>
+#include <cmath>
+
+#include "visnav/farrange/far_range_estimator.hpp"
+
+namespace visnav::far {
+namespace {
+
+Vec2 usedCentre(const Cluster& c, bool filled) {
+  return filled && c.filled_count > 0 ? c.filled_com_px : c.com_px;
+}
+
+}  // namespace
+
+int FarRangeEstimator::usedPixels(const Cluster& c) const {
+  if (!m_robust || !m_params.fill_holes || c.filled_count <= 0) return c.pixel_count;
+  const double n = c.filled_count - m_params.outline_discount * c.boundary_count;
+  return std::max(1, static_cast<int>(std::lround(n)));
+}
+
+int FarRangeEstimator::selectPaper() const {
+  // Sec. III-B: "we pick the cluster with the highest circularity measure".
+  int best = -1;
+  double best_c = -1.0;
+  const auto& clusters = m_finder.clusters();
+  for (std::size_t i = 0; i < clusters.size(); ++i) {
+    if (clusters[i].circularity > best_c) {
+      best_c = clusters[i].circularity;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+void FarRangeEstimator::prepareCandidates() {
+  if (!m_params.fill_holes) return;
+  for (Cluster& c : m_finder.clusters()) {
+    if (c.pixel_count >= m_params.min_cluster_px) m_finder.fillHoles(c);
+  }
+}
+
+FarRangeEstimator::Gate FarRangeEstimator::currentGate() const {
+  Gate g;
+  const Track& t = m_track;
+  if (m_has_prediction) {
+    g.active = true;
+    g.centre_px = m_prediction_px;
+    g.size_px = m_prediction_size_px;
+    g.half_extent_px = t.active ? t.half_extent_px : std::sqrt(m_prediction_size_px);
+  } else if (t.active) {
+    g.active = true;
+    // Constant velocity in the image over the frames since the last accepted target.
+    g.centre_px = t.position_px + t.velocity_px * static_cast<double>(1 + t.misses);
+    g.size_px = t.size_px;
+    g.half_extent_px = t.half_extent_px;
+  }
+  // The gate widens with every frame without a target.
+  g.radius_px = (m_params.gate_radius_px + m_params.gate_extent_factor * g.half_extent_px) *
+                static_cast<double>(1 + t.misses);
+  return g;
+}
+
+int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
+  const auto& clusters = m_finder.clusters();
+  const bool filled = m_params.fill_holes;
+  int best = -1;
+  int second = -1;
+  double best_score = 0.0;
+  double second_score = 0.0;
+  if (gate.active) {
+    // Tracked: inside the gate and of the expected size; score = normalised distance + size mismatch.
+    const double log_ratio_limit = std::log(std::max(m_params.max_size_ratio, 1.000001));
+    for (std::size_t i = 0; i < clusters.size(); ++i) {
+      const Cluster& c = clusters[i];
+      if (c.pixel_count < m_params.min_cluster_px) continue;
+      const double offset = (usedCentre(c, filled) - gate.centre_px).norm();
+      if (offset > gate.radius_px) continue;
+      const double log_ratio = std::abs(std::log(usedPixels(c) / std::max(gate.size_px, 1.0)));
+      if (log_ratio > log_ratio_limit) continue;
+      const double score = offset / gate.radius_px + log_ratio / log_ratio_limit;  // lower is better
+      if (best < 0 || score < best_score) {
+        second = best;
+        second_score = best_score;
+        best = static_cast<int>(i);
+        best_score = score;
+      } else if (second < 0 || score < second_score) {
+        second = static_cast<int>(i);
+        second_score = score;
+      }
+    }
+    if (best >= 0) flags |= kFlagGated;
+    if (second >= 0 && second_score < best_score + 0.25) flags |= kFlagAmbiguous;
+    return best;
+  }
+  // No track: the largest cluster that is neither tiny (noise, glints) nor line-like (clutter edges).
+  for (std::size_t i = 0; i < clusters.size(); ++i) {
+    const Cluster& c = clusters[i];
+    if (c.pixel_count < m_params.min_cluster_px || c.axis_ratio > m_params.max_axis_ratio) continue;
+    const double size = usedPixels(c);
+    if (best < 0 || size > best_score) {
+      second = best;
+      second_score = best_score;
+      best = static_cast<int>(i);
+      best_score = size;
+    } else if (second < 0 || size > second_score) {
+      second = static_cast<int>(i);
+      second_score = size;
+    }
+  }
+  if (best >= 0) flags |= kFlagUnconfirmed;
+  if (second >= 0 && second_score >= 0.7 * best_score) flags |= kFlagAmbiguous;
+  return best;
+}
+
+}  // namespace visnav::far
