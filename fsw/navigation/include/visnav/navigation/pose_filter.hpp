@@ -1,0 +1,107 @@
+// Relative-pose Kalman filter (issue 3; paper sec. II-H suggests it for frames without a trackable surface):
+// constant linear and angular velocity of the target in the camera frame, attitude as an error state on
+// SO(3) with the left perturbation of Pose::boxPlus (CONVENTIONS.md). It predicts the pose the tracker
+// projects with, propagates through frames without a usable measurement (missed frames: predict(2 T)),
+// gates measurements by their normalised innovation squared (NIS) and runs through far range on
+// position-only measurements. Fixed-size Eigen only: no allocation, no exceptions, no unbounded loop.
+#pragma once
+
+#include <cstdint>
+
+#include "visnav/core/status.hpp"
+#include "visnav/core/types.hpp"
+#include "visnav/geometry/pose.hpp"
+#include "visnav/navigation/pose_filter_params.hpp"
+
+namespace visnav::nav {
+
+using Vec12 = Eigen::Matrix<double, 12, 1>;
+using Mat12 = Eigen::Matrix<double, 12, 12>;
+
+/// Outcome of one measurement update.
+struct FilterUpdate {
+  Status status = Status::kOk;  ///< kInvalidArgument: not initialised, non-finite or non-positive covariance
+  bool accepted = false;        ///< false when gated out (state untouched) or invalid
+  double nis = 0.0;             ///< y^T S^-1 y of the innovation y (chi-square with `dof` if consistent)
+  int dof = 0;                  ///< measurement dimension used (6 pose, 3 position)
+};
+
+class PoseFilter {
+ public:
+  /// Error-state layout: the first six entries are exactly the pose delta (omega, dt) of CONVENTIONS.md, so
+  /// the measurement matrix of a pose is [I6 0] and the tracker's 6x6 covariance is used as it comes.
+  static constexpr int kAttitude = 0;         ///< omega [rad], left perturbation: R = exp(omega) R_hat
+  static constexpr int kPosition = 3;         ///< t_c_m [m]
+  static constexpr int kAngularVelocity = 6;  ///< w [rad/s], camera frame: R(t + dt) = exp(w dt) R(t)
+  static constexpr int kVelocity = 9;         ///< d t_c_m / dt [m/s]
+
+  /// Checks the parameters; the filter starts uninitialised.
+  LoadError init(const PoseFilterParams& params);
+  /// Back to uninitialised (e.g. target lost for good).
+  void reset();
+
+  /// Start from a 6-DOF pose (e.g. acquisition): velocities zero with the configured large uncertainty.
+  Status initialise(const Pose& pose, const Mat6& pose_covariance);
+  /// Start from a position only (far range): attitude unknown until the first pose update adopts one.
+  Status initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance);
+
+  /// Propagate by dt_s > 0 (one period, two after a missed frame, ...). kInvalidArgument when uninitialised
+  /// or dt is not in (0, max_prediction_s]; the state is then untouched.
+  Status predict(double dt_s);
+
+  /// 6-DOF measurement (tracker pose and its 6x6 covariance over (omega, dt)). Innovation
+  /// y = predicted.boxMinus(measured); rejected when NIS > pose_gate_chi2. Joseph-form covariance update.
+  /// While the attitude is unknown, the measured attitude is adopted and only the position is gated/fused.
+  FilterUpdate update(const Pose& measured, const Mat6& covariance);
+  /// Position-only measurement, gated by position_gate_chi2.
+  FilterUpdate updatePosition(const Vec3& t_c_m, const Mat3& covariance);
+  /// Far-range measurement (unit direction, distance = t_c_m.z) through positionFromFarRange with the
+  /// configured sigmas. The distance error is relative to the true range, so the covariance is scaled with
+  /// the predicted range: scaling with the measured one would trust short readings more and bias the range.
+  FilterUpdate updateFarRange(const Vec3& direction_c, double distance_m);
+
+  bool initialised() const { return m_initialised; }
+  bool attitudeKnown() const { return m_attitude_known; }
+  /// Current estimate (after predict: the prediction). Attitude is identity while unknown.
+  const Pose& pose() const { return m_pose; }
+  const Vec3& velocity() const { return m_velocity; }
+  const Vec3& angularVelocity() const { return m_angular_velocity; }
+  const Mat12& covariance() const { return m_covariance; }
+  Mat6 poseCovariance() const { return m_covariance.topLeftCorner<6, 6>(); }
+  const PoseFilterParams& params() const { return m_params; }
+
+  std::uint64_t acceptedUpdates() const { return m_accepted; }
+  std::uint64_t rejectedUpdates() const { return m_rejected; }
+  /// Gated-out updates since the last accepted one (FDIR input).
+  std::uint32_t consecutiveRejections() const { return m_consecutive_rejections; }
+
+ private:
+  void inject(const Vec12& dx);
+  void symmetrize();
+  FilterUpdate gateResult(FilterUpdate result, double gate);
+
+  PoseFilterParams m_params;
+  bool m_initialised = false;
+  bool m_attitude_known = false;
+  Pose m_pose;
+  Vec3 m_velocity = Vec3::Zero();
+  Vec3 m_angular_velocity = Vec3::Zero();
+  Mat12 m_covariance = Mat12::Identity();
+  std::uint64_t m_accepted = 0;
+  std::uint64_t m_rejected = 0;
+  std::uint32_t m_consecutive_rejections = 0;
+};
+
+/// Far-range direction (unit, camera frame) and distance (along the boresight: t_c_m.z, CONVENTIONS.md) as a
+/// position measurement: t = u * distance / u.z, covariance tight across the line of sight
+/// ((range * direction_sigma)^2) and loose along it ((range * distance_sigma_rel)^2). False when the
+/// direction is not in front of the camera or the inputs are not finite. `sigma_range_m` > 0 replaces the
+/// measured range in the two sigmas (e.g. the filter's predicted range).
+bool positionFromFarRange(const Vec3& direction_c, double distance_m, double direction_sigma_rad,
+                          double distance_sigma_rel, Vec3& t_c_m, Mat3& covariance,
+                          double sigma_range_m = 0.0);
+
+/// Left Jacobian of SO(3): exp(phi + d) ~ exp(J_l(phi) d) exp(phi) for small d.
+Mat3 leftJacobianSo3(const Vec3& phi);
+
+}  // namespace visnav::nav
