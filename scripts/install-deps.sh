@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build pkgconf libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
           libtomlplusplus-dev zlib1g-dev
           libcamera-dev linux-libc-dev)
+packages+=(cyclonedds-dev cyclonedds-tools)  # DDS telemetry: Cyclone DDS C library and idlc (fsw/telemetry)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

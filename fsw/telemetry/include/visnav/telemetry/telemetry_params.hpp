@@ -1,0 +1,97 @@
+// Parameters of the DDS telemetry (the [telemetry] table of a config; reference in config/PARAMETERS.md).
+// Header-only and DDS-free so config tools can load and document it without linking Cyclone DDS.
+// The partition is text, which the numeric visit() table cannot carry: applyTelemetryConfig() reads it next
+// to the table, and telemetryParametersMarkdown() documents it in the same format.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstring>
+#include <string>
+
+#include "visnav/core/param_visitor.hpp"
+#include "visnav/io/config_io.hpp"
+#include "visnav/io/param_docs.hpp"
+
+namespace visnav::telemetry {
+
+constexpr std::size_t kPartitionCapacity = 64;  ///< bytes, including the terminating NUL
+constexpr const char* kDefaultPartition = "visnav";
+
+struct TelemetryParams {
+  bool enabled = true;
+  int domain_id = 0;
+  std::array<char, kPartitionCapacity> partition{'v', 'i', 's', 'n', 'a', 'v', '\0'};  ///< kDefaultPartition
+  double deadline_periods = 1.5;
+  double max_blocking_ms = 2.0;
+  int command_depth = 8;
+
+  template <typename Visitor>
+  void visit(Visitor& v) {
+    v.boolean({"telemetry", "enabled", "-", 0, 1, "publish DDS telemetry and accept ground commands"},
+              enabled);
+    v.integer(
+        {"telemetry", "domain_id", "-", 0, 232,
+         "DDS domain of every telemetry entity (ground tools must use the same; 232 is the UDP port limit)"},
+        domain_id);
+    v.real(
+        {"telemetry", "deadline_periods", "periods", 1.0, 10.0,
+         "deadline QoS of the pose and far-range writers in cycle periods: one period plus a jitter margin, "
+         "so a missing sample (two periods) is always flagged and release jitter never is"},
+        deadline_periods);
+    v.real({"telemetry", "max_blocking_ms", "ms", 0.0, 50.0,
+            "max_blocking_time of the reliable writers: the longest a write may wait for a slow reader"},
+           max_blocking_ms);
+    v.integer({"telemetry", "command_depth", "count", 1, 64,
+               "keep-last depth of the ModeCommand reader = most commands taken in one cycle"},
+              command_depth);
+  }
+
+  const char* crossCheck() const { return nullptr; }
+
+  const char* partitionName() const { return partition.data(); }
+};
+
+/// Nullptr when `name` is a usable partition: 1..63 characters of [A-Za-z0-9_.-] (no DDS wildcards).
+inline const char* partitionProblem(const char* name) {
+  const std::size_t length = std::strlen(name);
+  if (length == 0) return "must not be empty";
+  if (length >= kPartitionCapacity) return "is longer than 63 characters";
+  for (std::size_t i = 0; i < length; ++i) {
+    const char c = name[i];
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+                    c == '-' || c == '.';
+    if (!ok) return "may hold only letters, digits, '_', '-' and '.'";
+  }
+  return nullptr;
+}
+
+/// Sets the partition; false (params unchanged) when the name is unusable.
+inline bool setPartition(TelemetryParams& params, const char* name) {
+  if (partitionProblem(name) != nullptr) return false;
+  params.partition.fill('\0');
+  std::memcpy(params.partition.data(), name, std::strlen(name));
+  return true;
+}
+
+/// Loads [telemetry] (the table and the partition) from an open config. Init-time only.
+inline LoadError applyTelemetryConfig(io::ConfigFile& config, TelemetryParams& params) {
+  TelemetryParams loaded = params;
+  if (LoadError e = config.apply(loaded); !e.ok) return e;
+  const std::string partition = config.stringValue("telemetry", "partition");
+  if (!partition.empty() && !setPartition(loaded, partition.c_str()))
+    return LoadError::failure("[telemetry] partition '" + partition + "' " +
+                              partitionProblem(partition.c_str()));
+  params = loaded;
+  return LoadError::success();
+}
+
+/// Markdown reference of [telemetry]: the visit() table plus the partition row.
+inline std::string telemetryParametersMarkdown() {
+  return io::parameterTableMarkdown(TelemetryParams{}) + "| `[telemetry] partition` | string | \"" +
+         kDefaultPartition +
+         "\" | 1 .. 63 chars of A-Z a-z 0-9 _ - . | - | DDS partition of every telemetry topic: separates "
+         "several vehicles or test runs in one domain |\n";
+}
+
+}  // namespace visnav::telemetry

@@ -1,0 +1,51 @@
+// Flight side, once per cycle: NavSolution -> PoseEstimate + FarRangeEstimate, HealthRecord -> Health.
+// init() creates the writers; publishNav()/publishHealth() fill samples the writer owns in place and write
+// them: no allocation of ours, no wait on any reader (keep-last reliable writers, bounded max_blocking_time).
+// A failed write is counted and reported, never retried inside the cycle.
+#pragma once
+
+#include <cstdint>
+
+#include "visnav/navigation/nav_solution.hpp"
+#include "visnav/telemetry/dds_topics.hpp"
+
+namespace visnav::telemetry {
+
+struct WriterCounters {
+  std::uint64_t samples_written = 0;
+  std::uint64_t write_failures = 0;  ///< dds_write returned an error (timeout included)
+  std::uint64_t write_timeouts = 0;  ///< of which DDS_RETCODE_TIMEOUT (max_blocking_time reached)
+  dds_return_t last_error = DDS_RETCODE_OK;
+};
+
+class TelemetryWriter {
+ public:
+  /// `cycle_period_ns` sets the pose / far-range deadline (deadline_periods of it); <= 0: no deadline.
+  LoadError init(const Participant& participant, const TelemetryParams& params, std::int64_t cycle_period_ns);
+
+  /// Writes PoseEstimate and FarRangeEstimate for this frame. False when a write failed (counted).
+  bool publishNav(const nav::NavSolution& nav);
+  /// Writes Health. False when the write failed (counted).
+  bool publishHealth(const nav::HealthRecord& health);
+
+  const WriterCounters& counters() const { return m_counters; }
+  dds_entity_t writer(Topic topic) const;
+  /// Offered-deadline misses of the pose writer so far (a cycle that published nothing in time).
+  std::uint32_t poseDeadlineMisses() const;
+
+ private:
+  bool write(dds_entity_t writer, const void* sample);
+
+  dds_entity_t m_pose_writer = 0;
+  dds_entity_t m_far_writer = 0;
+  dds_entity_t m_health_writer = 0;
+  std::uint64_t m_nav_samples = 0;
+  std::uint64_t m_health_samples = 0;
+  WriterCounters m_counters;
+  // One sample per topic for the whole run, overwritten in place every cycle.
+  visnav_PoseEstimate m_pose{};
+  visnav_FarRangeEstimate m_far{};
+  visnav_Health m_health{};
+};
+
+}  // namespace visnav::telemetry

@@ -1,0 +1,80 @@
+#include "visnav/telemetry/telemetry_writer.hpp"
+
+#include "visnav/telemetry/sample_mapping.hpp"
+
+namespace visnav::telemetry {
+namespace {
+
+dds_entity_t createWriter(const Participant& participant, Topic topic, const TelemetryParams& params,
+                          std::int64_t cycle_period_ns) {
+  dds_qos_t* qos = makeWriterQos(topic, params, cycle_period_ns);
+  const dds_entity_t writer =
+      dds_create_writer(participant.publisher(), participant.topic(topic), qos, nullptr);
+  dds_delete_qos(qos);
+  return writer;
+}
+
+}  // namespace
+
+LoadError TelemetryWriter::init(const Participant& participant, const TelemetryParams& params,
+                                std::int64_t cycle_period_ns) {
+  if (!participant.isOpen()) return LoadError::failure("telemetry writer: participant not initialised");
+  m_pose_writer = createWriter(participant, Topic::kPose, params, cycle_period_ns);
+  if (m_pose_writer < 0) return ddsFailure("creating the pose writer", m_pose_writer);
+  m_far_writer = createWriter(participant, Topic::kFarRange, params, cycle_period_ns);
+  if (m_far_writer < 0) return ddsFailure("creating the far-range writer", m_far_writer);
+  m_health_writer = createWriter(participant, Topic::kHealth, params, cycle_period_ns);
+  if (m_health_writer < 0) return ddsFailure("creating the health writer", m_health_writer);
+  m_nav_samples = 0;
+  m_health_samples = 0;
+  m_counters = WriterCounters{};
+  return LoadError::success();
+}
+
+bool TelemetryWriter::write(dds_entity_t writer, const void* sample) {
+  const dds_return_t rc = dds_write(writer, sample);
+  if (rc == DDS_RETCODE_OK) {
+    ++m_counters.samples_written;
+    return true;
+  }
+  ++m_counters.write_failures;
+  if (rc == DDS_RETCODE_TIMEOUT) ++m_counters.write_timeouts;
+  m_counters.last_error = rc;
+  return false;
+}
+
+bool TelemetryWriter::publishNav(const nav::NavSolution& nav) {
+  if (m_pose_writer <= 0) return false;
+  ++m_nav_samples;
+  const std::int64_t now_ns = monotonicNowNs();
+  fillPoseEstimate(nav, m_nav_samples, now_ns, m_pose);
+  fillFarRangeEstimate(nav, m_nav_samples, now_ns, m_far);
+  const bool pose_ok = write(m_pose_writer, &m_pose);
+  const bool far_ok = write(m_far_writer, &m_far);
+  return pose_ok && far_ok;
+}
+
+bool TelemetryWriter::publishHealth(const nav::HealthRecord& health) {
+  if (m_health_writer <= 0) return false;
+  ++m_health_samples;
+  fillHealth(health, m_health_samples, monotonicNowNs(), m_health);
+  return write(m_health_writer, &m_health);
+}
+
+dds_entity_t TelemetryWriter::writer(Topic topic) const {
+  switch (topic) {
+    case Topic::kPose: return m_pose_writer;
+    case Topic::kFarRange: return m_far_writer;
+    case Topic::kHealth: return m_health_writer;
+    case Topic::kModeCommand: break;
+  }
+  return 0;
+}
+
+std::uint32_t TelemetryWriter::poseDeadlineMisses() const {
+  dds_offered_deadline_missed_status_t status{};
+  if (dds_get_offered_deadline_missed_status(m_pose_writer, &status) != DDS_RETCODE_OK) return 0;
+  return status.total_count;
+}
+
+}  // namespace visnav::telemetry

@@ -1,0 +1,75 @@
+// visnav-monitor: live view of the telemetry, CSV recording, summary at the end. See tools/monitor/README.md.
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "visnav/monitor/link_args.hpp"
+#include "visnav/monitor/monitor.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+void onSignal(int) { g_stop.store(true); }
+
+void usage() {
+  std::fprintf(stderr,
+               "usage: visnav-monitor %s [--csv FILE] [--samples N] [--duration S] [--no-view]\n"
+               "  --csv FILE     record every sample: FILE (pose, visnav-eval columns), FILE's stem +\n"
+               "                 _far_range.csv and _health.csv\n"
+               "  --samples N    stop after N PoseEstimate samples\n"
+               "  --duration S   stop after S seconds\n"
+               "  exit code: 0 done, 1 --samples not reached, 2 usage or setup error\n",
+               visnav::monitor::kLinkUsage);
+}
+
+bool parseNumber(const char* text, double& out) {
+  char* end = nullptr;
+  out = std::strtod(text, &end);
+  return *end == '\0' && out >= 0.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  visnav::monitor::MonitorOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    visnav::LoadError error;
+    double number = 0.0;
+    if (visnav::monitor::parseLinkArgument(argc, argv, i, options.link, error)) {
+      if (!error.ok) {
+        std::fprintf(stderr, "visnav-monitor: %s\n", error.message.c_str());
+        return 2;
+      }
+    } else if (arg == "--csv" && has_value) {
+      options.csv_path = argv[++i];
+    } else if (arg == "--samples" && has_value && parseNumber(argv[i + 1], number)) {
+      options.stop_after_pose_samples = static_cast<std::uint64_t>(number);
+      ++i;
+    } else if (arg == "--duration" && has_value && parseNumber(argv[i + 1], number)) {
+      options.duration_s = number;
+      ++i;
+    } else if (arg == "--no-view") {
+      options.live_view = false;
+    } else if (arg == "--help" || arg == "-h") {
+      usage();
+      return 0;
+    } else {
+      std::fprintf(stderr, "visnav-monitor: unknown or incomplete argument '%s'\n", arg.c_str());
+      usage();
+      return 2;
+    }
+  }
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  visnav::monitor::MonitorResult result;
+  const visnav::LoadError error = visnav::monitor::runMonitor(options, g_stop, result, stdout);
+  if (!error.ok) {
+    std::fprintf(stderr, "visnav-monitor: %s\n", error.message.c_str());
+    return 2;
+  }
+  return options.stop_after_pose_samples > 0 && !result.reached_sample_limit && !g_stop.load() ? 1 : 0;
+}
