@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
       "value or an unknown key is an error naming file, line and key.\n\n"
       "## [nearrange]: near-range 6-DOF tracker (paper sec. II)\n\n%s",
       visnav::io::parameterTableMarkdown(visnav::NearRangeParams{}).c_str());
-  std::printf("\n## [camera]: frame source (drivers/README.md)\n\n%s",
+  std::printf("\n## [camera]: frame source (drivers/camera/README.md)\n\n%s",
               visnav::io::parameterTableMarkdown(visnav::camera::CameraParams{}).c_str());
   return 0;
 }

@@ -38,14 +38,10 @@ FakeV4l2Device::FakeV4l2Device(const Config& config) : m_config(config) {
 std::uint16_t FakeV4l2Device::pattern(std::uint32_t fourcc, std::uint32_t sequence, int x, int y) {
   const auto code = static_cast<std::uint32_t>(x * 7 + y * 13) + sequence * 5U;
   switch (fourcc) {
-    case V4L2_PIX_FMT_Y10:
-      return static_cast<std::uint16_t>((code * 3U) & 0x3FFU);
-    case V4L2_PIX_FMT_Y12:
-      return static_cast<std::uint16_t>((code * 11U) & 0xFFFU);
-    case V4L2_PIX_FMT_Y16:
-      return static_cast<std::uint16_t>((code * 257U) & 0xFFFFU);
-    default:
-      return static_cast<std::uint16_t>(code & 0xFFU);
+    case V4L2_PIX_FMT_Y10: return static_cast<std::uint16_t>((code * 3U) & 0x3FFU);
+    case V4L2_PIX_FMT_Y12: return static_cast<std::uint16_t>((code * 11U) & 0xFFFU);
+    case V4L2_PIX_FMT_Y16: return static_cast<std::uint16_t>((code * 257U) & 0xFFFFU);
+    default: return static_cast<std::uint16_t>(code & 0xFFU);
   }
 }
 
@@ -108,11 +104,8 @@ int FakeV4l2Device::ioctl(int fd, unsigned long request, void* arg) {
       cap.capabilities = m_config.device_caps | V4L2_CAP_DEVICE_CAPS;
       return 0;
     }
-    case VIDIOC_S_FMT:
-      return handleSetFormat(*static_cast<v4l2_format*>(arg));
-    case VIDIOC_G_FMT:
-      *static_cast<v4l2_format*>(arg) = m_format;
-      return 0;
+    case VIDIOC_S_FMT: return handleSetFormat(*static_cast<v4l2_format*>(arg));
+    case VIDIOC_G_FMT: *static_cast<v4l2_format*>(arg) = m_format; return 0;
     case VIDIOC_S_PARM:
     case VIDIOC_G_PARM: {
       if (!m_config.frame_interval_settable) return fail(ENOTTY);
@@ -124,8 +117,7 @@ int FakeV4l2Device::ioctl(int fd, unsigned long request, void* arg) {
       parm.parm.capture.timeperframe = m_interval;
       return 0;
     }
-    case VIDIOC_REQBUFS:
-      return handleRequestBuffers(*static_cast<v4l2_requestbuffers*>(arg));
+    case VIDIOC_REQBUFS: return handleRequestBuffers(*static_cast<v4l2_requestbuffers*>(arg));
     case VIDIOC_QUERYBUF: {
       auto& buffer = *static_cast<v4l2_buffer*>(arg);
       if (buffer.type != V4L2_BUF_TYPE_VIDEO_CAPTURE || buffer.index >= m_granted) return fail(EINVAL);
@@ -135,10 +127,8 @@ int FakeV4l2Device::ioctl(int fd, unsigned long request, void* arg) {
       buffer.flags = m_config.timestamp_flags;
       return 0;
     }
-    case VIDIOC_QBUF:
-      return handleQueue(*static_cast<v4l2_buffer*>(arg));
-    case VIDIOC_DQBUF:
-      return handleDequeue(*static_cast<v4l2_buffer*>(arg));
+    case VIDIOC_QBUF: return handleQueue(*static_cast<v4l2_buffer*>(arg));
+    case VIDIOC_DQBUF: return handleDequeue(*static_cast<v4l2_buffer*>(arg));
     case VIDIOC_STREAMON:
       if (*static_cast<int*>(arg) != V4L2_BUF_TYPE_VIDEO_CAPTURE || m_granted == 0U) return fail(EINVAL);
       m_streaming = true;
@@ -150,8 +140,7 @@ int FakeV4l2Device::ioctl(int fd, unsigned long request, void* arg) {
       m_done_count = 0;
       std::fill(m_state.begin(), m_state.end(), BufferState::kUser);
       return 0;
-    default:
-      return fail(ENOTTY);
+    default: return fail(ENOTTY);
   }
 }
 
@@ -233,8 +222,9 @@ void FakeV4l2Device::fill(int index, std::uint32_t sequence) {
   const auto slot = static_cast<std::size_t>(index);
   const v4l2_pix_format& pix = m_format.fmt.pix;
   std::uint8_t* base = m_memory.data() + slot * m_slot_bytes;
-  std::memset(base, 0xEE, pix.sizeimage);  // row padding stays 0xEE: a wrong stride shows
-  for (int y = 0; y < static_cast<int>(pix.height); ++y) {
+  if (m_config.fill_pixels)
+    std::memset(base, 0xEE, pix.sizeimage);  // padding stays 0xEE: a wrong stride shows
+  for (int y = 0; m_config.fill_pixels && y < static_cast<int>(pix.height); ++y) {
     std::uint8_t* row = base + static_cast<std::size_t>(y) * pix.bytesperline;
     for (int x = 0; x < static_cast<int>(pix.width); ++x) {
       const std::uint16_t value = pattern(pix.pixelformat, sequence, x, y);

@@ -35,6 +35,7 @@ class FakeV4l2Device final : public camera::V4l2Os {
     std::uint32_t max_buffers = 8;
     std::uint32_t timestamp_flags = V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC | V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
     std::int64_t first_timestamp_ns = 1000000000;  ///< timestamp of sequence 0; then + frame interval
+    bool fill_pixels = true;  ///< false: frames keep whatever the buffer held (benchmarks)
   };
 
   explicit FakeV4l2Device(const Config& config);
