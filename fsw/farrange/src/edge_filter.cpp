@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <type_traits>
 
 namespace visnav::far {
 
@@ -13,38 +12,45 @@ void EdgeFilter::init(int max_width, int max_height, const EdgeFilterSettings& s
   m_stride = max_width;
   m_magnitude.reserve(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height));
   m_x_histogram.reserve(kPercentileBins);
+  m_rows16.reserve(2U * static_cast<std::size_t>(max_width));
+  m_rows32.reserve(2U * static_cast<std::size_t>(max_width));
 }
 
 namespace {
 
-// One row of X = |Jx| + |Jy| for 3x3 kernels with centre weight kCentre (Sobel 2, Prewitt 1) over image
-// columns [x_begin, x_end), all with both horizontal neighbours inside the image. Straight loop, no branch:
-// the compiler vectorises it. Returns the row maximum.
+// One row of X = |Jx| + |Jy| for 3x3 kernels with centre weight kCentre (Sobel 2, Prewitt 1), separably:
+// first the vertical smoothing and difference of the three rows over image columns [x_begin - 1, x_end + 1),
+// then the horizontal difference / smoothing of those over [x_begin, x_end). Straight loops, no branch:
+// the compiler vectorises them. Returns the row maximum.
 template <int kCentre, typename PixelT, typename AccT>
-AccT gradientRow(const PixelT* up, const PixelT* mid, const PixelT* down, int x_begin, int x_end, int shift,
-                 std::uint16_t* out) {
+AccT gradientRow(const PixelT* __restrict up, const PixelT* __restrict mid, const PixelT* __restrict down,
+                 int x_begin, int x_end, int shift, AccT* __restrict smooth, AccT* __restrict diff,
+                 std::uint16_t* __restrict out) {
+  const int n = x_end - x_begin + 2;
+  const PixelT* u = up + x_begin - 1;
+  const PixelT* m = mid + x_begin - 1;
+  const PixelT* d = down + x_begin - 1;
+  for (int i = 0; i < n; ++i) {
+    smooth[i] = static_cast<AccT>(u[i] + kCentre * m[i] + d[i]);  // column smoothing, for Jx
+    diff[i] = static_cast<AccT>(d[i] - u[i]);                     // column difference, for Jy
+  }
   AccT row_max = 0;
-  for (int x = x_begin; x < x_end; ++x) {
-    const AccT left = static_cast<AccT>(up[x - 1] + kCentre * mid[x - 1] + down[x - 1]);
-    const AccT right = static_cast<AccT>(up[x + 1] + kCentre * mid[x + 1] + down[x + 1]);
-    const AccT top = static_cast<AccT>(up[x - 1] + kCentre * up[x] + up[x + 1]);
-    const AccT bottom = static_cast<AccT>(down[x - 1] + kCentre * down[x] + down[x + 1]);
-    const AccT gx = static_cast<AccT>(right - left);
-    const AccT gy = static_cast<AccT>(bottom - top);
+  const int width = x_end - x_begin;
+  for (int i = 0; i < width; ++i) {
+    const AccT gx = static_cast<AccT>(smooth[i + 2] - smooth[i]);
+    const AccT gy = static_cast<AccT>(diff[i] + kCentre * diff[i + 1] + diff[i + 2]);
     const AccT ax = gx < 0 ? static_cast<AccT>(-gx) : gx;
     const AccT ay = gy < 0 ? static_cast<AccT>(-gy) : gy;
     const AccT magnitude = static_cast<AccT>((ax + ay) >> shift);
-    out[x - x_begin] = static_cast<std::uint16_t>(magnitude);
+    out[i] = static_cast<std::uint16_t>(magnitude);
     row_max = magnitude > row_max ? magnitude : row_max;
   }
   return row_max;
 }
 
-template <int kCentre, typename PixelT>
-int magnitudeRows(const ImageView<PixelT>& view, const Roi& roi, int shift, std::uint16_t* x_out,
-                  int stride) {
-  // 8-bit input: |Jx| + |Jy| <= 2 * 4 * 255 fits 16-bit lanes; 16-bit input needs 32-bit lanes.
-  using AccT = std::conditional_t<sizeof(PixelT) == 1, std::int16_t, std::int32_t>;
+template <int kCentre, typename PixelT, typename AccT>
+int magnitudeRows(const ImageView<PixelT>& view, const Roi& roi, int shift, AccT* scratch, int scratch_stride,
+                  std::uint16_t* x_out, int stride) {
   const int w = view.width();
   const int h = view.height();
   // The outermost image rows and columns have no full 3x3 neighbourhood: X = 0 there.
@@ -59,11 +65,21 @@ int magnitudeRows(const ImageView<PixelT>& view, const Roi& roi, int shift, std:
     }
     if (x_begin > roi.x0) out[0] = 0;
     if (x_end < roi.x0 + roi.width) out[roi.width - 1] = 0;
-    const AccT row_max = gradientRow<kCentre, PixelT, AccT>(view.row(y - 1), view.row(y), view.row(y + 1),
-                                                            x_begin, x_end, shift, out + (x_begin - roi.x0));
+    const AccT row_max = gradientRow<kCentre, PixelT, AccT>(
+        view.row(y - 1), view.row(y), view.row(y + 1), x_begin, x_end, shift, scratch,
+        scratch + scratch_stride, out + (x_begin - roi.x0));
     frame_max = std::max(frame_max, static_cast<int>(row_max));
   }
   return frame_max;
+}
+
+// F = min(X, ref) << s times k, high 16 bits: GCC emits pmulhuw (SSE2) / umull (NEON).
+void normaliseRow(const std::uint16_t* __restrict x_row, int width, std::uint16_t ref, int s, std::uint16_t k,
+                  std::uint8_t* __restrict f_row) {
+  for (int x = 0; x < width; ++x) {
+    const auto v = static_cast<std::uint16_t>((x_row[x] < ref ? x_row[x] : ref) << s);
+    f_row[x] = static_cast<std::uint8_t>((static_cast<std::uint32_t>(v) * k) >> 16U);
+  }
 }
 
 int bitLength(std::uint32_t v) {
@@ -77,15 +93,23 @@ int bitLength(std::uint32_t v) {
 
 }  // namespace
 
-template <typename PixelT>
-int EdgeFilter::magnitudes(const ImageView<PixelT>& view, const Roi& roi, int shift) {
+int EdgeFilter::magnitudes8(const ImageView8& view, const Roi& roi) {
+  // 8-bit input: |Jx| + |Jy| <= 2 * 4 * 255 fits 16-bit lanes.
+  std::int16_t* scratch = m_rows16.data();
   return m_settings.kernel == EdgeKernel::kSobel
-             ? magnitudeRows<2>(view, roi, shift, m_magnitude.data(), m_stride)
-             : magnitudeRows<1>(view, roi, shift, m_magnitude.data(), m_stride);
+             ? magnitudeRows<2>(view, roi, 0, scratch, m_stride, m_magnitude.data(), m_stride)
+             : magnitudeRows<1>(view, roi, 0, scratch, m_stride, m_magnitude.data(), m_stride);
+}
+
+int EdgeFilter::magnitudes16(const ImageView16& view, const Roi& roi, int shift) {
+  std::int32_t* scratch = m_rows32.data();
+  return m_settings.kernel == EdgeKernel::kSobel
+             ? magnitudeRows<2>(view, roi, shift, scratch, m_stride, m_magnitude.data(), m_stride)
+             : magnitudeRows<1>(view, roi, shift, scratch, m_stride, m_magnitude.data(), m_stride);
 }
 
 int EdgeFilter::percentileReference(const Roi& roi, int max_x, int max_possible) {
-  // Percentile from every second pixel of every second row: 1/4 of the cost, the same statistics.
+  // Histogram of X over every second pixel of every second row (1/4 of the cost, the same statistics).
   int bin_shift = 0;
   while ((max_possible >> bin_shift) >= kPercentileBins) ++bin_shift;
   std::uint32_t* hist = m_x_histogram.data();
@@ -109,26 +133,27 @@ void EdgeFilter::apply(const MonoImage& image, const Roi& roi, ResponseImage& ou
   const bool eight_bit = image.depth == MonoImage::Depth::kU8;
   // 16-bit samples are shifted so X stays below 2^15 (12-bit sensors keep every bit).
   const int shift = eight_bit ? 0 : std::max(0, bitLength(image.max_code) - 12);
-  const int max_x = eight_bit ? magnitudes(image.u8, roi, 0) : magnitudes(image.u16, roi, shift);
+  const int max_x = eight_bit ? magnitudes8(image.u8, roi) : magnitudes16(image.u16, roi, shift);
   const int max_possible = 2 * gain() * (static_cast<int>(image.max_code) >> shift);
   int reference = std::max(1, max_x);
-  if (m_settings.percentile < 100.0) reference = percentileReference(roi, max_x, max_possible);
+  if (m_settings.percentile < 100.0) {
+    reference = static_cast<int>(
+        std::lround(m_settings.percentile_factor * percentileReference(roi, max_x, max_possible)));
+  }
   const int floor_x = static_cast<int>(
       std::lround(m_settings.ref_floor * gain() * static_cast<double>(image.max_code >> shift)));
   reference = std::max({reference, floor_x, 1});
   m_last_reference = reference;
   m_last_maximum = max_x;
 
-  // F = min(X, ref) / ref in 8-bit fixed point: min(X, ref) * k <= 255 * 2^16, no overflow in 32 bits.
-  const auto ref = static_cast<std::uint32_t>(reference);
-  const auto k = static_cast<std::uint32_t>(std::lround(255.0 * 65536.0 / reference));
+  // F = min(X, ref) / ref in 8-bit fixed point as a 16 x 16 -> high 16 bit product (one SIMD multiply,
+  // pmulhuw / vmull): both factors are scaled so that ref << s fills 16 bits.
+  int s = 0;
+  while ((reference << (s + 1)) <= 65535) ++s;
+  const auto k = static_cast<std::uint16_t>(std::lround(255.0 * 65536.0 / (reference << s)) + 1);
   for (int y = 0; y < roi.height; ++y) {
-    const std::uint16_t* x_row = m_magnitude.data() + static_cast<std::ptrdiff_t>(y) * m_stride;
-    std::uint8_t* f_row = out.row(y);
-    for (int x = 0; x < roi.width; ++x) {
-      const std::uint32_t v = x_row[x] < ref ? x_row[x] : ref;
-      f_row[x] = static_cast<std::uint8_t>((v * k + 32768U) >> 16U);
-    }
+    normaliseRow(m_magnitude.data() + static_cast<std::ptrdiff_t>(y) * m_stride, roi.width,
+                 static_cast<std::uint16_t>(reference), s, k, out.row(y));
   }
 }
 

@@ -22,9 +22,12 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   edge.kernel = static_cast<EdgeKernel>(params.edge_kernel);
   // The published method divides by the single maximum (eq. 10).
   edge.percentile = m_robust ? params.edge_percentile : 100.0;
+  edge.percentile_factor = m_robust ? params.edge_percentile_factor : 1.0;
   edge.ref_floor = m_robust ? params.edge_ref_floor : 0.0;
   m_edge.init(w, h, edge);
   m_histogram.init(params.beta);
+  // Robust: a region of interest is judged with the whole frame's histogram (eq. 11 is over the image).
+  m_histogram.setCountOutsideRoi(m_robust);
   m_sum.init(w);
   m_edge_response.init(w, h);
   m_histogram_response.init(w, h);

@@ -49,6 +49,26 @@ void HistogramFilter::countBins16(const ImageView16& view, const Roi& roi) {
   }
 }
 
+void HistogramFilter::countOutside(const MonoImage& image, const Roi& roi) {
+  constexpr int kRowStep = 2;
+  constexpr int kColumnStep = 4;
+  constexpr std::uint32_t kWeight = kRowStep * kColumnStep;
+  const bool eight_bit = image.depth == MonoImage::Depth::kU8;
+  const int w = image.width();
+  const int x1 = roi.x0 + roi.width;
+  for (int y = 0; y < image.height(); y += kRowStep) {
+    const bool beside = y >= roi.y0 && y < roi.y0 + roi.height;  // this row crosses the region
+    for (int x = 0; x < w; x += kColumnStep) {
+      if (beside && x >= roi.x0 && x < x1) {
+        x = x1 - 1 - (x1 - 1) % kColumnStep;  // jump to the last grid column inside the region
+        continue;
+      }
+      const int bin = eight_bit ? image.u8.row(y)[x] : m_bin16[image.u16.row(y)[x]];
+      m_histogram[static_cast<std::size_t>(bin)] += kWeight;
+    }
+  }
+}
+
 void HistogramFilter::apply(const MonoImage& image, const Roi& roi, ResponseImage& out) {
   const bool eight_bit = image.depth == MonoImage::Depth::kU8;
   if (eight_bit) {
@@ -57,23 +77,25 @@ void HistogramFilter::apply(const MonoImage& image, const Roi& roi, ResponseImag
     buildBins16(image.max_code);
     countBins16(image.u16, roi);
   }
+  if (m_count_outside) countOutside(image, roi);
   // Eq. 12 once per bin: 256 exps per frame.
-  const std::uint32_t peak = std::max(1U, *std::max_element(m_histogram.begin(), m_histogram.end()));
+  const double peak = std::max(1U, *std::max_element(m_histogram.begin(), m_histogram.end()));
   for (int b = 0; b < 256; ++b) {
     const double g = std::exp(-static_cast<double>(m_histogram[b]) / peak * m_beta);
     m_table[b] = static_cast<std::uint8_t>(std::lround(255.0 * g));
   }
   const std::uint8_t* table = m_table.data();
+  const int width = roi.width;
   for (int y = 0; y < roi.height; ++y) {
-    std::uint8_t* g_row = out.row(y);
+    std::uint8_t* __restrict g_row = out.row(y);
     if (eight_bit) {
       // 8-bit samples are their own bin (max code 255).
-      const std::uint8_t* row = image.u8.row(roi.y0 + y) + roi.x0;
-      for (int x = 0; x < roi.width; ++x) g_row[x] = table[row[x]];
+      const std::uint8_t* __restrict row = image.u8.row(roi.y0 + y) + roi.x0;
+      for (int x = 0; x < width; ++x) g_row[x] = table[row[x]];
     } else {
-      const std::uint16_t* row = image.u16.row(roi.y0 + y) + roi.x0;
+      const std::uint16_t* __restrict row = image.u16.row(roi.y0 + y) + roi.x0;
       const std::uint8_t* bins = m_bin16.data();
-      for (int x = 0; x < roi.width; ++x) g_row[x] = table[bins[row[x]]];
+      for (int x = 0; x < width; ++x) g_row[x] = table[bins[row[x]]];
     }
   }
 }

@@ -55,26 +55,37 @@ LoadError WeightedSum::setWeights(const double* lambdas, int count) {
   return LoadError::success();
 }
 
+namespace {
+
+void accumulateRow(const std::uint8_t* __restrict in, int width, std::uint16_t weight,
+                   std::uint16_t* __restrict acc) {
+  for (int x = 0; x < width; ++x) acc[x] = static_cast<std::uint16_t>(acc[x] + weight * in[x]);
+}
+
+// S = acc / 256 (truncated: never lifts a response onto a threshold it does not exceed, e.g. 0.5 * 1 + 0.5 *
+// 0 must not pass t_out = 0.5); returns the row maximum.
+std::uint8_t finishRow(const std::uint16_t* __restrict acc, int width, std::uint8_t* __restrict s) {
+  std::uint8_t peak = 0;
+  for (int x = 0; x < width; ++x) {
+    const auto v = static_cast<std::uint8_t>(acc[x] >> 8U);
+    s[x] = v;
+    peak = v > peak ? v : peak;
+  }
+  return peak;
+}
+
+}  // namespace
+
 void WeightedSum::apply(const ResponseImage* const* inputs, ResponseImage& out, std::uint8_t* row_max) {
-  const Roi& roi = out.roi();
+  const int width = out.roi().width;
+  const int height = out.roi().height;
   std::uint16_t* acc = m_accumulator.data();
-  for (int y = 0; y < roi.height; ++y) {
-    // Truncating / 256 never lifts a response onto a threshold it does not exceed (0.5 * 1 + 0.5 * 0 must
-    // not pass t_out = 0.5).
-    std::fill(acc, acc + roi.width, static_cast<std::uint16_t>(0));
+  for (int y = 0; y < height; ++y) {
+    std::fill(acc, acc + width, static_cast<std::uint16_t>(0));
     for (int i = 0; i < m_count; ++i) {
-      const auto w = static_cast<std::uint16_t>(m_weights_q8[i]);
-      const std::uint8_t* in = inputs[i]->row(y);
-      for (int x = 0; x < roi.width; ++x) acc[x] = static_cast<std::uint16_t>(acc[x] + w * in[x]);
+      accumulateRow(inputs[i]->row(y), width, static_cast<std::uint16_t>(m_weights_q8[i]), acc);
     }
-    std::uint8_t* s = out.row(y);
-    std::uint8_t peak = 0;
-    for (int x = 0; x < roi.width; ++x) {
-      const auto v = static_cast<std::uint8_t>(acc[x] >> 8U);
-      s[x] = v;
-      peak = v > peak ? v : peak;
-    }
-    row_max[y] = peak;
+    row_max[y] = finishRow(acc, width, out.row(y));
   }
 }
 

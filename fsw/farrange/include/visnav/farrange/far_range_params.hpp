@@ -26,7 +26,8 @@ struct FarRangeParams {
   double t_in = 0.9;
   double t_out = 0.5;
   // Robust method (ignored by method = paper).
-  double edge_percentile = 99.5;
+  double edge_percentile = 50.0;
+  double edge_percentile_factor = 3.0;
   double edge_ref_floor = 0.02;
   int min_cluster_px = 6;
   double max_axis_ratio = 12.0;
@@ -68,10 +69,15 @@ struct FarRangeParams {
            t_in);
     v.real({"farrange", "t_out", "-", 0.0, 1.0, "Table 1 t_out: a cluster grows over responses above it"},
            t_out);
-    v.real({"farrange", "edge_percentile", "%", 50.0, 100.0,
-            "robust: eq. 10 divides by this percentile of |Jx|+|Jy| instead of the maximum (100 = maximum), "
-            "so one bright non-target edge cannot push the target below t_in"},
-           edge_percentile);
+    v.real(
+        {"farrange", "edge_percentile", "%", 1.0, 100.0,
+         "robust: eq. 10 divides by edge_percentile_factor times this percentile of |Jx|+|Jy| instead of the "
+         "maximum (100: the maximum), so one bright non-target edge cannot push the target below t_in; the "
+         "median is the background's noise level, the same in any region of interest"},
+        edge_percentile);
+    v.real({"farrange", "edge_percentile_factor", "-", 0.1, 1000.0,
+            "robust: the eq. 10 divisor is this times the edge_percentile of |Jx|+|Jy| (clipped to 1 above)"},
+           edge_percentile_factor);
     v.real({"farrange", "edge_ref_floor", "brightness", 0.0, 1.0,
             "robust: the eq. 10 divisor is at least the response of a step of this contrast (noise-free "
             "frames)"},

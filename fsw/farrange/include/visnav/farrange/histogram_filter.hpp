@@ -16,6 +16,10 @@ class HistogramFilter final : public ResponseFilter {
  public:
   /// Init-time: allocates the 16-bit binning table.
   void init(double beta);
+  /// Eq. 11 is over the whole image. When on and a region of interest is searched, the pixels outside it
+  /// are still counted, on a sparse grid (every 2nd row, every 4th column, weight 8), so G inside the region
+  /// is the full frame's G (a smaller population would make the target's bins look less rare).
+  void setCountOutsideRoi(bool on) { m_count_outside = on; }
   const char* name() const override { return "histogram"; }
   void apply(const MonoImage& image, const Roi& roi, ResponseImage& out) override;
 
@@ -28,9 +32,11 @@ class HistogramFilter final : public ResponseFilter {
  private:
   void buildBins16(std::uint16_t max_code);
   void countBins8(const ImageView8& view, const Roi& roi);
+  void countOutside(const MonoImage& image, const Roi& roi);
   void countBins16(const ImageView16& view, const Roi& roi);
 
   double m_beta = 100.0;
+  bool m_count_outside = false;
   std::array<std::uint32_t, 256> m_histogram{};
   std::array<std::uint8_t, 256> m_table{};
   BoundedBuffer<std::uint8_t> m_bin16;  ///< 16-bit sample -> bin, for m_bin16_max_code
