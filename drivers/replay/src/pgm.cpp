@@ -1,5 +1,10 @@
-// Binary PGM (P5) reading into a caller-owned buffer and writing. readPgm's success path builds no strings
-// and allocates nothing beyond what fopen itself needs: it runs once per replayed frame.
+// Binary PGM (P5) reading into a caller-owned buffer and writing. readPgm runs once per replayed frame
+// (the replay camera's acquire()): its success path builds no strings and allocates nothing, so it reads
+// through a file descriptor and a small stack buffer (fopen would malloc its FILE).
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 
@@ -15,17 +20,66 @@ struct File {
   }
 };
 
+// Buffered reading from a descriptor without heap: the header byte by byte, the raster in bulk.
+class FdReader {
+ public:
+  explicit FdReader(const char* path) : m_fd(::open(path, O_RDONLY | O_CLOEXEC)) {}
+  ~FdReader() {
+    if (m_fd >= 0) ::close(m_fd);
+  }
+  FdReader(const FdReader&) = delete;
+  FdReader& operator=(const FdReader&) = delete;
+  bool ok() const { return m_fd >= 0; }
+
+  int get() {
+    if (m_pos == m_len && !refill()) return EOF;
+    return m_buffer[m_pos++];
+  }
+  /// Reads exactly n bytes (what is buffered first); false when the file ends before.
+  bool read(std::uint8_t* out, std::size_t n) {
+    const std::size_t buffered = m_len - m_pos < n ? m_len - m_pos : n;
+    std::memcpy(out, m_buffer + m_pos, buffered);
+    m_pos += buffered;
+    std::size_t done = buffered;
+    for (int guard = 0; done < n && guard < (1 << 20); ++guard) {
+      const ssize_t got = ::read(m_fd, out + done, n - done);
+      if (got < 0 && errno == EINTR) continue;
+      if (got <= 0) return false;
+      done += static_cast<std::size_t>(got);
+    }
+    return done == n;
+  }
+
+ private:
+  bool refill() {
+    for (int attempt = 0; attempt < 16; ++attempt) {
+      const ssize_t got = ::read(m_fd, m_buffer, sizeof m_buffer);
+      if (got < 0 && errno == EINTR) continue;
+      if (got <= 0) return false;
+      m_pos = 0;
+      m_len = static_cast<std::size_t>(got);
+      return true;
+    }
+    return false;
+  }
+
+  int m_fd;
+  std::uint8_t m_buffer[256];
+  std::size_t m_pos = 0;
+  std::size_t m_len = 0;
+};
+
 bool isSpace(int c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
 
 // Reads one unsigned header integer, skipping whitespace and '#' comments. Consumes the single whitespace
 // character that terminates the number (for maxval this is the one byte before the raster).
-bool readHeaderInt(std::FILE* f, long& out) {
-  int c = std::fgetc(f);
+bool readHeaderInt(FdReader& in, long& out) {
+  int c = in.get();
   for (;;) {
     if (c == '#') {
-      while (c != '\n' && c != EOF) c = std::fgetc(f);
+      while (c != '\n' && c != EOF) c = in.get();
     } else if (isSpace(c)) {
-      c = std::fgetc(f);
+      c = in.get();
     } else {
       break;
     }
@@ -35,7 +89,7 @@ bool readHeaderInt(std::FILE* f, long& out) {
   while (c >= '0' && c <= '9') {
     value = value * 10 + (c - '0');
     if (value > 1000000000L) return false;
-    c = std::fgetc(f);
+    c = in.get();
   }
   if (!isSpace(c)) return false;
   out = value;
@@ -50,14 +104,13 @@ LoadError fail(const std::string& path, const char* problem) {
 
 LoadError readPgm(const std::string& path, std::uint8_t* buffer, std::size_t capacity_bytes, int& width,
                   int& height, int& maxval) {
-  File file;
-  file.f = std::fopen(path.c_str(), "rb");
-  if (file.f == nullptr) return fail(path, "cannot open file");
-  if (std::fgetc(file.f) != 'P' || std::fgetc(file.f) != '5') return fail(path, "not a binary PGM (P5)");
+  FdReader in(path.c_str());
+  if (!in.ok()) return fail(path, "cannot open file");
+  if (in.get() != 'P' || in.get() != '5') return fail(path, "not a binary PGM (P5)");
   long w = 0;
   long h = 0;
   long m = 0;
-  if (!readHeaderInt(file.f, w) || !readHeaderInt(file.f, h) || !readHeaderInt(file.f, m)) {
+  if (!readHeaderInt(in, w) || !readHeaderInt(in, h) || !readHeaderInt(in, m)) {
     return fail(path, "malformed PGM header");
   }
   if (w <= 0 || h <= 0 || w > 65536 || h > 65536) return fail(path, "invalid PGM width/height");
@@ -66,7 +119,7 @@ LoadError readPgm(const std::string& path, std::uint8_t* buffer, std::size_t cap
   const std::size_t samples = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   const std::size_t bytes = samples * bytes_per_sample;
   if (buffer == nullptr || bytes > capacity_bytes) return fail(path, "image does not fit the buffer");
-  if (std::fread(buffer, 1, bytes, file.f) != bytes) return fail(path, "truncated PGM raster");
+  if (!in.read(buffer, bytes)) return fail(path, "truncated PGM raster");
   if (bytes_per_sample == 2U) {
     // Big-endian on disk -> host order, in place, via memcpy to stay alignment- and aliasing-safe.
     for (std::size_t i = 0; i < samples; ++i) {
