@@ -34,12 +34,13 @@ struct BusyTask final : visnav::exec::CycleTask {
 void usage() {
   std::fputs(
       "usage: visnav-jitter [--cycles N] [--hz F] [--busy-us U] [--config FILE] [--priority P] [--cpu C]\n"
-      "                     [--lock-memory] [--fatal] [--max-p99-us X]\n"
+      "                     [--lock-memory] [--slack-ns N] [--fatal] [--max-p99-us X]\n"
       "  --cycles N      cycles to run (default 300: one minute at 5 Hz)\n"
       "  --hz F          major frame rate (default: the config's, else 5 Hz)\n"
       "  --busy-us U     the task busy-waits U us per cycle (default 0: empty task)\n"
       "  --config FILE   read the [executive] table of a visnav config (other tables are ignored)\n"
       "  --priority P    SCHED_FIFO priority   --cpu C  pin to CPU C   --lock-memory  mlockall\n"
+      "  --slack-ns N    timer slack of the loop thread (default 1000; 0: the OS default, 50 us)\n"
       "  --fatal         a refused realtime setting is an error (exit 2)\n"
       "  --max-p99-us X  exit 1 when the jitter p99 exceeds X us\n",
       stderr);
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
   double hz = -1.0;
   double busy_us = 0.0;
   double max_p99_us = -1.0;
+  double slack_ns = -1.0;
   std::string config_path;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -89,6 +91,8 @@ int main(int argc, char** argv) {
         params.sched_fifo_priority = static_cast<int>(value);
       } else if (arg == "--cpu" && value >= -1.0) {
         params.cpu_affinity = static_cast<int>(value);
+      } else if (arg == "--slack-ns" && value >= 0.0 && value <= 1e6) {
+        slack_ns = value;
       } else if (arg == "--max-p99-us" && value > 0.0) {
         max_p99_us = value;
       } else {
@@ -116,9 +120,11 @@ int main(int argc, char** argv) {
     if (params.cpu_affinity < 0) params.cpu_affinity = from_file.cpu_affinity;
     params.lock_memory = params.lock_memory || from_file.lock_memory;
     params.realtime_fatal = params.realtime_fatal || from_file.realtime_fatal;
+    params.timer_slack_ns = from_file.timer_slack_ns;
     params.major_frame_hz = from_file.major_frame_hz;
     params.minor_frames_per_major = from_file.minor_frames_per_major;
   }
+  if (slack_ns >= 0.0) params.timer_slack_ns = static_cast<int>(slack_ns);
   if (hz > 0.0) {
     params.major_frame_hz = hz;
     params.minor_frames_per_major = 1;
@@ -126,7 +132,8 @@ int main(int argc, char** argv) {
 
   visnav::exec::RealtimeReport report;
   const visnav::LoadError rt = visnav::exec::applyRealtimeSettings(params, report);
-  for (const visnav::exec::RealtimeOutcome* o : {&report.scheduler, &report.affinity, &report.memory_lock}) {
+  for (const visnav::exec::RealtimeOutcome* o :
+       {&report.scheduler, &report.affinity, &report.memory_lock, &report.timer_slack}) {
     if (o->requested) std::fprintf(stderr, "visnav-jitter: %s\n", o->message.data());
   }
   if (!rt.ok) {
@@ -153,12 +160,15 @@ int main(int argc, char** argv) {
   executive.run(static_cast<std::uint64_t>(cycles));
 
   const DurationStats& jitter = executive.releaseJitter();
-  std::printf("visnav-jitter: %llu cycles at %.3f Hz (minor period %.1f us), task busy %.1f us, %s%s%s\n",
-              static_cast<unsigned long long>(executive.counters().cycles),
-              params.major_frame_hz * params.minor_frames_per_major,
-              static_cast<double>(executive.minorPeriodNs()) * 1e-3, busy_us,
-              report.scheduler.applied ? "SCHED_FIFO" : "SCHED_OTHER",
-              report.affinity.applied ? ", pinned" : "", report.memory_lock.applied ? ", memory locked" : "");
+  std::printf(
+      "visnav-jitter: %llu cycles at %.3f Hz (minor period %.1f us), task busy %.1f us, timer slack %d ns, "
+      "%s%s%s\n",
+      static_cast<unsigned long long>(executive.counters().cycles),
+      params.major_frame_hz * params.minor_frames_per_major,
+      static_cast<double>(executive.minorPeriodNs()) * 1e-3, busy_us,
+      report.timer_slack.applied ? params.timer_slack_ns : 50000,
+      report.scheduler.applied ? "SCHED_FIFO" : "SCHED_OTHER", report.affinity.applied ? ", pinned" : "",
+      report.memory_lock.applied ? ", memory locked" : "");
   std::printf("all figures in us\n");
   printStats("release jitter", jitter);
   printStats("task execution", executive.taskStats(0).exec);

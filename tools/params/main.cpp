@@ -5,6 +5,7 @@
 #include <string>
 
 #include "visnav/camera/camera_params.hpp"
+#include "visnav/executive/executive_params.hpp"
 #include "visnav/io/config_io.hpp"
 #include "visnav/io/param_docs.hpp"
 #include "visnav/nearrange/near_range_params.hpp"
@@ -14,9 +15,11 @@ int main(int argc, char** argv) {
     visnav::io::ConfigFile config;
     visnav::NearRangeParams nearrange;
     visnav::camera::CameraParams camera;
+    visnav::exec::ExecutiveParams executive;
     visnav::LoadError e = config.open(argv[2]);
     if (e.ok) e = config.apply(nearrange);
     if (e.ok) e = config.apply(camera);
+    if (e.ok) e = config.apply(executive);
     if (e.ok) e = config.checkNoUnknownKeys();
     if (!e.ok) {
       std::fprintf(stderr, "visnav-params: %s\n", e.message.c_str());
@@ -41,5 +44,7 @@ int main(int argc, char** argv) {
       visnav::io::parameterTableMarkdown(visnav::NearRangeParams{}).c_str());
   std::printf("\n## [camera]: frame source (drivers/camera/README.md)\n\n%s",
               visnav::io::parameterTableMarkdown(visnav::camera::CameraParams{}).c_str());
+  std::printf("\n## [executive]: cyclic executive and its thread (fsw/executive/README.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::exec::ExecutiveParams{}).c_str());
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -94,9 +95,19 @@ LoadError applyRealtimeSettings(const ExecutiveParams& params, RealtimeReport& r
              "stays pageable");
     }
   }
+  if (params.timer_slack_ns > 0) {
+    report.timer_slack.requested = true;
+    std::snprintf(what, sizeof what, "timer slack %d ns", params.timer_slack_ns);
+    if (prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(params.timer_slack_ns), 0UL, 0UL, 0UL) == 0) {
+      accept(report.timer_slack, what);
+    } else {
+      refuse(report.timer_slack, errno, what, "sleeps keep the default slack (50 us)");
+    }
+  }
   if (report.allApplied() || !params.realtime_fatal) return LoadError::success();
   std::string message = "executive: realtime_fatal is set and";
-  for (const RealtimeOutcome* o : {&report.scheduler, &report.affinity, &report.memory_lock}) {
+  for (const RealtimeOutcome* o :
+       {&report.scheduler, &report.affinity, &report.memory_lock, &report.timer_slack}) {
     if (o->requested && !o->applied) message += std::string(" ") + o->message.data() + ";";
   }
   return LoadError::failure(message);

@@ -12,6 +12,7 @@ struct ExecutiveParams {
   int sched_fifo_priority = 0;
   int cpu_affinity = -1;
   bool lock_memory = false;
+  int timer_slack_ns = 1000;
   bool realtime_fatal = false;
   int event_throttle = 10;
   int sim_task_time = 0;  // SimulatedTaskTime: zero|fixed|measured
@@ -39,9 +40,14 @@ struct ExecutiveParams {
         {"executive", "cpu_affinity", "-", -1, 1023, "pin the executive thread to this CPU; -1: no pinning"},
         cpu_affinity);
     v.boolean({"executive", "lock_memory", "-", 0, 1,
-               "mlockall(MCL_CURRENT | MCL_FUTURE) before the loop: no page faults at run time (needs "
+               "mlockall (current and future pages) before the loop: no page faults at run time (needs "
                "CAP_IPC_LOCK or a large enough RLIMIT_MEMLOCK)"},
               lock_memory);
+    v.integer(
+        {"executive", "timer_slack_ns", "ns", 0, 1000000,
+         "timer slack of the executive thread (prctl PR_SET_TIMERSLACK): how late the kernel may wake a "
+         "SCHED_OTHER sleep to merge wake-ups; 0 keeps the OS default (50 us); SCHED_FIFO has none"},
+        timer_slack_ns);
     v.boolean({"executive", "realtime_fatal", "-", 0, 1,
                "a realtime setting above that the OS refuses (EPERM ...) stops the start-up; false: the "
                "refusal is reported and the executive runs without it"},

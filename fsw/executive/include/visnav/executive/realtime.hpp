@@ -1,7 +1,7 @@
 // Optional realtime settings of the executive's thread, from ExecutiveParams: SCHED_FIFO priority, CPU
-// affinity, mlockall. Init time, called on the thread that will run the loop. Each refusal carries a message
-// saying what was refused, why (errno) and how to permit it; whether a refusal stops the start-up is
-// realtime_fatal. The OS calls are in src/posix_os.cpp.
+// affinity, mlockall, timer slack. Init time, called on the thread that will run the loop. Each refusal
+// carries a message saying what was refused, why (errno) and how to permit it; whether a refusal stops the
+// start-up is realtime_fatal. The OS calls are in src/posix_os.cpp.
 #pragma once
 
 #include <array>
@@ -22,10 +22,11 @@ struct RealtimeReport {
   RealtimeOutcome scheduler;
   RealtimeOutcome affinity;
   RealtimeOutcome memory_lock;
+  RealtimeOutcome timer_slack;
   /// True when every requested setting was applied.
   bool allApplied() const {
     return (!scheduler.requested || scheduler.applied) && (!affinity.requested || affinity.applied) &&
-           (!memory_lock.requested || memory_lock.applied);
+           (!memory_lock.requested || memory_lock.applied) && (!timer_slack.requested || timer_slack.applied);
   }
 };
 
