@@ -9,6 +9,7 @@
 #include "visnav/io/config_io.hpp"
 #include "visnav/io/param_docs.hpp"
 #include "visnav/nearrange/near_range_params.hpp"
+#include "visnav/telemetry/telemetry_params.hpp"
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--check") == 0) {
@@ -16,10 +17,12 @@ int main(int argc, char** argv) {
     visnav::NearRangeParams nearrange;
     visnav::camera::CameraParams camera;
     visnav::exec::ExecutiveParams executive;
+    visnav::telemetry::TelemetryParams telemetry;
     visnav::LoadError e = config.open(argv[2]);
     if (e.ok) e = config.apply(nearrange);
     if (e.ok) e = config.apply(camera);
     if (e.ok) e = config.apply(executive);
+    if (e.ok) e = visnav::telemetry::applyTelemetryConfig(config, telemetry);
     if (e.ok) e = config.checkNoUnknownKeys();
     if (!e.ok) {
       std::fprintf(stderr, "visnav-params: %s\n", e.message.c_str());
@@ -46,5 +49,7 @@ int main(int argc, char** argv) {
               visnav::io::parameterTableMarkdown(visnav::camera::CameraParams{}).c_str());
   std::printf("\n## [executive]: cyclic executive and its thread (fsw/executive/README.md)\n\n%s",
               visnav::io::parameterTableMarkdown(visnav::exec::ExecutiveParams{}).c_str());
+  std::printf("\n## [telemetry]: DDS telemetry and ground commands (fsw/telemetry/README.md)\n\n%s",
+              visnav::telemetry::telemetryParametersMarkdown().c_str());
   return 0;
 }
