@@ -14,6 +14,7 @@ namespace {
 
 constexpr std::int64_t kWaitSliceNs = 100'000'000;  // stop requests are seen within this
 constexpr std::int64_t kRedrawPeriodNs = 250'000'000;
+constexpr std::int64_t kMaxLingerNs = 1'000'000'000;
 constexpr std::int64_t kMaxPlausibleLatencyNs = 60'000'000'000;
 
 struct Buffers {
@@ -88,9 +89,10 @@ LoadError runMonitor(const MonitorOptions& options, const std::atomic<bool>& sto
   LatestSamples latest;
   const std::int64_t start_ns = telemetry::monotonicNowNs();
   std::int64_t next_draw_ns = start_ns;
+  std::int64_t linger_end_ns = 0;
   auto& infos = buffers->infos;
   while (!stop.load()) {
-    link.waitForData(kWaitSliceNs);
+    const bool got_data = link.waitForData(kWaitSliceNs);
     drain(
         buffers->pose, infos,
         [&](visnav_PoseEstimate* out, dds_sample_info_t* si, int capacity) {
@@ -131,10 +133,17 @@ LoadError runMonitor(const MonitorOptions& options, const std::atomic<bool>& sto
         });
     const std::int64_t now_ns = telemetry::monotonicNowNs();
     result.elapsed_s = static_cast<double>(now_ns - start_ns) * 1e-9;
-    if (options.stop_after_pose_samples > 0 && result.pose.samples() >= options.stop_after_pose_samples) {
+    if (options.stop_after_pose_samples > 0 && result.pose.samples() >= options.stop_after_pose_samples &&
+        !result.reached_sample_limit) {
       result.reached_sample_limit = true;
-      break;
+      linger_end_ns = now_ns + kMaxLingerNs;
     }
+    // After the limit, the same cycles' far-range and health samples may still be on their way: keep
+    // draining until they caught up, the link went quiet for one wait slice, or the linger time is over.
+    if (result.reached_sample_limit && ((result.far_range.samples() >= result.pose.samples() &&
+                                         result.health.samples() >= result.pose.samples()) ||
+                                        !got_data || now_ns >= linger_end_ns))
+      break;
     if (options.duration_s > 0.0 && result.elapsed_s >= options.duration_s) break;
     if (view && now_ns >= next_draw_ns) {
       drawView(stdout, options, latest, result);
