@@ -1,8 +1,8 @@
 // A recorded sequence directory (drivers/replay/README.md) as a CameraSource: at its recorded rate
 // (timestamps of frames.csv, on CLOCK_MONOTONIC) or as fast as the consumer asks, optionally looping.
 // open() loads the sequence and allocates the ring of frame buffers; acquire() reads the next PGM into a free
-// slot with blocking file I/O (replay only: a page-cache read of a VGA frame is ~0.1 ms, a cold disk can take
-// milliseconds; nothing is prefetched) and allocates nothing.
+// slot with blocking file I/O and allocates nothing. Replay only: a VGA frame from the page cache takes
+// ~26 us (bench_playback), a cold disk can take milliseconds; nothing is prefetched.
 #pragma once
 
 #include <array>

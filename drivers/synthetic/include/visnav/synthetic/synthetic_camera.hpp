@@ -2,7 +2,7 @@
 // renders it (same pose, same per-frame seed, same clutter frame index), so a frame is bit-identical to the
 // PGM visnav-synth writes for it. Paced at the trajectory's timestamps on CLOCK_MONOTONIC, or as fast as the
 // consumer asks; optionally looping. open() allocates the renderer and the frame ring; acquire() renders into
-// a free slot (a VGA frame takes tens of ms: the cost of a "live" synthetic camera) and allocates nothing.
+// a free slot (a VGA frame takes 8-15 ms: the cost of a "live" synthetic camera) and allocates nothing.
 #pragma once
 
 #include <array>
