@@ -15,6 +15,21 @@ constexpr int pixelY(std::uint32_t p) { return static_cast<int>(p >> 16U); }
 constexpr int kNeighbourDx[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
 constexpr int kNeighbourDy[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
 
+// sqrt of the eigenvalue ratio of the second moments of n unit pixel squares, from sums of their
+// (relative) integer coordinates; each square adds 1/12 of variance per axis.
+double axisRatio(double n, double sx, double sy, double sxx, double syy, double sxy) {
+  const double mx = sx / n;
+  const double my = sy / n;
+  const double a = sxx / n - mx * mx + 1.0 / 12.0;
+  const double b = sxy / n - mx * my;
+  const double d = syy / n - my * my + 1.0 / 12.0;
+  const double half_diff = 0.5 * (a - d);
+  const double root = std::sqrt(half_diff * half_diff + b * b);
+  const double l_max = 0.5 * (a + d) + root;
+  const double l_min = std::max(0.5 * (a + d) - root, 1e-12);
+  return std::sqrt(l_max / l_min);
+}
+
 }  // namespace
 
 void ClusterFinder::init(int width, int height, int max_clusters, int max_pixels) {
@@ -122,15 +137,8 @@ void ClusterFinder::measure(Cluster& c, const Roi& roi) const {
   const double mx = static_cast<double>(sx) / n;
   const double my = static_cast<double>(sy) / n;
   c.com_px = Vec2(ox + mx + 0.5, oy + my + 0.5);
-  // Second moments of the pixel squares (each adds 1/12 of variance per axis).
-  const double a = static_cast<double>(sxx) / n - mx * mx + 1.0 / 12.0;
-  const double b = static_cast<double>(sxy) / n - mx * my;
-  const double d = static_cast<double>(syy) / n - my * my + 1.0 / 12.0;
-  const double half_diff = 0.5 * (a - d);
-  const double root = std::sqrt(half_diff * half_diff + b * b);
-  const double l_max = 0.5 * (a + d) + root;
-  const double l_min = std::max(0.5 * (a + d) - root, 1e-12);
-  c.axis_ratio = std::sqrt(l_max / l_min);
+  c.axis_ratio = axisRatio(n, static_cast<double>(sx), static_cast<double>(sy), static_cast<double>(sxx),
+                           static_cast<double>(syy), static_cast<double>(sxy));
   double r2_max = 0.0;
   for (int i = 0; i < c.pixel_count; ++i) {
     const double ex = pixelX(px[i]) + 0.5 - c.com_px.x();
@@ -180,6 +188,9 @@ void ClusterFinder::fillHoles(Cluster& c) {
   c.filled_count = static_cast<int>(area - exterior);
   double sx = 0.0;
   double sy = 0.0;
+  double sxx = 0.0;
+  double syy = 0.0;
+  double sxy = 0.0;
   int boundary = 0;
   for (int y = 1; y + 1 < bh; ++y) {
     const std::uint8_t* up = box + static_cast<std::size_t>(y - 1) * bw;
@@ -189,12 +200,16 @@ void ClusterFinder::fillHoles(Cluster& c) {
       const int inside = row[x] != kExterior ? 1 : 0;
       sx += inside * x;
       sy += inside * y;
+      sxx += inside * x * x;
+      syy += inside * y * y;
+      sxy += inside * x * y;
       const int touches = (up[x] == kExterior) | (down[x] == kExterior) | (row[x - 1] == kExterior) |
                           (row[x + 1] == kExterior);
       boundary += inside & touches;
     }
   }
   c.boundary_count = boundary;
+  c.axis_ratio = axisRatio(c.filled_count, sx, sy, sxx, syy, sxy);  // the shape, not its outline
   c.filled_com_px = Vec2(c.x_min - 1 + sx / c.filled_count + 0.5, c.y_min - 1 + sy / c.filled_count + 0.5);
 }
 

@@ -150,7 +150,8 @@ void EdgeFilter::apply(const MonoImage& image, const Roi& roi, ResponseImage& ou
   // pmulhuw / vmull): both factors are scaled so that ref << s fills 16 bits.
   int s = 0;
   while ((reference << (s + 1)) <= 65535) ++s;
-  const auto k = static_cast<std::uint16_t>(std::lround(255.0 * 65536.0 / (reference << s)) + 1);
+  // k = ceil(255 * 2^16 / R) with R = ref << s in [2^15, 2^16): (R * k) >> 16 is exactly 255 and never 256.
+  const auto k = static_cast<std::uint16_t>(std::ceil(255.0 * 65536.0 / (reference << s)));
   for (int y = 0; y < roi.height; ++y) {
     normaliseRow(m_magnitude.data() + static_cast<std::ptrdiff_t>(y) * m_stride, roi.width,
                  static_cast<std::uint16_t>(reference), s, k, out.row(y));

@@ -123,9 +123,9 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     report(m_finder.clusters()[static_cast<std::size_t>(selected)], gate, out);
   } else {
     out.flags |= m_finder.clusters().empty() ? kFlagNoCluster : kFlagNoCandidate;
-    if (m_robust && m_track.active) out.flags |= kFlagCoasting;
   }
   if (m_robust) updateTrack(out);
+  if (!out.valid && m_track.active) out.flags |= kFlagCoasting;
   m_has_prediction = false;  // a filter prediction holds for one frame
   out.timing.total_us = elapsedUs(start);
   return Status::kOk;

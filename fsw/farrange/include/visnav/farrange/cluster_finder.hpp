@@ -19,7 +19,8 @@ struct Cluster {
   Vec2 com_px = Vec2::Zero();  ///< centre of mass, raw pixels (pixel centres at +0.5, CONVENTIONS.md)
   double max_radius_px = 0.0;  ///< max_a |p_a - p_COM| of eq. 15
   double circularity = 0.0;    ///< eq. 15
-  double axis_ratio = 1.0;     ///< sqrt of the second-moment eigenvalue ratio (1 = round, large = line)
+  double axis_ratio = 1.0;     ///< sqrt of the second-moment eigenvalue ratio (1 = round, large = line);
+                               ///< of the filled cluster once fillHoles() ran
   int x_min = 0, y_min = 0, x_max = 0, y_max = 0;  ///< bounding box, inclusive, image pixels
   int peak_response = 0;                           ///< largest S in the cluster (255 = 1.0)
   bool truncated = false;                          ///< growth stopped at the pixel capacity

@@ -30,7 +30,7 @@ struct FarRangeParams {
   double edge_percentile_factor = 3.0;
   double edge_ref_floor = 0.02;
   int min_cluster_px = 6;
-  double max_axis_ratio = 12.0;
+  double max_axis_ratio = 9.0;
   bool fill_holes = true;
   double outline_discount = 1.0;
   double gate_radius_px = 30.0;

@@ -1,0 +1,162 @@
+// Cluster analysis (sec. III-B): spawn/grow thresholds, 8-connectivity, eq. 15, hole filling, capacities.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "visnav/farrange/cluster_finder.hpp"
+
+namespace visnav::far {
+namespace {
+
+struct Response {
+  ResponseImage image;
+  std::vector<std::uint8_t> row_max;
+  Response(int w, int h) : row_max(static_cast<std::size_t>(h), 0) {
+    image.init(w, h);
+    image.setRoi(Roi::full(w, h));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) image.row(y)[x] = 0;
+  }
+  void set(int x, int y, std::uint8_t v) {
+    image.row(y)[x] = v;
+    row_max[static_cast<std::size_t>(y)] = std::max(row_max[static_cast<std::size_t>(y)], v);
+  }
+};
+
+constexpr std::uint8_t kIn = 229;   // t_in = 0.9
+constexpr std::uint8_t kOut = 127;  // t_out = 0.5
+
+TEST(ClusterFinder, SpawnsAboveTinAndGrowsAboveTout) {
+  Response r(20, 10);
+  for (int x = 2; x < 8; ++x) r.set(x, 3, 200);    // above t_out only...
+  r.set(5, 3, 240);                                // ...with one spawn pixel
+  for (int x = 12; x < 16; ++x) r.set(x, 6, 200);  // above t_out, no spawn pixel: no cluster
+  r.set(9, 3, 127);                                // exactly t_out: not above it
+  ClusterFinder finder;
+  finder.init(20, 10, 8, 100);
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 1U);
+  const Cluster& c = finder.clusters()[0];
+  EXPECT_EQ(c.pixel_count, 6);
+  EXPECT_NEAR(c.com_px.x(), 5.0, 1e-12);  // columns 2..7: centres 2.5 .. 7.5
+  EXPECT_NEAR(c.com_px.y(), 3.5, 1e-12);
+  EXPECT_EQ(c.peak_response, 240);
+}
+
+TEST(ClusterFinder, DiagonalNeighboursJoin) {
+  Response r(10, 10);
+  for (int i = 0; i < 5; ++i) r.set(2 + i, 2 + i, 255);
+  ClusterFinder finder;
+  finder.init(10, 10, 8, 100);
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 1U);
+  EXPECT_EQ(finder.clusters()[0].pixel_count, 5);
+  // Pixels (i, i): variances 2 + 1/12, covariance 2 -> eigenvalues 4 + 1/12 and 1/12, axis ratio 7.
+  EXPECT_NEAR(finder.clusters()[0].axis_ratio, 7.0, 1e-9);
+}
+
+TEST(ClusterFinder, CircularityIsEq15) {
+  Response r(40, 40);
+  int n = 0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x)
+      if (std::hypot(x + 0.5 - 20.0, y + 0.5 - 20.0) <= 8.0) {
+        r.set(x, y, 255);
+        ++n;
+      }
+  ClusterFinder finder;
+  finder.init(40, 40, 8, 1000);
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 1U);
+  const Cluster& c = finder.clusters()[0];
+  EXPECT_EQ(c.pixel_count, n);
+  double r_max = 0.0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x)
+      if (r.image.row(y)[x] > kOut) r_max = std::max(r_max, std::hypot(x + 0.5 - 20.0, y + 0.5 - 20.0));
+  EXPECT_NEAR(c.max_radius_px, r_max, 1e-9);
+  EXPECT_NEAR(c.circularity, std::exp(-std::abs(std::sqrt(n / kPi) - r_max)), 1e-12);
+  EXPECT_NEAR(c.axis_ratio, 1.0, 0.01);
+}
+
+TEST(ClusterFinder, FillHolesCountsTheEnclosedAreaAndItsOutline) {
+  // A 10 x 8 rectangle outline (1 px wide) with a separate pixel inside: filled = 80, outline = 32.
+  Response r(30, 30);
+  for (int x = 5; x < 15; ++x) {
+    r.set(x, 5, 255);
+    r.set(x, 12, 255);
+  }
+  for (int y = 5; y < 13; ++y) {
+    r.set(5, y, 255);
+    r.set(14, y, 255);
+  }
+  r.set(9, 8, 255);  // its own cluster, inside the hole
+  ClusterFinder finder;
+  finder.init(30, 30, 8, 1000);
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 2U);
+  Cluster& ring = finder.clusters()[0];
+  EXPECT_EQ(ring.pixel_count, 32);
+  finder.fillHoles(ring);
+  EXPECT_EQ(ring.filled_count, 80);
+  EXPECT_EQ(ring.boundary_count, 32);
+  EXPECT_NEAR(ring.axis_ratio, 10.0 / 8.0, 1e-9);  // of the filled 10 x 8 block, not of its outline
+  EXPECT_NEAR(ring.filled_com_px.x(), 10.0, 1e-12);
+  EXPECT_NEAR(ring.filled_com_px.y(), 9.0, 1e-12);
+  // An open ring (a gap in the outline) encloses nothing.
+  r.image.row(12)[10] = 0;
+  r.image.row(12)[11] = 0;
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  Cluster& open = finder.clusters()[0];
+  finder.fillHoles(open);
+  EXPECT_EQ(open.filled_count, open.pixel_count);
+}
+
+TEST(ClusterFinder, CapacitiesAreReportedNotExceeded) {
+  Response r(20, 20);
+  for (int y = 0; y < 20; y += 2)
+    for (int x = 0; x < 20; x += 2) r.set(x, y, 255);  // 100 isolated spawn pixels
+  ClusterFinder finder;
+  finder.init(20, 20, 10, 1000);
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  EXPECT_EQ(finder.clusters().size(), 10U);
+  EXPECT_EQ(finder.seedsSkipped(), 90);
+  Response big(20, 20);
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 20; ++x) big.set(x, y, 255);
+  ClusterFinder small;
+  small.init(20, 20, 10, 50);
+  small.find(big.image, big.row_max.data(), kIn, kOut);
+  EXPECT_TRUE(small.pixelCapacityHit());
+  ASSERT_GE(small.clusters().size(), 1U);
+  EXPECT_TRUE(small.clusters()[0].truncated);
+  EXPECT_EQ(small.pixels().size(), 50U);
+}
+
+TEST(ClusterFinder, StaysInsideTheRoiAndForgetsTheLastFrame) {
+  Response r(30, 30);
+  for (int x = 0; x < 30; ++x) r.set(x, 10, 255);
+  r.image.setRoi(Roi{5, 5, 10, 10});  // rows/columns 5..14 of the same map
+  ResponseImage roi_image;
+  roi_image.init(30, 30);
+  roi_image.setRoi(Roi{5, 5, 10, 10});
+  std::vector<std::uint8_t> row_max(10, 0);
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 10; ++x) {
+      roi_image.row(y)[x] = (y + 5 == 10) ? 255 : 0;
+      row_max[static_cast<std::size_t>(y)] =
+          std::max(row_max[static_cast<std::size_t>(y)], roi_image.row(y)[x]);
+    }
+  ClusterFinder finder;
+  finder.init(30, 30, 8, 100);
+  for (int frame = 0; frame < 3; ++frame) {  // labels from the last frame must not block this one
+    finder.find(roi_image, row_max.data(), kIn, kOut);
+    ASSERT_EQ(finder.clusters().size(), 1U);
+    EXPECT_EQ(finder.clusters()[0].pixel_count, 10);
+    EXPECT_TRUE(finder.clusters()[0].at_roi_border);
+  }
+}
+
+}  // namespace
+}  // namespace visnav::far

@@ -1,0 +1,222 @@
+// The far-range estimator on rendered frames of the far_range satellite: direction through the distorted
+// camera, distance (eq. 16), the published method's weak spots against the robust method, gating, region
+// of interest, coasting, the filter prediction and the NavSolution conversion.
+#include <gtest/gtest.h>
+
+#include "far_fixture.hpp"
+#include "visnav/farrange/nav_conversion.hpp"
+
+namespace visnav::far {
+namespace {
+
+using test::angleDeg;
+
+FarRangeParams method(FarRangeMethod m) {
+  FarRangeParams p;
+  p.method = static_cast<int>(m);
+  return p;
+}
+
+struct Scene {
+  PinholeCamera camera = test::farCamera();
+  PolygonModel model = test::smallsat();
+  synthetic::Renderer renderer;
+  explicit Scene(const synthetic::RenderOptions& options = test::farRender()) {
+    EXPECT_TRUE(renderer.init(camera, model, options).ok);
+  }
+  test::FarFrame frame(const Pose& pose, std::uint64_t seed = 1, std::int64_t index = 0) {
+    return test::renderFar(renderer, pose, seed, index);
+  }
+};
+
+FarRangeResult estimateOnce(const PinholeCamera& camera, const FarRangeParams& params,
+                            const test::FarFrame& f) {
+  FarRangeEstimator e;
+  EXPECT_TRUE(e.init(camera, params).ok);
+  FarRangeResult r;
+  EXPECT_EQ(e.estimate(f.image(), r), Status::kOk);
+  return r;
+}
+
+TEST(FarRangeEstimator, DirectionGoesThroughTheDistortedCameraModel) {
+  Scene s;
+  const test::FarFrame f = s.frame(test::satAt(400.0, 16.0, 11.5, 10.0));  // near the image corner
+  const FarRangeResult r = estimateOnce(s.camera, FarRangeParams{}, f);
+  ASSERT_TRUE(r.valid);
+  const Vec3 truth = f.truth.t_c_m.normalized();
+  EXPECT_LT(angleDeg(r.direction_c, truth), 0.03);
+  EXPECT_NEAR(r.azimuth_rad, std::atan2(truth.x(), truth.z()), 1e-3);
+  EXPECT_NEAR(r.elevation_rad, std::atan2(-truth.y(), std::hypot(truth.x(), truth.z())), 1e-3);
+  EXPECT_NEAR(r.direction_c.norm(), 1.0, 1e-12);
+  // Back-projecting the same centroid without removing the distortion is off by more than the target.
+  const PinholeCamera ideal = test::farCamera(640, 480, false);
+  EXPECT_GT(angleDeg(ideal.bearing(r.centroid_px), truth), 0.08);
+}
+
+TEST(FarRangeEstimator, DistanceIsEq16AndTheRobustSizeFollowsInverseSquareDistance) {
+  Scene s;
+  // One calibration frame at 700 m, then the whole range with that gamma.
+  for (const FarRangeMethod m : {FarRangeMethod::kRobust, FarRangeMethod::kPaper}) {
+    const FarRangeResult cal =
+        estimateOnce(s.camera, method(m), s.frame(test::satAt(700.0, 1.0, 1.0, 15.0), 3));
+    ASSERT_TRUE(cal.valid);
+    FarRangeParams p = method(m);
+    p.gamma = 700.0 * std::sqrt(static_cast<double>(cal.cluster_pixels));
+    const FarRangeResult near = estimateOnce(s.camera, p, s.frame(test::satAt(60.0, 1.0, 1.0, 15.0), 4));
+    ASSERT_TRUE(near.valid);
+    EXPECT_NEAR(near.distance_m, p.gamma / std::sqrt(static_cast<double>(near.cluster_pixels)), 1e-9);
+    const double error = std::abs(near.distance_m - 60.0) / 60.0;
+    if (m == FarRangeMethod::kRobust) {
+      EXPECT_LT(error, 0.10) << "filled cluster minus its outline follows 1/d^2";
+    } else {
+      // Weak spot: close in, the histogram filter drops the interior (its grey levels are no longer rare),
+      // so n grows like 1/d instead of 1/d^2 and a far calibration overestimates the distance.
+      EXPECT_GT(error, 0.5) << "paper n " << near.cluster_pixels;
+    }
+  }
+}
+
+TEST(FarRangeEstimator, ATinyGlintBeatsTheSatelliteOnCircularityOnlyInThePaperMethod) {
+  synthetic::RenderOptions o = test::farRender();
+  synthetic::Glint glint;
+  glint.first_frame = 0;
+  glint.last_frame = 10;
+  glint.start_px = glint.end_px = Vec2(150.5, 380.5);
+  glint.sigma_px = 0.6;
+  glint.peak = 2.0;
+  o.glints.push_back(glint);
+  Scene s(o);
+  const test::FarFrame f = s.frame(test::satAt(400.0, 3.0, 2.0, 20.0));
+  const Vec3 truth = f.truth.t_c_m.normalized();
+  const FarRangeResult paper = estimateOnce(s.camera, method(FarRangeMethod::kPaper), f);
+  const FarRangeResult robust = estimateOnce(s.camera, method(FarRangeMethod::kRobust), f);
+  ASSERT_TRUE(paper.valid);
+  ASSERT_TRUE(robust.valid);
+  EXPECT_GT(angleDeg(paper.direction_c, truth), 5.0) << "the paper method follows the glint";
+  EXPECT_GT(paper.circularity, 0.3);
+  EXPECT_LT(angleDeg(robust.direction_c, truth), 0.05);
+}
+
+TEST(FarRangeEstimator, OneBrightEdgeHidesTheTargetUnderMaxNormalisation) {
+  synthetic::RenderOptions o = test::farRender();
+  synthetic::MovingBar bar;
+  bar.first_frame = 0;
+  bar.last_frame = 10;
+  bar.start_px = bar.end_px = Vec2(320.0, 100.0);
+  bar.length_px = 160.0;
+  bar.width_px = 14.0;
+  bar.angle_deg = 10.0;
+  bar.brightness_start = bar.brightness_end = 1.0;
+  o.bars.push_back(bar);
+  Scene s(o);
+  const test::FarFrame f = s.frame(test::satAt(400.0, -2.0, -3.0, 20.0));
+  const Vec3 truth = f.truth.t_c_m.normalized();
+  FarRangeEstimator paper;
+  ASSERT_TRUE(paper.init(s.camera, method(FarRangeMethod::kPaper)).ok);
+  FarRangeResult r;
+  paper.estimate(f.image(), r);
+  Vec2 target_px;
+  ASSERT_TRUE(s.camera.project(f.truth.t_c_m, target_px));
+  for (const Cluster& c : paper.clusters()) {
+    EXPECT_GT((c.com_px - target_px).norm(), 20.0) << "no cluster spawned on the satellite";
+  }
+  const FarRangeResult robust = estimateOnce(s.camera, method(FarRangeMethod::kRobust), f);
+  ASSERT_TRUE(robust.valid);
+  EXPECT_LT(angleDeg(robust.direction_c, truth), 0.05);
+}
+
+TEST(FarRangeEstimator, RegionOfInterestGivesTheFullFrameAnswerAndGatesTheTrack) {
+  Scene s;
+  FarRangeParams with_roi;
+  FarRangeParams without_roi;
+  without_roi.use_roi = false;
+  FarRangeEstimator a;
+  FarRangeEstimator b;
+  ASSERT_TRUE(a.init(s.camera, with_roi).ok);
+  ASSERT_TRUE(b.init(s.camera, without_roi).ok);
+  for (int i = 0; i < 6; ++i) {
+    const test::FarFrame f = s.frame(test::satAt(300.0 - 5.0 * i, 2.0 + 0.3 * i, 1.0, 20.0 + i), 10 + i);
+    FarRangeResult ra;
+    FarRangeResult rb;
+    a.estimate(f.image(), ra);
+    b.estimate(f.image(), rb);
+    ASSERT_TRUE(ra.valid && rb.valid);
+    EXPECT_EQ(ra.cluster_pixels, rb.cluster_pixels) << "frame " << i;
+    EXPECT_LT((ra.centroid_px - rb.centroid_px).norm(), 1e-9);
+    if (i > 0) {
+      EXPECT_NE(ra.flags & kFlagRoi, 0U);
+      EXPECT_EQ(ra.flags & kFlagRoiFallback, 0U);
+      EXPECT_NE(ra.flags & kFlagGated, 0U);
+      EXPECT_LT(ra.roi.area(), 640 * 480 / 4);
+    } else {
+      EXPECT_NE(ra.flags & kFlagUnconfirmed, 0U);
+    }
+  }
+}
+
+TEST(FarRangeEstimator, CoastsWithoutATargetThenDropsTheTrack) {
+  Scene s;
+  FarRangeParams p;
+  p.max_coast_frames = 2;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(s.camera, p).ok);
+  FarRangeResult r;
+  e.estimate(s.frame(test::satAt(300.0)).image(), r);
+  ASSERT_TRUE(r.valid);
+  const test::FarFrame empty = s.frame(test::satAt(300.0, 80.0));  // far outside the field of view
+  for (int i = 0; i < 4; ++i) {
+    e.estimate(empty.image(), r);
+    EXPECT_FALSE(r.valid);
+    EXPECT_EQ(r.quality, 0.0);
+    EXPECT_EQ((r.flags & kFlagCoasting) != 0U, i < 2) << "frame " << i;
+  }
+}
+
+TEST(FarRangeEstimator, FilterPredictionGatesTheFirstFrame) {
+  Scene s;
+  const test::FarFrame f = s.frame(test::satAt(350.0, -4.0, 2.0));
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(s.camera, FarRangeParams{}).ok);
+  e.setPrediction(f.truth.t_c_m.normalized(), 2.0 * e.params().gamma / 30.0);  // a plausible size
+  FarRangeResult r;
+  e.estimate(f.image(), r);
+  ASSERT_TRUE(r.valid);
+  EXPECT_NE(r.flags & kFlagGated, 0U);
+  EXPECT_NE(r.flags & kFlagRoi, 0U);
+  e.reset();
+  e.setPrediction(Vec3(0.3, 0.2, 1.0).normalized(), 350.0);  // wrong place: gated out, full frame, no track
+  e.estimate(f.image(), r);
+  EXPECT_FALSE(r.valid);
+  EXPECT_NE(r.flags & kFlagRoiFallback, 0U);
+}
+
+TEST(FarRangeEstimator, RejectsABadConfigAndABadImage) {
+  FarRangeParams p;
+  p.edge_weight = 0.6;
+  FarRangeEstimator e;
+  const LoadError error = e.init(test::farCamera(), p);
+  EXPECT_FALSE(error.ok);
+  EXPECT_NE(error.message.find("eq. 14"), std::string::npos);
+  ASSERT_TRUE(e.init(test::farCamera(), FarRangeParams{}).ok);
+  std::vector<std::uint8_t> small(100U * 100U, 0);
+  FarRangeResult r;
+  EXPECT_EQ(e.estimate(MonoImage::from8(ImageView8(small.data(), 100, 100)), r), Status::kInvalidArgument);
+  EXPECT_FALSE(r.valid);
+}
+
+TEST(FarRangeEstimator, FillsTheNavigationSolution) {
+  Scene s;
+  const FarRangeResult r = estimateOnce(s.camera, FarRangeParams{}, s.frame(test::satAt(500.0, 2.0)));
+  const nav::FarRangeSolution sol = toFarRangeSolution(r);
+  EXPECT_EQ(sol.valid, r.valid);
+  EXPECT_EQ(sol.direction_c, r.direction_c);
+  EXPECT_EQ(sol.distance_m, r.distance_m);
+  EXPECT_EQ(sol.cluster_pixels, r.cluster_pixels);
+  EXPECT_EQ(sol.cluster_count, r.cluster_count);
+  EXPECT_EQ(sol.circularity, r.circularity);
+  EXPECT_EQ(sol.azimuth_rad, r.azimuth_rad);
+  EXPECT_GT(sol.quality, 0.0);
+}
+
+}  // namespace
+}  // namespace visnav::far

@@ -1,0 +1,85 @@
+// REQUIREMENT: the per-frame far-range call allocates nothing after init (issue 3, design card), in every
+// path: full frame, region of interest, ROI fallback, coasting, lost, both methods, 8- and 16-bit frames.
+#include <gtest/gtest.h>
+
+#include "../../support/alloc_counter.hpp"
+#include "far_fixture.hpp"
+
+namespace visnav::far {
+namespace {
+
+std::vector<test::FarFrame> frames() {
+  synthetic::RenderOptions o = test::farRender();
+  synthetic::MovingBar bar;
+  bar.first_frame = 5;
+  bar.last_frame = 12;
+  bar.start_px = Vec2(0.0, 120.0);
+  bar.end_px = Vec2(640.0, 160.0);
+  bar.brightness_start = bar.brightness_end = 1.0;
+  bar.length_px = 160.0;
+  bar.width_px = 14.0;
+  o.bars.push_back(bar);
+  synthetic::Glint glint;
+  glint.first_frame = 3;
+  glint.last_frame = 15;
+  glint.start_px = glint.end_px = Vec2(100.5, 400.5);
+  glint.peak = 2.0;
+  o.glints.push_back(glint);
+  synthetic::Renderer renderer;
+  EXPECT_TRUE(renderer.init(test::farCamera(), test::smallsat(), o).ok);
+  std::vector<test::FarFrame> out;
+  for (int i = 0; i < 16; ++i) {
+    const double range = 600.0 - 35.0 * i;
+    out.push_back(test::renderFar(renderer, test::satAt(range, 0.5 * i - 3.0, 1.0, 2.0 * i), 100 + i, i));
+  }
+  out.push_back(test::renderFar(renderer, test::satAt(300.0, 80.0), 999, 20));  // nothing in view: coast
+  out.push_back(out.back());
+  out.push_back(test::renderFar(renderer, test::satAt(200.0, -5.0, -4.0), 998, 21));  // jump: ROI fallback
+  return out;
+}
+
+std::uint64_t countOver(FarRangeEstimator& e, const std::vector<test::FarFrame>& f, bool sixteen_bit,
+                        int& valid) {
+  // 16-bit copies are made before counting.
+  std::vector<std::vector<std::uint16_t>> wide(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (const std::uint8_t v : f[i].pixels) wide[i].push_back(static_cast<std::uint16_t>(v * 16U));
+  FarRangeResult r;
+  constexpr int kFrames = 60;  // > 3 passes over the 19 frames, 4 configurations: 240 frames
+  const std::uint64_t before = test::allocationCount();
+  for (int i = 0; i < kFrames; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i) % f.size();
+    const MonoImage image =
+        sixteen_bit ? MonoImage::from16(ImageView16(wide[k].data(), 640, 480), 4095) : f[k].image();
+    e.estimate(image, r);
+    valid += r.valid ? 1 : 0;
+  }
+  return test::allocationCount() - before;
+}
+
+TEST(FarRangeNoAlloc, EveryPathOverManyFrames) {
+  const std::vector<test::FarFrame> f = frames();
+  for (const FarRangeMethod m : {FarRangeMethod::kRobust, FarRangeMethod::kPaper}) {
+    for (const bool sixteen_bit : {false, true}) {
+      FarRangeParams p;
+      p.method = static_cast<int>(m);
+      FarRangeEstimator e;
+      ASSERT_TRUE(e.init(test::farCamera(), p).ok);
+      int valid = 0;
+      EXPECT_EQ(countOver(e, f, sixteen_bit, valid), 0U)
+          << "method " << p.method << " 16 bit " << sixteen_bit
+          << " (malloc counted: " << test::countsMalloc() << ")";
+      EXPECT_GT(valid, 30);  // the frames really exercised the full pipeline
+    }
+  }
+}
+
+TEST(FarRangeNoAlloc, CounterSeesAllocations) {
+  const std::uint64_t before = test::allocationCount();
+  auto* p = new std::vector<int>(100);
+  delete p;
+  EXPECT_GE(test::allocationCount() - before, 2U);
+}
+
+}  // namespace
+}  // namespace visnav::far
