@@ -6,6 +6,7 @@
 
 #include "visnav/camera/camera_params.hpp"
 #include "visnav/executive/executive_params.hpp"
+#include "visnav/farrange/far_range_params.hpp"
 #include "visnav/io/config_io.hpp"
 #include "visnav/io/param_docs.hpp"
 #include "visnav/nearrange/near_range_params.hpp"
@@ -15,11 +16,13 @@ int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--check") == 0) {
     visnav::io::ConfigFile config;
     visnav::NearRangeParams nearrange;
+    visnav::far::FarRangeParams farrange;
     visnav::camera::CameraParams camera;
     visnav::exec::ExecutiveParams executive;
     visnav::telemetry::TelemetryParams telemetry;
     visnav::LoadError e = config.open(argv[2]);
     if (e.ok) e = config.apply(nearrange);
+    if (e.ok) e = config.apply(farrange);
     if (e.ok) e = config.apply(camera);
     if (e.ok) e = config.apply(executive);
     if (e.ok) e = visnav::telemetry::applyTelemetryConfig(config, telemetry);
@@ -45,6 +48,8 @@ int main(int argc, char** argv) {
       "value or an unknown key is an error naming file, line and key.\n\n"
       "## [nearrange]: near-range 6-DOF tracker (paper sec. II)\n\n%s",
       visnav::io::parameterTableMarkdown(visnav::NearRangeParams{}).c_str());
+  std::printf("\n## [farrange]: far-range direction and distance (paper sec. III, fsw/farrange/README.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::far::FarRangeParams{}).c_str());
   std::printf("\n## [camera]: frame source (drivers/camera/README.md)\n\n%s",
               visnav::io::parameterTableMarkdown(visnav::camera::CameraParams{}).c_str());
   std::printf("\n## [executive]: cyclic executive and its thread (fsw/executive/README.md)\n\n%s",

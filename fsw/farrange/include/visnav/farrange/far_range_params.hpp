@@ -48,7 +48,7 @@ struct FarRangeParams {
   void visit(Visitor& v) {
     v.enumeration(
         {"farrange", "method", "-", 0, 1,
-         "paper: as published (max normalisation, raw n, most circular cluster); robust: percentile "
+         "paper: as published (max normalisation, raw n, most circular cluster); robust: noise-relative "
          "normalisation, filled clusters, size and shape checks, gating by the last estimate, ROI"},
         "paper|robust", method);
     v.enumeration(
@@ -71,12 +71,14 @@ struct FarRangeParams {
            t_out);
     v.real(
         {"farrange", "edge_percentile", "%", 1.0, 100.0,
-         "robust: eq. 10 divides by edge_percentile_factor times this percentile of |Jx|+|Jy| instead of the "
+         "robust: eq. 10 divides by edge_percentile_factor times this percentile of abs(Jx) + abs(Jy) "
+         "instead of the "
          "maximum (100: the maximum), so one bright non-target edge cannot push the target below t_in; the "
          "median is the background's noise level, the same in any region of interest"},
         edge_percentile);
     v.real({"farrange", "edge_percentile_factor", "-", 0.1, 1000.0,
-            "robust: the eq. 10 divisor is this times the edge_percentile of |Jx|+|Jy| (clipped to 1 above)"},
+            "robust: the eq. 10 divisor is this times the edge_percentile of abs(Jx) + abs(Jy) (clipped to 1 "
+            "above)"},
            edge_percentile_factor);
     v.real({"farrange", "edge_ref_floor", "brightness", 0.0, 1.0,
             "robust: the eq. 10 divisor is at least the response of a step of this contrast (noise-free "
@@ -120,7 +122,7 @@ struct FarRangeParams {
     v.integer({"farrange", "roi_min_half_px", "px", 8, 100000, "robust: smallest ROI half size"},
               roi_min_half_px);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
-    v.integer({"farrange", "max_cluster_pixels", "px", 16, 67108864,
+    v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},
               max_cluster_pixels);
   }
