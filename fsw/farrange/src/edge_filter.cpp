@@ -73,12 +73,17 @@ int magnitudeRows(const ImageView<PixelT>& view, const Roi& roi, int shift, AccT
   return frame_max;
 }
 
-// F = min(X, ref) << s times k, high 16 bits: GCC emits pmulhuw (SSE2) / umull (NEON).
-void normaliseRow(const std::uint16_t* __restrict x_row, int width, std::uint16_t ref, int s, std::uint16_t k,
+// F = min(X, ref) / ref in 8-bit fixed point as the high half of a 16 x 16 bit product (pmulhuw on SSE2,
+// umull on NEON): min(X, ref) << kShift fills 16 bits (X <= 2040 for 8-bit input, kShift 5; X <= 32760 for
+// 16-bit input, kShift 1) and k = ceil(255 * 2^16 / (ref << kShift)), so F(ref) is exactly 255, never 256.
+template <int kShift>
+void normaliseRow(const std::uint16_t* __restrict x_row, int width, std::uint16_t ref, std::uint16_t k,
                   std::uint8_t* __restrict f_row) {
   for (int x = 0; x < width; ++x) {
-    const auto v = static_cast<std::uint16_t>((x_row[x] < ref ? x_row[x] : ref) << s);
-    f_row[x] = static_cast<std::uint8_t>((static_cast<std::uint32_t>(v) * k) >> 16U);
+    const std::uint16_t m = x_row[x] < ref ? x_row[x] : ref;
+    const auto v = static_cast<std::uint16_t>(m << kShift);
+    const auto high = static_cast<std::uint16_t>((static_cast<std::uint32_t>(v) * k) >> 16U);
+    f_row[x] = static_cast<std::uint8_t>(high);
   }
 }
 
@@ -109,16 +114,17 @@ int EdgeFilter::magnitudes16(const ImageView16& view, const Roi& roi, int shift)
 }
 
 int EdgeFilter::percentileReference(const Roi& roi, int max_x, int max_possible) {
-  // Histogram of X over every second pixel of every second row (1/4 of the cost, the same statistics).
+  // Histogram of X over every fourth pixel of every fourth row (1/16 of the cost; a percentile of the
+  // background's noise needs no more).
   int bin_shift = 0;
   while ((max_possible >> bin_shift) >= kPercentileBins) ++bin_shift;
   std::uint32_t* hist = m_x_histogram.data();
   std::fill(hist, hist + kPercentileBins, 0U);
   std::uint32_t samples = 0;
-  for (int y = 0; y < roi.height; y += 2) {
+  for (int y = 0; y < roi.height; y += 4) {
     const std::uint16_t* row = m_magnitude.data() + static_cast<std::ptrdiff_t>(y) * m_stride;
-    for (int x = 0; x < roi.width; x += 2) ++hist[row[x] >> bin_shift];
-    samples += static_cast<std::uint32_t>((roi.width + 1) / 2);
+    for (int x = 0; x < roi.width; x += 4) ++hist[row[x] >> bin_shift];
+    samples += static_cast<std::uint32_t>((roi.width + 3) / 4);
   }
   const auto wanted = static_cast<std::uint32_t>(std::ceil(m_settings.percentile / 100.0 * samples));
   std::uint32_t cumulative = 0;
@@ -142,19 +148,21 @@ void EdgeFilter::apply(const MonoImage& image, const Roi& roi, ResponseImage& ou
   }
   const int floor_x = static_cast<int>(
       std::lround(m_settings.ref_floor * gain() * static_cast<double>(image.max_code >> shift)));
-  reference = std::max({reference, floor_x, 1});
+  // k below must fit 16 bits: ref << product_shift >= 256, so the divisor is at least 8 (2 grey levels of a
+  // Sobel step); a flatter frame has no edge worth normalising.
+  const int product_shift = eight_bit ? 5 : 1;
+  reference = std::max({reference, floor_x, 256 >> product_shift});
   m_last_reference = reference;
   m_last_maximum = max_x;
-
-  // F = min(X, ref) / ref in 8-bit fixed point as a 16 x 16 -> high 16 bit product (one SIMD multiply,
-  // pmulhuw / vmull): both factors are scaled so that ref << s fills 16 bits.
-  int s = 0;
-  while ((reference << (s + 1)) <= 65535) ++s;
-  // k = ceil(255 * 2^16 / R) with R = ref << s in [2^15, 2^16): (R * k) >> 16 is exactly 255 and never 256.
-  const auto k = static_cast<std::uint16_t>(std::ceil(255.0 * 65536.0 / (reference << s)));
+  const auto k = static_cast<std::uint16_t>(std::ceil(255.0 * 65536.0 / (reference << product_shift)));
+  const auto ref = static_cast<std::uint16_t>(reference);
   for (int y = 0; y < roi.height; ++y) {
-    normaliseRow(m_magnitude.data() + static_cast<std::ptrdiff_t>(y) * m_stride, roi.width,
-                 static_cast<std::uint16_t>(reference), s, k, out.row(y));
+    const std::uint16_t* x_row = m_magnitude.data() + static_cast<std::ptrdiff_t>(y) * m_stride;
+    if (eight_bit) {
+      normaliseRow<5>(x_row, roi.width, ref, k, out.row(y));
+    } else {
+      normaliseRow<1>(x_row, roi.width, ref, k, out.row(y));
+    }
   }
 }
 

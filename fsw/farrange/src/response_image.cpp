@@ -74,11 +74,31 @@ std::uint8_t finishRow(const std::uint16_t* __restrict acc, int width, std::uint
   return peak;
 }
 
+// The usual two filters in one pass: S = (w0 F0 + w1 F1) / 256, 16-bit lanes.
+std::uint8_t combineTwoRow(const std::uint8_t* __restrict f0, const std::uint8_t* __restrict f1, int width,
+                           std::uint16_t w0, std::uint16_t w1, std::uint8_t* __restrict s) {
+  std::uint8_t peak = 0;
+  for (int x = 0; x < width; ++x) {
+    const auto v = static_cast<std::uint8_t>(static_cast<std::uint16_t>(w0 * f0[x] + w1 * f1[x]) >> 8U);
+    s[x] = v;
+    peak = v > peak ? v : peak;
+  }
+  return peak;
+}
+
 }  // namespace
 
 void WeightedSum::apply(const ResponseImage* const* inputs, ResponseImage& out, std::uint8_t* row_max) {
   const int width = out.roi().width;
   const int height = out.roi().height;
+  if (m_count == 2) {
+    const auto w0 = static_cast<std::uint16_t>(m_weights_q8[0]);
+    const auto w1 = static_cast<std::uint16_t>(m_weights_q8[1]);
+    for (int y = 0; y < height; ++y) {
+      row_max[y] = combineTwoRow(inputs[0]->row(y), inputs[1]->row(y), width, w0, w1, out.row(y));
+    }
+    return;
+  }
   std::uint16_t* acc = m_accumulator.data();
   for (int y = 0; y < height; ++y) {
     std::fill(acc, acc + width, static_cast<std::uint16_t>(0));
