@@ -128,6 +128,19 @@ int main(int argc, char** argv) {
                 s.distance_p95_pct);
     std::printf("  step [us]: median %.1f  p95 %.1f  (valid %d/%d)\n", s.step_median_us, s.step_p95_us,
                 s.valid, s.frames);
+    // By range: where each method's n stops following 1/d^2 shows up here.
+    const double bins[] = {0.0, 100.0, 200.0, 400.0, 1e300};
+    for (int b = 0; b < 4; ++b) {
+      const far_eval::Summary r = far_eval::summarise(records, bins[b], bins[b + 1]);
+      if (r.frames == 0) continue;
+      std::printf(
+          "  range %s: %4d frames, right %5.1f %%, direction median %.4f deg, distance median %.2f %%\n",
+          b == 0   ? "   < 100 m"
+          : b == 1 ? "100-200 m"
+          : b == 2 ? "200-400 m"
+                   : "  >= 400 m",
+          r.frames, 100.0 * r.rightFraction(), r.direction_median_deg, r.distance_median_pct);
+    }
     const bool gated = methods.size() == 1 || methods[m] == "robust";
     if (!gated) continue;
     if (req.direction_median_deg >= 0.0)

@@ -24,19 +24,20 @@ void HistogramFilter::buildBins16(std::uint16_t max_code) {
 }
 
 void HistogramFilter::countBins8(const ImageView8& view, const Roi& roi) {
-  // Four interleaved partial histograms: consecutive equal samples (the dark background) would otherwise
-  // serialise on one counter.
+  // Four interleaved partial histograms: neighbouring background samples often share a grey level, and
+  // incrementing the same counter again before its last store has retired stalls.
   std::uint32_t part[4][256] = {};
+  const int width = roi.width;
   for (int y = roi.y0; y < roi.y0 + roi.height; ++y) {
     const std::uint8_t* row = view.row(y) + roi.x0;
     int x = 0;
-    for (; x + 4 <= roi.width; x += 4) {
+    for (; x + 4 <= width; x += 4) {
       ++part[0][row[x]];
       ++part[1][row[x + 1]];
       ++part[2][row[x + 2]];
       ++part[3][row[x + 3]];
     }
-    for (; x < roi.width; ++x) ++part[0][row[x]];
+    for (; x < width; ++x) ++part[0][row[x]];
   }
   for (int b = 0; b < 256; ++b) m_histogram[b] = part[0][b] + part[1][b] + part[2][b] + part[3][b];
 }
@@ -50,7 +51,7 @@ void HistogramFilter::countBins16(const ImageView16& view, const Roi& roi) {
 }
 
 void HistogramFilter::countOutside(const MonoImage& image, const Roi& roi) {
-  constexpr int kRowStep = 2;
+  constexpr int kRowStep = 4;
   constexpr int kColumnStep = 4;
   constexpr std::uint32_t kWeight = kRowStep * kColumnStep;
   const bool eight_bit = image.depth == MonoImage::Depth::kU8;

@@ -112,12 +112,13 @@ far::GammaEstimate calibrateFromRecords(const std::vector<FrameRecord>& records,
   return far::calibrateGamma(samples);
 }
 
-Summary summarise(const std::vector<FrameRecord>& records) {
+Summary summarise(const std::vector<FrameRecord>& records, double min_range_m, double max_range_m) {
   Summary s;
   std::vector<double> direction;
   std::vector<double> distance;
   std::vector<double> step;
   for (const FrameRecord& r : records) {
+    if (r.truth_range_m < min_range_m || r.truth_range_m >= max_range_m) continue;
     ++s.frames;
     s.valid += r.valid ? 1 : 0;
     s.right += r.right_target ? 1 : 0;

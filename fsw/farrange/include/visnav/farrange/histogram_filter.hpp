@@ -17,7 +17,7 @@ class HistogramFilter final : public ResponseFilter {
   /// Init-time: allocates the 16-bit binning table.
   void init(double beta);
   /// Eq. 11 is over the whole image. When on and a region of interest is searched, the pixels outside it
-  /// are still counted, on a sparse grid (every 2nd row, every 4th column, weight 8), so G inside the region
+  /// are still counted, on a sparse grid (every 4th row and column, weight 16), so G inside the region
   /// is the full frame's G (a smaller population would make the target's bins look less rare).
   void setCountOutsideRoi(bool on) { m_count_outside = on; }
   const char* name() const override { return "histogram"; }

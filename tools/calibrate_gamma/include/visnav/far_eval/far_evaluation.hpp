@@ -71,7 +71,9 @@ struct Summary {
   }
 };
 
-Summary summarise(const std::vector<FrameRecord>& records);
+/// Over the records with truth range in [min_range_m, max_range_m).
+Summary summarise(const std::vector<FrameRecord>& records, double min_range_m = 0.0,
+                  double max_range_m = 1e300);
 
 /// Per-frame CSV (header + one row per record).
 LoadError writeRecordsCsv(const std::string& path, const char* method,
