@@ -22,7 +22,8 @@ constexpr int kExitBadInput = 2;
 const char* const kUsage =
     "usage: visnav-eval --sequence DIR --replay replay.csv [--plot errors.png] [--csv per_frame_errors.csv]\n"
     "                   [--json summary.json] [--envelope-px 1.0,0.25] [--envelope-stride N]\n"
-    "                   [--require-tracked-all] [--min-inside-fraction F [--inside-envelope-px D]]\n";
+    "                   [--require-tracked-all] [--min-inside-fraction F [--inside-envelope-px D]]\n"
+    "                   [--symmetry x180|y180|z180 ...]  (model rotations that look the same)\n";
 
 struct Args {
   std::string sequence, replay, plot, csv, json;
@@ -74,6 +75,11 @@ std::string parseArgs(int argc, char** argv, Args& a) {
         a.eval.envelope_px.push_back(x);
         start = comma + 1;
       }
+    } else if (opt == "--symmetry") {
+      const int axis = v == "x180" ? 0 : (v == "y180" ? 1 : (v == "z180" ? 2 : -1));
+      if (axis < 0) return "--symmetry: expected x180, y180 or z180, got '" + v + "'";
+      a.eval.model_symmetries.push_back(
+          Eigen::AngleAxisd(visnav::kPi, visnav::Vec3::Unit(axis)).toRotationMatrix());
     } else if (opt == "--envelope-stride") {
       if (!parseNumber(v, x) || x < 1.0 || x != static_cast<int>(x))
         return "--envelope-stride: expected a positive integer, got '" + v + "'";

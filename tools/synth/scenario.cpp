@@ -15,13 +15,18 @@ double wave(double amp, double period_frames, int frame) {
 }  // namespace
 
 int Trajectory::frameCount() const {
+  if (step_rel > 0.0) {
+    const double factor = d_end_m >= d_start_m ? 1.0 + step_rel : 1.0 - step_rel;
+    return static_cast<int>(std::floor(std::log(d_end_m / d_start_m) / std::log(factor) + 1e-6)) + 1;
+  }
   // The tolerance absorbs 20 / 0.01 = 1999.9999999999998 style round-off.
   return static_cast<int>(std::floor(std::abs(d_end_m - d_start_m) / step_m + 1e-6)) + 1;
 }
 
 Pose Trajectory::pose(int frame) const {
   const double dir = d_end_m >= d_start_m ? 1.0 : -1.0;
-  const double distance = d_start_m + dir * step_m * frame;
+  const double distance = step_rel > 0.0 ? d_start_m * std::pow(1.0 + dir * step_rel, frame)
+                                          : d_start_m + dir * step_m * frame;
   const YawPitchRoll ypr{(base_yaw_deg + wave(yaw_amp_deg, yaw_period_frames, frame)) * kRadPerDeg,
                          (base_pitch_deg + wave(pitch_amp_deg, pitch_period_frames, frame)) * kRadPerDeg,
                          (base_roll_deg + wave(roll_amp_deg, roll_period_frames, frame)) * kRadPerDeg};
@@ -65,7 +70,10 @@ LoadError loadScenario(const std::string& path, Scenario& out) {
   Trajectory& t = s.trajectory;
   r.getDouble("trajectory.d_start_m", t.d_start_m, true);
   r.getDouble("trajectory.d_end_m", t.d_end_m, true);
-  r.getDouble("trajectory.step_m", t.step_m, true);
+  const bool geometric = r.has("trajectory.step_rel");
+  r.getDouble("trajectory.step_rel", t.step_rel);
+  r.getDouble("trajectory.step_m", t.step_m, !geometric);
+  if (geometric) r.checkRange("trajectory.step_rel", t.step_rel, 1e-6, 0.5);
   r.getDouble("trajectory.rate_hz", t.rate_hz, true);
   r.checkRange("trajectory.d_start_m", t.d_start_m, 0.1, 1e5);
   r.checkRange("trajectory.d_end_m", t.d_end_m, 0.1, 1e5);

@@ -20,6 +20,8 @@ struct Trajectory {
   double d_start_m = 25.0;
   double d_end_m = 5.0;
   double step_m = 0.01;
+  /// > 0: geometric steps instead, d(i) = d_start (1 -/+ step_rel)^i (constant time-to-go approach).
+  double step_rel = 0.0;
   double rate_hz = 5.0;
   double base_yaw_deg = 0.0;
   double base_pitch_deg = 0.0;

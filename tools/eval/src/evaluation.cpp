@@ -37,8 +37,19 @@ Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
       rec.status = it->second->status;
       if (isTracked(rec.status) && it->second->has_pose) {
         rec.scored = true;
-        rec.error = poseError(it->second->pose, t.pose);
-        rec.attitude_error_deg = attitudeErrorDeg(it->second->pose, t.pose);
+        Pose reference = t.pose;
+        double best_deg = attitudeErrorDeg(it->second->pose, t.pose);
+        for (const Mat3& symmetry : options.model_symmetries) {
+          Pose twin = t.pose;
+          twin.R_c_m = t.pose.R_c_m * symmetry;
+          const double deg = attitudeErrorDeg(it->second->pose, twin);
+          if (deg < best_deg) {
+            best_deg = deg;
+            reference = twin;
+          }
+        }
+        rec.error = poseError(it->second->pose, reference);
+        rec.attitude_error_deg = best_deg;
         for (int a = 0; a < kAxisCount; ++a) axis_errors[a].push_back(rec.error[a]);
         attitude_errors.push_back(rec.attitude_error_deg);
       }

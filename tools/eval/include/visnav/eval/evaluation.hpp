@@ -55,6 +55,10 @@ struct EvaluationSummary {
 struct EvaluationOptions {
   std::vector<double> envelope_px{1.0, 0.25};
   int envelope_stride = 1;  ///< envelope on every n-th truth frame (index in the truth list)
+  /// Rotations S of the model frame under which the model looks the same (e.g. 180 deg about the normal of
+  /// a uniform rectangular plate). Each estimate is scored against the equivalent truth (R S, t) nearest to
+  /// it: an acquisition that picks the symmetric twin is not an error the camera could see.
+  std::vector<Mat3> model_symmetries;
   EnvelopeOptions envelope;
 };
 

@@ -1,0 +1,51 @@
+// FDIR monitor (issue 3): per-frame checks of the near-range measurement (edge-point inlier ratio, usable
+// lines, LM residual and convergence, innovation against the Kalman prediction, range and image bounds)
+// and of the frame itself (age). Faults are counted per bit; a near-range fault held for
+// fault_persistence_frames consecutive frames asks the mode manager to fall back to far range. Pure logic.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "visnav/navigation/nav_solution.hpp"
+#include "visnav/navigation/navigation_params.hpp"
+#include "visnav/nearrange/near_range_tracker.hpp"
+
+namespace visnav::nav {
+
+struct NearRangeCheck {
+  const NearRangeResult* near = nullptr;  ///< required
+  bool innovation_checked = false;        ///< a filter prediction existed to compare with
+  bool innovation_accepted = true;        ///< the filter's NIS gate
+  bool centre_in_image = true;            ///< the estimated target centre projects inside the image
+};
+
+class FdirMonitor {
+ public:
+  void init(const NavigationParams& params);
+  /// Clears the consecutive-fault count (after a mode change); cumulative counters stay.
+  void resetPersistence() { m_consecutive = 0; }
+
+  /// Checks one near-range frame; returns the fault bits raised and records them.
+  std::uint32_t checkNearRange(const NearRangeCheck& check);
+  /// Frame-level check, any mode: kFaultFrameAge when the frame is older than max_frame_age_ms.
+  std::uint32_t checkFrameAge(double age_ms);
+  /// Records faults found elsewhere (no frame, far range without target, acquisition failure, slips).
+  void raise(std::uint32_t bits);
+  /// Ends the frame: the bits raised since the last endFrame() become the active set.
+  std::uint32_t endFrame();
+
+  bool faultPersisted() const { return m_consecutive >= m_params.fault_persistence_frames; }
+  int consecutiveFaultFrames() const { return m_consecutive; }
+  std::uint32_t activeFaults() const { return m_active; }
+  const std::array<std::uint32_t, kFaultBitCount>& faultCounts() const { return m_counts; }
+
+ private:
+  NavigationParams m_params;
+  std::uint32_t m_pending = 0;
+  std::uint32_t m_active = 0;
+  int m_consecutive = 0;
+  std::array<std::uint32_t, kFaultBitCount> m_counts{};
+};
+
+}  // namespace visnav::nav

@@ -1,0 +1,66 @@
+// Mode management (issue 3): standby, far range, acquisition, near range. Distance conditions must hold for
+// `enter_frames` consecutive frames and the two distance thresholds are apart, so measurement noise around
+// one threshold never makes the mode chatter. Every transition is recorded with its reason. Pure logic:
+// no allocation, no I/O.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "visnav/core/status.hpp"
+#include "visnav/navigation/nav_solution.hpp"
+#include "visnav/navigation/navigation_params.hpp"
+
+namespace visnav::nav {
+
+/// What the estimators said this frame, as far as the mode decision needs.
+struct ModeInputs {
+  bool far_valid = false;  ///< far range found the target (far range mode)
+  double far_distance_m = 0.0;
+  bool acquisition_succeeded = false;
+  bool acquisition_failed = false;    ///< acquisition gave up on its own
+  bool near_fault_persisted = false;  ///< FDIR: a near-range fault held fault_persistence_frames
+  bool range_known = false;           ///< a distance estimate exists (filter or near range)
+  double range_m = 0.0;
+};
+
+class ModeManager {
+ public:
+  LoadError init(const NavigationParams& params);
+  /// Back to the start mode, counters and history cleared.
+  void reset();
+
+  NavMode mode() const { return m_mode; }
+  /// Frames spent in the current mode (1 on the frame of entry).
+  std::uint32_t framesInMode() const { return m_frames_in_mode; }
+  /// Decides the mode for the next frame from this frame's inputs. True when the mode changed.
+  bool step(const ModeInputs& in, std::uint64_t frame_number);
+  /// Ground command: validated against the current mode; the acknowledgment says why when rejected.
+  bool command(ModeCommandKind kind, std::uint32_t command_id, bool far_fix_available,
+               std::uint64_t frame_number, CommandAck& ack);
+  /// Forces a transition (e.g. the pipeline's own fault handling); no-op when already in `to`.
+  void transition(NavMode to, const char* reason, std::uint64_t frame_number);
+
+  const ModeTransition& lastTransition() const { return m_last; }
+  std::uint64_t transitionCount() const { return m_transitions; }
+
+ private:
+  NavigationParams m_params;
+  NavMode m_mode = NavMode::kFarRange;
+  std::uint32_t m_frames_in_mode = 0;
+  int m_close_count = 0;  ///< consecutive frames below acquire_below_m (far range)
+  int m_far_count = 0;    ///< consecutive frames above far_range_above_m (near range)
+  ModeTransition m_last;
+  std::uint64_t m_transitions = 0;
+};
+
+/// Copies a C string into a fixed NUL-terminated buffer, truncating.
+template <std::size_t N>
+void copyReason(std::array<char, N>& out, const char* text) {
+  std::size_t i = 0;
+  for (; text != nullptr && text[i] != '\0' && i + 1 < N; ++i) out[i] = text[i];
+  out[i] = '\0';
+}
+
+}  // namespace visnav::nav

@@ -1,0 +1,57 @@
+#include "visnav/navigation/fdir_monitor.hpp"
+
+namespace visnav::nav {
+
+void FdirMonitor::init(const NavigationParams& params) {
+  m_params = params;
+  m_pending = 0;
+  m_active = 0;
+  m_consecutive = 0;
+  m_counts.fill(0);
+}
+
+std::uint32_t FdirMonitor::checkNearRange(const NearRangeCheck& check) {
+  std::uint32_t bits = 0;
+  const NearRangeResult& r = *check.near;
+  if (r.lines_used < m_params.min_usable_lines) bits |= kFaultTooFewLines;
+  // Inlier ratio over the points of the lines that were used (rejected lines are already counted above).
+  if (r.edge_points > 0 && r.lines_used > 0 &&
+      static_cast<double>(r.inlier_points) < m_params.min_inlier_ratio * static_cast<double>(r.edge_points))
+    bits |= kFaultInlierRatio;
+  if ((r.flags & kFlagSolverFailed) != 0U) bits |= kFaultNotConverged;
+  if (r.status != TrackStatus::kLost && r.rms_px > m_params.max_rms_px) bits |= kFaultResidual;
+  if ((r.flags & kFlagResidualTooHigh) != 0U) bits |= kFaultResidual;
+  if (r.status == TrackStatus::kLost && (r.flags & (kFlagNoSurface | kFlagTooFewLines)) != 0U)
+    bits |= kFaultTooFewLines;
+  if (check.innovation_checked && !check.innovation_accepted) bits |= kFaultInnovation;
+  if (r.status != TrackStatus::kLost) {
+    const double z = r.pose.t_c_m.z();
+    if (!(z >= m_params.min_range_m && z <= m_params.max_range_m) || !check.centre_in_image)
+      bits |= kFaultImplausible;
+  }
+  if ((r.flags & kFlagOutOfImage) != 0U) bits |= kFaultImplausible;
+  raise(bits);
+  m_consecutive = bits != 0U ? m_consecutive + 1 : 0;
+  return bits;
+}
+
+std::uint32_t FdirMonitor::checkFrameAge(double age_ms) {
+  const std::uint32_t bits =
+      m_params.max_frame_age_ms > 0.0 && age_ms > m_params.max_frame_age_ms ? kFaultFrameAge : 0U;
+  raise(bits);
+  return bits;
+}
+
+void FdirMonitor::raise(std::uint32_t bits) {
+  m_pending |= bits;
+  for (int b = 0; b < kFaultBitCount; ++b)
+    if ((bits & (1U << b)) != 0U) ++m_counts[static_cast<std::size_t>(b)];
+}
+
+std::uint32_t FdirMonitor::endFrame() {
+  m_active = m_pending;
+  m_pending = 0;
+  return m_active;
+}
+
+}  // namespace visnav::nav

@@ -1,0 +1,106 @@
+#include "visnav/navigation/mode_manager.hpp"
+
+#include <string>
+
+namespace visnav::nav {
+
+LoadError ModeManager::init(const NavigationParams& params) {
+  if (const char* problem = params.crossCheck())
+    return LoadError::failure(std::string("navigation: ") + problem);
+  m_params = params;
+  reset();
+  return LoadError::success();
+}
+
+void ModeManager::reset() {
+  m_mode = static_cast<NavMode>(m_params.start_mode);
+  m_frames_in_mode = 0;
+  m_close_count = 0;
+  m_far_count = 0;
+  m_last = ModeTransition{};
+  m_last.from = m_mode;
+  m_last.to = m_mode;
+  copyReason(m_last.reason, "start");
+  m_transitions = 0;
+}
+
+void ModeManager::transition(NavMode to, const char* reason, std::uint64_t frame_number) {
+  if (to == m_mode) return;
+  m_last.from = m_mode;
+  m_last.to = to;
+  m_last.frame_number = frame_number;
+  copyReason(m_last.reason, reason);
+  ++m_transitions;
+  m_mode = to;
+  m_frames_in_mode = 0;
+  m_close_count = 0;
+  m_far_count = 0;
+}
+
+bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
+  const NavMode before = m_mode;
+  ++m_frames_in_mode;
+  switch (m_mode) {
+    case NavMode::kStandby: break;  // only a resume command leaves standby
+    case NavMode::kFarRange:
+      m_close_count = in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
+      if (m_close_count >= m_params.enter_frames)
+        transition(NavMode::kAcquisition, "far range: target close enough", frame_number);
+      break;
+    case NavMode::kAcquisition:
+      if (in.acquisition_succeeded) {
+        transition(NavMode::kNearRange, "acquisition: first pose confirmed", frame_number);
+      } else if (in.acquisition_failed) {
+        transition(NavMode::kFarRange, "acquisition: failed", frame_number);
+      } else if (m_frames_in_mode >= static_cast<std::uint32_t>(m_params.acquisition_timeout_frames)) {
+        transition(NavMode::kFarRange, "acquisition: timeout", frame_number);
+      }
+      break;
+    case NavMode::kNearRange:
+      m_far_count = in.range_known && in.range_m > m_params.far_range_above_m ? m_far_count + 1 : 0;
+      if (in.near_fault_persisted) {
+        transition(NavMode::kFarRange, "near range: persistent fault", frame_number);
+      } else if (m_far_count >= m_params.enter_frames) {
+        transition(NavMode::kFarRange, "near range: target beyond far_range_above_m", frame_number);
+      }
+      break;
+  }
+  return m_mode != before;
+}
+
+bool ModeManager::command(ModeCommandKind kind, std::uint32_t command_id, bool far_fix_available,
+                          std::uint64_t frame_number, CommandAck& ack) {
+  ack = CommandAck{};
+  ack.command_id = command_id;
+  ack.kind = kind;
+  const char* rejection = nullptr;
+  switch (kind) {
+    case ModeCommandKind::kForceFarRange:
+      if (m_mode == NavMode::kStandby)
+        rejection = "in standby: send resume first";
+      else
+        transition(NavMode::kFarRange, "command: force far range", frame_number);
+      break;
+    case ModeCommandKind::kReacquire:
+      if (m_mode == NavMode::kStandby)
+        rejection = "in standby: send resume first";
+      else if (!far_fix_available)
+        rejection = "no far-range fix to acquire from";
+      else
+        transition(NavMode::kAcquisition, "command: re-acquire", frame_number);
+      break;
+    case ModeCommandKind::kStandby: transition(NavMode::kStandby, "command: standby", frame_number); break;
+    case ModeCommandKind::kResume:
+      if (m_mode != NavMode::kStandby)
+        rejection = "not in standby";
+      else
+        transition(NavMode::kFarRange, "command: resume", frame_number);
+      break;
+    default: rejection = "unknown command"; break;
+  }
+  ack.accepted = rejection == nullptr;
+  copyReason(ack.reason, ack.accepted ? "ok" : rejection);
+  return ack.accepted;
+}
+
+}  // namespace visnav::nav

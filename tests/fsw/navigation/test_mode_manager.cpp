@@ -1,0 +1,190 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "visnav/core/rng.hpp"
+#include "visnav/navigation/fdir_monitor.hpp"
+#include "visnav/navigation/mode_manager.hpp"
+
+namespace visnav::nav {
+namespace {
+
+ModeInputs farAt(double d) {
+  ModeInputs in;
+  in.far_valid = true;
+  in.far_distance_m = d;
+  return in;
+}
+ModeInputs nearAt(double d) {
+  ModeInputs in;
+  in.range_known = true;
+  in.range_m = d;
+  return in;
+}
+
+TEST(ModeManager, FarRangeHandsOverOnlyAfterEnterFramesBelowTheThreshold) {
+  ModeManager m;
+  ASSERT_TRUE(m.init(NavigationParams{}).ok);
+  EXPECT_EQ(m.mode(), NavMode::kFarRange);
+  EXPECT_FALSE(m.step(farAt(29.0), 1));
+  EXPECT_FALSE(m.step(farAt(29.0), 2));
+  EXPECT_FALSE(m.step(farAt(31.0), 3));  // the count restarts
+  EXPECT_FALSE(m.step(farAt(29.0), 4));
+  EXPECT_FALSE(m.step(farAt(29.0), 5));
+  EXPECT_TRUE(m.step(farAt(29.0), 6));
+  EXPECT_EQ(m.mode(), NavMode::kAcquisition);
+  EXPECT_EQ(m.lastTransition().frame_number, 6U);
+  EXPECT_STREQ(m.lastTransition().reason.data(), "far range: target close enough");
+  EXPECT_EQ(m.transitionCount(), 1U);
+}
+
+TEST(ModeManager, NoiseAroundAThresholdNeverChatters) {
+  // A range estimate oscillating with +-3 m noise around 35 m, between the two thresholds' midpoint:
+  // after the first hand-over no further transition may happen.
+  ModeManager m;
+  ASSERT_TRUE(m.init(NavigationParams{}).ok);
+  Pcg32 rng(3);
+  for (int i = 0; i < 10; ++i) m.step(farAt(25.0), static_cast<std::uint64_t>(i));
+  ModeInputs ok;
+  ok.acquisition_succeeded = true;
+  m.step(ok, 10);
+  ASSERT_EQ(m.mode(), NavMode::kNearRange);
+  const std::uint64_t before = m.transitionCount();
+  for (int i = 11; i < 2000; ++i)
+    m.step(nearAt(35.0 + 3.0 * (2.0 * rng.uniform() - 1.0)), static_cast<std::uint64_t>(i));
+  EXPECT_EQ(m.transitionCount(), before);
+  EXPECT_EQ(m.mode(), NavMode::kNearRange);
+}
+
+TEST(ModeManager, NearRangeFallsBackOnPersistentFaultAndOnDistance) {
+  ModeManager m;
+  NavigationParams p;
+  p.start_mode = static_cast<int>(NavMode::kNearRange);
+  ASSERT_TRUE(m.init(p).ok);
+  ModeInputs fault = nearAt(10.0);
+  fault.near_fault_persisted = true;
+  EXPECT_TRUE(m.step(fault, 1));
+  EXPECT_EQ(m.mode(), NavMode::kFarRange);
+  EXPECT_STREQ(m.lastTransition().reason.data(), "near range: persistent fault");
+
+  m.transition(NavMode::kNearRange, "test", 2);
+  for (int i = 0; i < p.enter_frames - 1; ++i) EXPECT_FALSE(m.step(nearAt(41.0), 3));
+  EXPECT_TRUE(m.step(nearAt(41.0), 4));
+  EXPECT_EQ(m.mode(), NavMode::kFarRange);
+}
+
+TEST(ModeManager, AcquisitionTimesOut) {
+  ModeManager m;
+  NavigationParams p;
+  p.start_mode = static_cast<int>(NavMode::kAcquisition);
+  p.acquisition_timeout_frames = 4;
+  ASSERT_TRUE(m.init(p).ok);
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(m.step(ModeInputs{}, static_cast<std::uint64_t>(i)));
+  EXPECT_TRUE(m.step(ModeInputs{}, 3));
+  EXPECT_EQ(m.mode(), NavMode::kFarRange);
+  EXPECT_STREQ(m.lastTransition().reason.data(), "acquisition: timeout");
+}
+
+TEST(ModeManager, CommandsAreValidatedAndAcknowledged) {
+  ModeManager m;
+  ASSERT_TRUE(m.init(NavigationParams{}).ok);
+  CommandAck ack;
+  EXPECT_FALSE(m.command(ModeCommandKind::kResume, 7, false, 1, ack));
+  EXPECT_EQ(ack.command_id, 7U);
+  EXPECT_STREQ(ack.reason.data(), "not in standby");
+  EXPECT_FALSE(m.command(ModeCommandKind::kReacquire, 8, false, 1, ack));
+  EXPECT_STREQ(ack.reason.data(), "no far-range fix to acquire from");
+  EXPECT_TRUE(m.command(ModeCommandKind::kStandby, 9, false, 2, ack));
+  EXPECT_EQ(m.mode(), NavMode::kStandby);
+  for (int i = 0; i < 10; ++i) m.step(farAt(5.0), 3);  // standby ignores the estimators
+  EXPECT_EQ(m.mode(), NavMode::kStandby);
+  EXPECT_FALSE(m.command(ModeCommandKind::kForceFarRange, 10, true, 4, ack));
+  EXPECT_TRUE(m.command(ModeCommandKind::kResume, 11, false, 5, ack));
+  EXPECT_EQ(m.mode(), NavMode::kFarRange);
+  EXPECT_TRUE(m.command(ModeCommandKind::kReacquire, 12, true, 6, ack));
+  EXPECT_EQ(m.mode(), NavMode::kAcquisition);
+  EXPECT_STREQ(ack.reason.data(), "ok");
+  EXPECT_FALSE(m.command(static_cast<ModeCommandKind>(42), 13, true, 7, ack));
+  EXPECT_STREQ(ack.reason.data(), "unknown command");
+}
+
+TEST(ModeManager, InitRejectsThresholdsWithoutHysteresis) {
+  ModeManager m;
+  NavigationParams p;
+  p.far_range_above_m = p.acquire_below_m;
+  EXPECT_FALSE(m.init(p).ok);
+}
+
+NearRangeResult goodNear() {
+  NearRangeResult r;
+  r.status = TrackStatus::kTracking;
+  r.lines_total = 4;
+  r.lines_used = 4;
+  r.edge_points = 100;
+  r.inlier_points = 95;
+  r.rms_px = 0.1;
+  r.pose.t_c_m = Vec3(0, 0, 10);
+  return r;
+}
+
+TEST(Fdir, EachCheckRaisesItsBit) {
+  FdirMonitor f;
+  f.init(NavigationParams{});
+  NearRangeResult r = goodNear();
+  NearRangeCheck c;
+  c.near = &r;
+  EXPECT_EQ(f.checkNearRange(c), 0U);
+  r.lines_used = 2;
+  EXPECT_EQ(f.checkNearRange(c), kFaultTooFewLines);
+  r = goodNear();
+  r.inlier_points = 40;
+  EXPECT_EQ(f.checkNearRange(c), kFaultInlierRatio);
+  r = goodNear();
+  r.rms_px = 1.5;
+  EXPECT_EQ(f.checkNearRange(c), kFaultResidual);
+  r = goodNear();
+  r.flags = kFlagSolverFailed;
+  EXPECT_EQ(f.checkNearRange(c), kFaultNotConverged);
+  r = goodNear();
+  c.innovation_checked = true;
+  c.innovation_accepted = false;
+  EXPECT_EQ(f.checkNearRange(c), kFaultInnovation);
+  c = NearRangeCheck{};
+  c.near = &r;
+  r.pose.t_c_m.z() = 0.5;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r = goodNear();
+  c.centre_in_image = false;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  EXPECT_EQ(f.checkFrameAge(200.0), kFaultFrameAge);
+  EXPECT_EQ(f.checkFrameAge(10.0), 0U);
+  EXPECT_EQ(f.faultCounts()[2], 1U);  // residual
+  EXPECT_EQ(f.faultCounts()[5], 2U);  // implausible twice
+}
+
+TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
+  FdirMonitor f;
+  NavigationParams p;
+  p.fault_persistence_frames = 3;
+  f.init(p);
+  NearRangeResult bad = goodNear();
+  bad.lines_used = 0;
+  NearRangeResult good = goodNear();
+  NearRangeCheck cb, cg;
+  cb.near = &bad;
+  cg.near = &good;
+  f.checkNearRange(cb);
+  f.checkNearRange(cb);
+  f.checkNearRange(cg);  // one good frame clears the run
+  f.checkNearRange(cb);
+  f.checkNearRange(cb);
+  EXPECT_FALSE(f.faultPersisted());
+  f.checkNearRange(cb);
+  EXPECT_TRUE(f.faultPersisted());
+  EXPECT_EQ(f.endFrame(), kFaultTooFewLines);
+  EXPECT_EQ(f.endFrame(), 0U);  // the active set is per frame
+}
+
+}  // namespace
+}  // namespace visnav::nav
