@@ -16,6 +16,7 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   const double lambdas[2] = {params.edge_weight, params.histogram_weight};
   LoadError error = m_sum.setWeights(lambdas, 2);
   if (!error.ok) return error;
+  m_extra_count = 0;
   const int w = camera.width();
   const int h = camera.height();
   EdgeFilterSettings edge;
@@ -38,6 +39,23 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   m_t_in_q = static_cast<std::uint8_t>(std::floor(params.t_in * 255.0));
   m_t_out_q = static_cast<std::uint8_t>(std::floor(params.t_out * 255.0));
   reset();
+  return LoadError::success();
+}
+
+LoadError FarRangeEstimator::setExtraFilters(ResponseFilter* const* filters, int count,
+                                             const double* weights) {
+  if (count < 0 || count > kMaxExtraFilters) return LoadError::failure("far range: 0 to 6 extra filters");
+  for (int i = 0; i < count; ++i) {
+    if (filters[i] == nullptr)
+      return LoadError::failure("far range: extra filter " + std::to_string(i) + " is null");
+  }
+  LoadError error = m_sum.setWeights(weights, 2 + count);  // eq. 14 over all filters
+  if (!error.ok) return error;
+  for (int i = 0; i < count; ++i) {
+    m_extra_filters[static_cast<std::size_t>(i)] = filters[i];
+    m_extra_responses[static_cast<std::size_t>(i)].init(m_camera.width(), m_camera.height());
+  }
+  m_extra_count = count;
   return LoadError::success();
 }
 
@@ -72,7 +90,14 @@ void FarRangeEstimator::searchRegion(const MonoImage& image, const Roi& roi, Far
   out.timing.edge_us += elapsedUs(stamp);
   m_histogram.apply(image, roi, m_histogram_response);
   out.timing.histogram_us += elapsedUs(stamp);
-  const ResponseImage* inputs[2] = {&m_edge_response, &m_histogram_response};
+  const ResponseImage* inputs[WeightedSum::kMaxInputs] = {&m_edge_response, &m_histogram_response};
+  for (int i = 0; i < m_extra_count; ++i) {
+    ResponseImage& response = m_extra_responses[static_cast<std::size_t>(i)];
+    response.setRoi(roi);
+    m_extra_filters[static_cast<std::size_t>(i)]->apply(image, roi, response);
+    inputs[2 + i] = &response;
+  }
+  out.timing.extra_us += m_extra_count > 0 ? elapsedUs(stamp) : 0.0;
   m_sum.apply(inputs, m_combined, m_row_max.data());
   out.timing.combine_us += elapsedUs(stamp);
   m_finder.find(m_combined, m_row_max.data(), m_t_in_q, m_t_out_q);

@@ -220,3 +220,50 @@ TEST(FarRangeEstimator, FillsTheNavigationSolution) {
 
 }  // namespace
 }  // namespace visnav::far
+
+namespace visnav::far {
+namespace {
+
+// A third filter (sec. III-B: "it is always possible to add or modify the filters"): brightness itself.
+class BrightnessFilter final : public ResponseFilter {
+ public:
+  const char* name() const override { return "brightness"; }
+  void apply(const MonoImage& image, const Roi& roi, ResponseImage& out) override {
+    for (int y = 0; y < roi.height; ++y)
+      for (int x = 0; x < roi.width; ++x) out.row(y)[x] = image.u8.at(roi.x0 + x, roi.y0 + y);
+  }
+};
+
+TEST(FarRangeEstimator, TheFilterSetIsOpen) {
+  Scene s;
+  const test::FarFrame f = s.frame(test::satAt(300.0, 1.0, 1.0));
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(s.camera, FarRangeParams{}).ok);
+  BrightnessFilter brightness;
+  ResponseFilter* extra[1] = {&brightness};
+  const double bad[3] = {0.5, 0.5, 0.2};
+  EXPECT_FALSE(e.setExtraFilters(extra, 1, bad).ok);  // eq. 14
+  const double weights[3] = {0.4, 0.4, 0.2};
+  ASSERT_TRUE(e.setExtraFilters(extra, 1, weights).ok);
+  FarRangeResult r;
+  e.estimate(f.image(), r);
+  ASSERT_TRUE(r.valid);
+  EXPECT_LT(angleDeg(r.direction_c, f.truth.t_c_m.normalized()), 0.05);
+  // S is eq. 13 over the three responses, weights in 1/256: 0.4 -> 102.4 -> 102, 0.2 -> 51.2 -> 51; the sum
+  // 255 is made 256 by the largest (the first) weight: 103, 102, 51. Checked over a window on the target.
+  int checked = 0;
+  for (int y = static_cast<int>(r.centroid_px.y()) - 5; y <= static_cast<int>(r.centroid_px.y()) + 5; ++y) {
+    for (int x = static_cast<int>(r.centroid_px.x()) - 20; x <= static_cast<int>(r.centroid_px.x()) + 20;
+         ++x) {
+      const int edge = e.edgeResponse().atImage(x, y);
+      const int rarity = e.histogramResponse().atImage(x, y);
+      const int bright = f.pixels[static_cast<std::size_t>(y * 640 + x)];
+      EXPECT_EQ(e.combinedResponse().atImage(x, y), (103 * edge + 102 * rarity + 51 * bright) / 256);
+      checked += edge > 0 && edge < 255 && rarity > 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(checked, 10);  // the window holds non-trivial responses
+}
+
+}  // namespace
+}  // namespace visnav::far

@@ -7,6 +7,7 @@
 // the image size or a capacity fixed at init.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "visnav/core/image_view.hpp"
@@ -40,6 +41,7 @@ enum FarRangeFlag : std::uint32_t {
 struct FarRangeTiming {
   double edge_us = 0.0;
   double histogram_us = 0.0;
+  double extra_us = 0.0;  ///< filters added with setExtraFilters()
   double combine_us = 0.0;
   double cluster_us = 0.0;
   double select_us = 0.0;
@@ -72,6 +74,11 @@ class FarRangeEstimator {
   /// Allocates every buffer for the camera's image size. Rejects invalid parameters (eq. 14 included).
   LoadError init(const PinholeCamera& camera, const FarRangeParams& params);
   void setClock(MonotonicClockNs clock) { m_clock = clock; }
+  /// Init-time (after init()): more low-level filters next to the edge and histogram filters (the filter set
+  /// is open, sec. III-B). `weights` lists all 2 + count weights of eq. 13 (edge, histogram, extras) and must
+  /// sum to 1 (eq. 14); they replace edge_weight / histogram_weight. The filters are not owned and must live
+  /// as long as the estimator. count 0 keeps the two filters with the two weights given.
+  LoadError setExtraFilters(ResponseFilter* const* filters, int count, const double* weights);
   /// Forget the track (after a mode change or a ground command).
   void reset();
   /// Optional prediction for the next frame from a navigation filter: gates the robust selection like a
@@ -128,6 +135,10 @@ class FarRangeEstimator {
   EdgeFilter m_edge;
   HistogramFilter m_histogram;
   WeightedSum m_sum;
+  static constexpr int kMaxExtraFilters = WeightedSum::kMaxInputs - 2;
+  std::array<ResponseFilter*, kMaxExtraFilters> m_extra_filters{};
+  std::array<ResponseImage, kMaxExtraFilters> m_extra_responses;
+  int m_extra_count = 0;
   ClusterFinder m_finder;
   ResponseImage m_edge_response;
   ResponseImage m_histogram_response;
