@@ -4,18 +4,11 @@
 // 300 m with the scenario's noise (full-frame search unless the name says roi).
 #include <benchmark/benchmark.h>
 
-#include <ctime>
-
 #include "../fsw/farrange/far_fixture.hpp"
+#include "visnav/executive/clock.hpp"
 
 namespace visnav {
 namespace {
-
-std::int64_t monotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
-}
 
 struct Scene {
   PinholeCamera camera;
@@ -45,7 +38,7 @@ void BM_FarRangeStep(benchmark::State& state) {
   const Scene& s = scene(static_cast<int>(state.range(0)));
   far::FarRangeEstimator estimator;
   estimator.init(s.camera, paramsFor(static_cast<int>(state.range(2)), state.range(3) != 0));
-  estimator.setClock(&monotonicNs);
+  estimator.setClock(&exec::monotonicNowNs);
   far::FarRangeResult r;
   estimator.estimate(s.frame.image(), r);  // establishes the track for the ROI variant
   far::FarRangeTiming sum;

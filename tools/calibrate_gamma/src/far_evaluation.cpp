@@ -3,22 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
 
 #include "visnav/eval/metrics.hpp"
+#include "visnav/executive/clock.hpp"
 #include "visnav/farrange/far_range_estimator.hpp"
 
 namespace visnav::far_eval {
 namespace {
-
-std::int64_t monotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
-}
 
 double angleDeg(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)) * kDegPerRad; }
 
@@ -31,7 +25,7 @@ LoadError runSequence(const replay::Sequence& sequence, const far::FarRangeParam
   far::FarRangeEstimator estimator;
   LoadError e = estimator.init(camera, params);
   if (!e.ok) return e;
-  estimator.setClock(&monotonicNs);
+  estimator.setClock(&exec::monotonicNowNs);
   std::unordered_map<std::int64_t, const replay::TruthRow*> truth;
   for (const replay::TruthRow& row : sequence.truth) truth[row.frame] = &row;
   const int w = camera.width();
