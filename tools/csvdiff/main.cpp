@@ -1,7 +1,9 @@
 // visnav-csvdiff: numeric comparison of two CSV files with the same header (e.g. the x86 and the arm64
 // visnav-replay output of one sequence). Exit 0 when every cell matches, 1 on a difference, 2 on bad input.
-//   visnav-csvdiff A.csv B.csv [--abs-tol X] [--rel-tol R] [--ignore COL[,COL...]] [--ignore-prefix P]
-// Numeric cells match when |a - b| <= abs_tol + rel_tol * max(|a|, |b|); other cells must be equal.
+//   visnav-csvdiff A.csv B.csv [--abs-tol X] [--rel-tol R] [--column-tol PATTERN=ABS[:REL]]...
+//                  [--ignore COL[,COL...]] [--ignore-prefix P]
+// Numeric cells match when |a - b| <= abs_tol + rel_tol * max(|a|, |b|), with the tolerance of the first
+// --column-tol whose PATTERN (a column name, or a prefix followed by '*') matches; other cells must be equal.
 #include <cstdio>
 #include <string>
 
@@ -18,6 +20,13 @@ int main(int argc, char** argv) {
       options.abs_tol = std::stod(argv[++i]);
     } else if (arg == "--rel-tol" && has_value) {
       options.rel_tol = std::stod(argv[++i]);
+    } else if (arg == "--column-tol" && has_value) {
+      visnav::csvdiff::ColumnTolerance rule;
+      if (!visnav::csvdiff::parseColumnTolerance(argv[++i], rule)) {
+        std::fprintf(stderr, "visnav-csvdiff: --column-tol wants PATTERN=ABS[:REL], got '%s'\n", argv[i]);
+        return 2;
+      }
+      options.column_tols.push_back(rule);
     } else if (arg == "--ignore" && has_value) {
       visnav::csvdiff::splitInto(argv[++i], ',', options.ignored_columns);
     } else if (arg == "--ignore-prefix" && has_value) {
@@ -26,8 +35,8 @@ int main(int argc, char** argv) {
       paths[n_paths++] = arg;
     } else {
       std::fprintf(stderr,
-                   "usage: visnav-csvdiff A.csv B.csv [--abs-tol X] [--rel-tol R] [--ignore COL,...] "
-                   "[--ignore-prefix P]\n");
+                   "usage: visnav-csvdiff A.csv B.csv [--abs-tol X] [--rel-tol R] "
+                   "[--column-tol PATTERN=ABS[:REL]]... [--ignore COL,...] [--ignore-prefix P]\n");
       return 2;
     }
   }

@@ -56,6 +56,41 @@ TEST(CsvDiff, ReportsPerColumnAndIgnoresTimingColumns) {
   EXPECT_NE(formatReport(report, o).find("DIFFERENT: 1 cells"), std::string::npos);
 }
 
+TEST(CsvDiff, ColumnTolerancesFirstMatchWins) {
+  CompareOptions o;
+  o.abs_tol = 1e-9;
+  ColumnTolerance rule;
+  ASSERT_TRUE(parseColumnTolerance("pitch_deg=0.3", rule));
+  EXPECT_EQ(rule.pattern, "pitch_deg");
+  EXPECT_DOUBLE_EQ(rule.abs_tol, 0.3);
+  EXPECT_DOUBLE_EQ(rule.rel_tol, 0.0);
+  o.column_tols.push_back(rule);
+  ASSERT_TRUE(parseColumnTolerance("cov_*=1e-5:0.05", rule));
+  EXPECT_EQ(rule.pattern, "cov_*");
+  EXPECT_DOUBLE_EQ(rule.rel_tol, 0.05);
+  o.column_tols.push_back(rule);
+  EXPECT_FALSE(parseColumnTolerance("=1", rule));
+  EXPECT_FALSE(parseColumnTolerance("x_m", rule));
+  EXPECT_FALSE(parseColumnTolerance("x_m=abc", rule));
+  EXPECT_FALSE(parseColumnTolerance("x_m=-1", rule));
+  EXPECT_FALSE(parseColumnTolerance("x_m=1:", rule));
+
+  EXPECT_DOUBLE_EQ(toleranceFor("pitch_deg", o).abs_tol, 0.3);
+  EXPECT_DOUBLE_EQ(toleranceFor("pitch_deg_x", o).abs_tol, 1e-9);  // exact name, not a prefix
+  EXPECT_DOUBLE_EQ(toleranceFor("cov_1_5", o).abs_tol, 1e-5);
+  EXPECT_DOUBLE_EQ(toleranceFor("x_m", o).abs_tol, 1e-9);
+
+  const std::string a = "x_m,pitch_deg,cov_0_0\n1.0,10.0,0.002\n";
+  const std::string b = "x_m,pitch_deg,cov_0_0\n1.0,10.2,0.00209\n";  // pitch inside 0.3; cov 1e-5+1.05e-4
+  CompareReport report;
+  std::string error;
+  ASSERT_TRUE(compareCsv(a, b, o, report, error)) << error;
+  EXPECT_EQ(report.mismatched_cells, 0);
+  const std::string c = "x_m,pitch_deg,cov_0_0\n1.000001,10.4,0.0023\n";  // all three outside
+  ASSERT_TRUE(compareCsv(a, c, o, report, error)) << error;
+  EXPECT_EQ(report.mismatched_cells, 3);
+}
+
 TEST(CsvDiff, RefusesDifferentShapes) {
   CompareReport report;
   std::string error;

@@ -67,6 +67,32 @@ void splitInto(const std::string& text, char separator, std::vector<std::string>
   }
 }
 
+bool parseColumnTolerance(const std::string& text, ColumnTolerance& out) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) return false;
+  out.pattern = text.substr(0, eq);
+  const std::string values = text.substr(eq + 1);
+  const std::size_t colon = values.find(':');
+  out.rel_tol = 0.0;
+  if (!asNumber(values.substr(0, colon), out.abs_tol) || out.abs_tol < 0.0) return false;
+  if (colon == std::string::npos) return true;
+  return asNumber(values.substr(colon + 1), out.rel_tol) && out.rel_tol >= 0.0;
+}
+
+CompareOptions toleranceFor(const std::string& column, const CompareOptions& options) {
+  CompareOptions chosen = options;
+  for (const ColumnTolerance& rule : options.column_tols) {
+    const bool prefix = !rule.pattern.empty() && rule.pattern.back() == '*';
+    const std::string stem = prefix ? rule.pattern.substr(0, rule.pattern.size() - 1) : rule.pattern;
+    if (prefix ? column.compare(0, stem.size(), stem) == 0 : column == stem) {
+      chosen.abs_tol = rule.abs_tol;
+      chosen.rel_tol = rule.rel_tol;
+      break;
+    }
+  }
+  return chosen;
+}
+
 bool cellsMatch(const std::string& a, const std::string& b, const CompareOptions& options, double& abs_diff) {
   abs_diff = 0.0;
   double x = 0.0;
@@ -97,7 +123,11 @@ bool compareCsv(const std::string& a, const std::string& b, const CompareOptions
     return false;
   }
   const Row& header = rows_a.front();
-  for (const std::string& name : header) report.columns.push_back({name, isIgnored(name, options), 0.0, 0});
+  std::vector<CompareOptions> column_options;
+  for (const std::string& name : header) {
+    report.columns.push_back({name, isIgnored(name, options), 0.0, 0});
+    column_options.push_back(toleranceFor(name, options));
+  }
   for (std::size_t r = 1; r < rows_a.size(); ++r) {
     if (rows_a[r].size() != header.size() || rows_b[r].size() != header.size()) {
       error = "data line " + std::to_string(r) + " has a different number of cells than the header";
@@ -108,7 +138,7 @@ bool compareCsv(const std::string& a, const std::string& b, const CompareOptions
       if (column.ignored) continue;
       ++report.compared_cells;
       double diff = 0.0;
-      const bool match = cellsMatch(rows_a[r][c], rows_b[r][c], options, diff);
+      const bool match = cellsMatch(rows_a[r][c], rows_b[r][c], column_options[c], diff);
       column.max_abs_diff = std::max(column.max_abs_diff, diff);
       if (match) continue;
       ++column.mismatches;

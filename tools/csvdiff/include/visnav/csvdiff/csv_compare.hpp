@@ -6,9 +6,17 @@
 
 namespace visnav::csvdiff {
 
+/// A tolerance for the columns matching `pattern`: a column name, or a name prefix followed by '*'.
+struct ColumnTolerance {
+  std::string pattern;
+  double abs_tol = 0.0;
+  double rel_tol = 0.0;
+};
+
 struct CompareOptions {
   double abs_tol = 0.0;  ///< numeric cells: |a - b| <= abs_tol + rel_tol * max(|a|, |b|)
   double rel_tol = 0.0;
+  std::vector<ColumnTolerance> column_tols;   ///< per-column tolerances; the first match wins over the above
   std::vector<std::string> ignored_columns;   ///< exact column names not compared
   std::vector<std::string> ignored_prefixes;  ///< columns whose name starts with one of these
 };
@@ -30,6 +38,12 @@ struct CompareReport {
 
 /// Splits `text` at `separator` and appends the pieces to `out`.
 void splitInto(const std::string& text, char separator, std::vector<std::string>& out);
+
+/// Parses "PATTERN=ABS" or "PATTERN=ABS:REL" (e.g. "cov_*=1e-5:0.05"). False on a malformed text.
+bool parseColumnTolerance(const std::string& text, ColumnTolerance& out);
+
+/// The tolerance that applies to `column` (a copy of `options` with abs_tol/rel_tol of the first match).
+CompareOptions toleranceFor(const std::string& column, const CompareOptions& options);
 
 /// True when the cells match: numerically within the tolerance, or as equal text when not both numbers.
 bool cellsMatch(const std::string& a, const std::string& b, const CompareOptions& options, double& abs_diff);

@@ -1,0 +1,68 @@
+# Install layout (FHS, prefix /usr in the packages) and the Debian packages (CPack DEB) for amd64 and arm64.
+# Included last from the top-level CMakeLists.txt. Executables install themselves (visnav_add_tool);
+# this file adds the data, the systemd unit(s), the ground-tool interface, and the package description.
+#   bin/                          daemon and tools (visnav_add_tool)
+#   share/visnav/config/          default config, parameter reference, Cyclone DDS configs, cameras, models,
+#                                 scenarios (everything under config/ except systemd units)
+#   lib/systemd/system/           every systemd unit under config/ (*.service, *.socket, *.timer)
+#   include/visnav/idl/           visnav.idl and the header idlc generates from it (ground tools)
+#   share/doc/visnav/             README.md
+# The libraries are static and linked into the executables: nothing else goes to lib/.
+set(VISNAV_UNIT_PATTERNS *.service *.socket *.timer)
+set(_visnav_unit_excludes)
+set(_visnav_units)
+foreach(pattern IN LISTS VISNAV_UNIT_PATTERNS)
+  list(APPEND _visnav_unit_excludes PATTERN ${pattern} EXCLUDE)
+  file(GLOB_RECURSE _found CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/config/${pattern})
+  list(APPEND _visnav_units ${_found})
+endforeach()
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${CMAKE_INSTALL_DATADIR}/visnav/config
+        ${_visnav_unit_excludes})
+if(_visnav_units)
+  install(FILES ${_visnav_units} DESTINATION lib/systemd/system)
+endif()
+install(FILES ${PROJECT_SOURCE_DIR}/idl/visnav.idl DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/visnav/idl)
+if(TARGET visnav_telemetry)
+  install(FILES ${CMAKE_BINARY_DIR}/fsw/telemetry/idl/visnav.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/visnav/idl)
+endif()
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+# Debian package "visnav" for the architecture being built (the cross build makes the arm64 one).
+if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(aarch64|arm64)$")
+  set(VISNAV_DEB_ARCH arm64)
+elseif(CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$")
+  set(VISNAV_DEB_ARCH amd64)
+else()
+  set(VISNAV_DEB_ARCH ${CMAKE_SYSTEM_PROCESSOR})
+endif()
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME visnav)
+set(CPACK_PACKAGE_VENDOR "visnav")
+set(CPACK_PACKAGE_CONTACT "visnav maintainers <visnav@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Monocular vision navigation for spacecraft rendezvous (flight daemon, tools)")
+set(CPACK_PACKAGE_DESCRIPTION "Real-time navigation fix on a passive client satellite from one camera: \
+far-range direction and distance, near-range 6-DOF edge tracking, DDS telemetry, replay, synthetic and \
+evaluation tools.")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # visnav_<version>_<arch>.deb
+set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE ${VISNAV_DEB_ARCH})
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
+# Run-time dependencies from the ELF files (dpkg-shlibdeps: libc6, libstdc++6, libgcc-s1, Cyclone DDS
+# libddsc0debian, libtomlplusplus3; libcamera once an installed executable links it); works for the arm64
+# binaries too because the arm64 libraries are installed as multiarch packages.
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS OFF)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_LIST_DIR}/deb/postinst)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
+include(CPack)
+
+# The amd64 package: built with cpack, unpacked into a scratch root (dpkg -x, no root needed), contents and
+# control fields checked, and the packaged visnav-params validates the packaged default config.
+if(VISNAV_BUILD_TESTS AND NOT CMAKE_CROSSCOMPILING)
+  add_test(NAME package_deb_contents
+           COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${CMAKE_BINARY_DIR} -DARCH=${VISNAV_DEB_ARCH}
+                   -DVERSION=${PROJECT_VERSION} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+                   -P ${PROJECT_SOURCE_DIR}/tests/package/check_deb.cmake)
+  set_tests_properties(package_deb_contents PROPERTIES LABELS package TIMEOUT 600 RUN_SERIAL ON)
+endif()
