@@ -2,7 +2,8 @@
 # arm64 CI step (issue 5): the flight computer's build, tested under qemu-aarch64 on the x86-64 host.
 #  1. installs what is missing (scripts/install-cross-deps.sh: cross g++, qemu-user, arm64 -dev packages);
 #  2. configures and builds the `aarch64` preset (Cortex-A53 flags, release -O2, warnings as errors);
-#  3. runs the unit tests under qemu-aarch64 (`ctest --preset aarch64`: label unit, exclusions there);
+#  3. runs the unit tests under qemu-aarch64 and the instruction-count table once (`ctest --preset aarch64`:
+#     labels unit and armcost; exclusions and reasons in toolchains/README.md);
 #  4. renders the approach_ci sequence with the x86 release visnav-synth, replays it with the arm64
 #     visnav-replay under qemu-aarch64 and with the x86 visnav-replay (same sequence, both with the built-in
 #     default parameters), and compares the two CSVs with visnav-csvdiff (tolerances below).
