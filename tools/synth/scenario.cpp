@@ -30,8 +30,8 @@ Pose Trajectory::pose(int frame) const {
   const YawPitchRoll ypr{(base_yaw_deg + wave(yaw_amp_deg, yaw_period_frames, frame)) * kRadPerDeg,
                          (base_pitch_deg + wave(pitch_amp_deg, pitch_period_frames, frame)) * kRadPerDeg,
                          (base_roll_deg + wave(roll_amp_deg, roll_period_frames, frame)) * kRadPerDeg};
-  Vec3 t(wave(lateral_x_amp_m, lateral_x_period_frames, frame), wave(lateral_y_amp_m, lateral_y_period_frames, frame),
-         distance);
+  Vec3 t(wave(lateral_x_amp_m, lateral_x_period_frames, frame),
+         wave(lateral_y_amp_m, lateral_y_period_frames, frame), distance);
   if (lateral_x_amp_deg != 0.0)
     t.x() += distance * std::tan(wave(lateral_x_amp_deg, lateral_x_period_frames, frame) * kRadPerDeg);
   if (lateral_y_amp_deg != 0.0)

@@ -62,7 +62,8 @@ LoadError Renderer::init(const PinholeCamera& camera, const PolygonModel& model,
       return bad("bars need first_frame <= last_frame and positive length and width");
   }
   for (const Glint& g : o.glints) {
-    if (g.last_frame < g.first_frame || !(g.sigma_px > 0.0)) return bad("glints need first <= last, sigma > 0");
+    if (g.last_frame < g.first_frame || !(g.sigma_px > 0.0))
+      return bad("glints need first <= last, sigma > 0");
   }
 
   m_camera = camera;

@@ -121,7 +121,7 @@ class Renderer {
   std::vector<double> m_radiance;
   std::vector<double> m_image;
   std::vector<double> m_tmp;
-  std::vector<int> m_surface_part;   // part index per surface
+  std::vector<int> m_surface_part;    // part index per surface
   std::vector<Vec3> m_part_centroid;  // model frame
   std::vector<int> m_part_order;      // far to near, per frame
   std::vector<double> m_frame_background;
