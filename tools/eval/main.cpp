@@ -23,10 +23,12 @@ const char* const kUsage =
     "usage: visnav-eval --sequence DIR --replay replay.csv [--plot errors.png] [--csv per_frame_errors.csv]\n"
     "                   [--json summary.json] [--envelope-px 1.0,0.25] [--envelope-stride N]\n"
     "                   [--require-tracked-all] [--min-inside-fraction F [--inside-envelope-px D]]\n"
-    "                   [--symmetry x180|y180|z180 ...]  (model rotations that look the same)\n";
+    "                   [--symmetry x180|y180|z180 ...]  (model rotations that look the same)\n"
+    "                   [--timeline modes.png] [--max-far-direction-median-deg X]\n"
+    "                   [--max-far-distance-median-pct X] [--require-final-mode MODE]\n";
 
 struct Args {
-  std::string sequence, replay, plot, csv, json;
+  std::string sequence, replay, plot, timeline, csv, json;
   visnav::eval::EvaluationOptions eval;
   visnav::eval::Requirements req;
   bool inside_px_given = false;
@@ -61,6 +63,23 @@ std::string parseArgs(int argc, char** argv, Args& a) {
       a.replay = v;
     } else if (opt == "--plot") {
       a.plot = v;
+    } else if (opt == "--timeline") {
+      a.timeline = v;
+    } else if (opt == "--max-far-direction-median-deg") {
+      if (!parseNumber(v, x) || !(x >= 0.0))
+        return "--max-far-direction-median-deg: expected >= 0, got '" + v + "'";
+      a.req.check_far_direction = true;
+      a.req.max_far_direction_median_deg = x;
+    } else if (opt == "--max-far-distance-median-pct") {
+      if (!parseNumber(v, x) || !(x >= 0.0))
+        return "--max-far-distance-median-pct: expected >= 0, got '" + v + "'";
+      a.req.check_far_distance = true;
+      a.req.max_far_distance_median_pct = x;
+    } else if (opt == "--require-final-mode") {
+      if (!visnav::eval::parseReplayMode(v, a.req.final_mode))
+        return "--require-final-mode: expected standby, far_range, acquisition or near_range, got '" + v +
+               "'";
+      a.req.check_final_mode = true;
     } else if (opt == "--csv") {
       a.csv = v;
     } else if (opt == "--json") {
@@ -154,6 +173,7 @@ int main(int argc, char** argv) {
   std::printf("evaluation time: %.2f s (envelopes on every %d. frame)\n", seconds, args.eval.envelope_stride);
 
   if (!args.plot.empty()) err = eval::writeErrorPlot(args.plot, ev);
+  if (err.ok && !args.timeline.empty()) err = eval::writeModeTimeline(args.timeline, ev);
   if (err.ok && !args.csv.empty()) err = eval::writeFrameCsv(args.csv, ev);
   if (err.ok && !args.json.empty())
     err = eval::writeSummaryJson(args.json, ev, req, args.sequence, args.replay);

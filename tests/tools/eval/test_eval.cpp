@@ -135,6 +135,71 @@ TEST(Metrics, StatsOnHandComputedExample) {
   EXPECT_EQ(absStats({}).count, 0);
 }
 
+TEST(Metrics, FarRangeErrorOnHandComputedCases) {
+  FarRangeError e;
+  // Truth on the boresight at 100 m; 0.1 deg off in azimuth and 110 m: 0.1 deg, +10 %.
+  ASSERT_TRUE(farRangeError(directionFromAzimuthElevation(0.1 * kRadPerDeg, 0.0), 110.0, Vec3(0, 0, 100), e));
+  EXPECT_NEAR(e.direction_deg, 0.1, 1e-12);
+  EXPECT_NEAR(e.distance_pct, 10.0, 1e-12);
+  // t = (3, -4, 12): range 13, distance z = 12. The exact line of sight (az = atan2(3, 12), el =
+  // atan2(4, hypot(3, 12))) at 13 m is 0 deg and +8.333 % (distance is along the boresight, not the range).
+  const Vec3 u = directionFromAzimuthElevation(std::atan2(3.0, 12.0), std::atan2(4.0, std::hypot(3.0, 12.0)));
+  EXPECT_NEAR((u - Vec3(3, -4, 12) / 13.0).norm(), 0.0, 1e-15);
+  ASSERT_TRUE(farRangeError(5.0 * u, 13.0, Vec3(3, -4, 12), e));  // the direction need not be unit
+  EXPECT_NEAR(e.direction_deg, 0.0, 1e-12);
+  EXPECT_NEAR(e.distance_pct, 100.0 / 12.0, 1e-12);
+  // Elevation is up-positive: +45 deg is (0, -1, 1) / sqrt(2); the truth (0, 1, 1) is 45 deg below: 90 deg
+  // apart.
+  ASSERT_TRUE(farRangeError(directionFromAzimuthElevation(0.0, kPi / 4), 9.0, Vec3(0, 1, 1), e));
+  EXPECT_NEAR(e.direction_deg, 90.0, 1e-12);
+  EXPECT_NEAR(e.distance_pct, 800.0, 1e-9);
+  EXPECT_FALSE(farRangeError(Vec3(0, 0, 1), 10.0, Vec3(0, 0, -5), e));  // truth behind the camera
+  EXPECT_FALSE(farRangeError(Vec3::Zero(), 10.0, Vec3(0, 0, 5), e));
+}
+
+TEST(ReplayCsv, ModeAndFarRangeColumnsAreOptional) {
+  std::istringstream in(
+      "frame,status,mode,x_m,y_m,z_m,qw,qx,qy,qz,fault_bits,far_valid,far_azimuth_deg,far_elevation_deg,"
+      "far_distance_m\n"
+      "0,init,standby,,,,,,,,0,0,0,0,0\n"
+      "1,init,far_range,,,,,,,,0,1,-1.5,0.25,612.5\n"
+      "2,tracking,near_range,0,0,5,1,0,0,0,0,,,,\n");
+  std::vector<ReplayRow> rows;
+  LoadError err = parseReplayCsv(in, "r.csv", rows);
+  ASSERT_TRUE(err.ok) << err.message;
+  ASSERT_EQ(rows.size(), 3U);
+  EXPECT_EQ(rows[0].mode, ReplayMode::kStandby);
+  EXPECT_FALSE(rows[0].far_valid);
+  EXPECT_EQ(rows[1].mode, ReplayMode::kFarRange);
+  EXPECT_TRUE(rows[1].far_valid);
+  EXPECT_DOUBLE_EQ(rows[1].far_azimuth_deg, -1.5);
+  EXPECT_DOUBLE_EQ(rows[1].far_elevation_deg, 0.25);
+  EXPECT_DOUBLE_EQ(rows[1].far_distance_m, 612.5);
+  EXPECT_EQ(rows[2].mode, ReplayMode::kNearRange);
+  EXPECT_FALSE(rows[2].far_valid);
+  // An old CSV (no mode, no far columns) still loads, with unknown mode.
+  std::istringstream old("frame,status,x_m,y_m,z_m,qw,qx,qy,qz\n0,tracking,0,0,1,1,0,0,0\n");
+  ASSERT_TRUE(parseReplayCsv(old, "old.csv", rows).ok);
+  EXPECT_EQ(rows[0].mode, ReplayMode::kUnknown);
+  EXPECT_FALSE(rows[0].far_valid);
+  const char* bad[][2] = {
+      {"frame,status,x_m,y_m,z_m,qw,qx,qy,qz,mode\n0,init,,,,,,,,far\n", "'mode'"},
+      {"frame,status,x_m,y_m,z_m,qw,qx,qy,qz,far_valid,far_azimuth_deg,far_elevation_deg,far_distance_m\n"
+       "0,init,,,,,,,,1,,0,100\n",
+       "'far_azimuth_deg'"},
+      {"frame,status,x_m,y_m,z_m,qw,qx,qy,qz,far_valid,far_azimuth_deg,far_elevation_deg\n",
+       "'far_distance_m'"},
+      {"frame,status,x_m,y_m,z_m,qw,qx,qy,qz,far_valid,far_azimuth_deg,far_elevation_deg,far_distance_m\n"
+       "0,init,,,,,,,,yes,0,0,100\n",
+       "'far_valid'"}};
+  for (const auto& [text, column] : bad) {
+    std::istringstream b(text);
+    err = parseReplayCsv(b, "r.csv", rows);
+    ASSERT_FALSE(err.ok) << text;
+    EXPECT_NE(err.message.find(column), std::string::npos) << err.message;
+  }
+}
+
 TEST(Envelope, PlateUsesItsFourVerticesExhaustively) {
   const PolygonModel plate = makeRectanglePlate(2.3, 1.8);
   EXPECT_EQ(envelopeVertices(plate, plateTruth(15.0, 0.0), 50.0).size(), 4U);
@@ -283,6 +348,79 @@ TEST(Report, CsvAndJsonCarryEveryFrameAndEnvelope) {
   writeSummaryJson(json, ev, {}, "seq", "r.csv");
   EXPECT_NE(json.str().find("\"inside_fraction\": 1"), std::string::npos) << json.str();
   EXPECT_NE(json.str().find("\"passed\": true"), std::string::npos);
+}
+
+// Frames 0..7 at z = 25 - 2.5 i, y = 0 (elevation 0, so an azimuth offset is the direction error): standby,
+// 3 far-range frames with hand-set errors, acquisition (far_valid 0), 3 tracked near-range frames.
+TEST(Evaluation, FarRangeErrorsModesAndTransitions) {
+  std::vector<TruthPose> truth;
+  std::vector<ReplayRow> rows;
+  const ReplayMode modes[8] = {ReplayMode::kStandby,   ReplayMode::kFarRange,    ReplayMode::kFarRange,
+                               ReplayMode::kFarRange,  ReplayMode::kAcquisition, ReplayMode::kNearRange,
+                               ReplayMode::kNearRange, ReplayMode::kNearRange};
+  const double az_offset_deg[8] = {0, 0.03, 0.01, 0.2, 0.5, 0, 0, 0};
+  const double distance_factor[8] = {1, 1.02, 1.05, 0.90, 1.5, 1, 1, 1};
+  for (int i = 0; i < 8; ++i) {
+    Pose p = plateTruth(25.0 - 2.5 * i, 0.1 * i);
+    p.t_c_m.y() = 0.0;
+    truth.push_back({i, 1000000LL * i, p});
+    ReplayRow r{i, 1000000LL * i, i >= 5 ? TrackStatus::kTracking : TrackStatus::kInit, i >= 5, p};
+    r.mode = modes[i];
+    r.far_valid = i >= 1 && i <= 3;  // frame 4's far values are there but not valid: not scored
+    r.far_azimuth_deg = std::atan2(p.t_c_m.x(), p.t_c_m.z()) * kDegPerRad + az_offset_deg[i];
+    r.far_distance_m = p.t_c_m.z() * distance_factor[i];
+    rows.push_back(r);
+  }
+  EvaluationOptions options = fastOptions();
+  options.envelope_px.clear();
+  const Evaluation ev = evaluate(vga(), makeRectanglePlate(2.3, 1.8), truth, rows, options);
+  const EvaluationSummary& s = ev.summary;
+  // |direction| sorted 0.01 0.03 0.2: median 0.03, p95 at rank 1.9 = 0.03 + 0.9 * 0.17 = 0.183, max 0.2.
+  EXPECT_EQ(s.far_direction_deg.count, 3);
+  EXPECT_NEAR(s.far_direction_deg.median, 0.03, 1e-9);
+  EXPECT_NEAR(s.far_direction_deg.p95, 0.183, 1e-9);
+  EXPECT_NEAR(s.far_direction_deg.max, 0.2, 1e-9);
+  // |distance| 2 5 10 [%]: median 5, p95 5 + 0.9 * 5 = 9.5, max 10; frame 3 is -10 % (signed per frame).
+  EXPECT_NEAR(s.far_distance_pct.median, 5.0, 1e-9);
+  EXPECT_NEAR(s.far_distance_pct.p95, 9.5, 1e-9);
+  EXPECT_NEAR(ev.frames[3].far_error.distance_pct, -10.0, 1e-9);
+  EXPECT_FALSE(ev.frames[4].far_scored);
+  EXPECT_TRUE(s.has_modes);
+  EXPECT_EQ(s.mode_frames, (std::array<int, kReplayModeCount>{1, 3, 1, 3}));
+  EXPECT_EQ(s.final_mode, ReplayMode::kNearRange);
+  ASSERT_EQ(s.transitions.size(), 3U);
+  EXPECT_EQ(s.transitions[1].frame, 4);
+  EXPECT_EQ(s.transitions[1].from, ReplayMode::kFarRange);
+  EXPECT_EQ(s.transitions[1].to, ReplayMode::kAcquisition);
+  EXPECT_NE(summaryText(ev).find("mode transitions: 3 (frame 1 standby -> far_range, frame 4 far_range -> "
+                                 "acquisition, frame 5 acquisition -> near_range)"),
+            std::string::npos)
+      << summaryText(ev);
+
+  Requirements req;
+  req.check_far_direction = req.check_far_distance = req.check_final_mode = true;
+  req.max_far_direction_median_deg = 0.0301;
+  req.max_far_distance_median_pct = 5.001;
+  for (const RequirementResult& r : checkRequirements(ev, req)) EXPECT_TRUE(r.passed) << r.name << r.detail;
+  req.max_far_direction_median_deg = 0.0299;
+  req.max_far_distance_median_pct = 4.999;
+  req.final_mode = ReplayMode::kFarRange;
+  for (const RequirementResult& r : checkRequirements(ev, req)) EXPECT_FALSE(r.passed) << r.name << r.detail;
+  // No far-range frame to score and no mode column: the requirements fail instead of passing vacuously.
+  std::vector<ReplayRow> plain = perfectReplay(truth);
+  const Evaluation none = evaluate(vga(), makeRectanglePlate(2.3, 1.8), truth, plain, options);
+  for (const RequirementResult& r : checkRequirements(none, req))
+    EXPECT_FALSE(r.passed) << r.name << r.detail;
+
+  std::ostringstream csv, json;
+  writeFrameCsv(csv, ev);
+  EXPECT_NE(csv.str().find(",mode,far_scored,err_far_dir_deg,err_far_dist_pct\n"), std::string::npos);
+  EXPECT_NE(csv.str().find(",far_range,1,0.2,-10\n"), std::string::npos) << csv.str();
+  writeSummaryJson(json, ev, {}, "seq", "r.csv");
+  EXPECT_NE(json.str().find("\"final\": \"near_range\""), std::string::npos) << json.str();
+  EXPECT_NE(json.str().find("{\"frame\": 4, \"from\": \"far_range\", \"to\": \"acquisition\"}"),
+            std::string::npos);
+  EXPECT_NE(json.str().find("\"distance_pct\": {\"count\": 3, \"median\": 5"), std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -135,6 +136,61 @@ TEST(Plot, WritesAValidPng) {
   decodePng(png, width, height, raw);
   EXPECT_EQ(width, 3U * PlotOptions{}.panel_width_px);
   std::remove(path.c_str());
+}
+
+// Frames 0..7: standby, 3 far range (far errors), acquisition, 3 near range (frame 6 lost).
+Evaluation modeTimelineFixture() {
+  Evaluation ev;
+  const ReplayMode modes[8] = {ReplayMode::kStandby,   ReplayMode::kFarRange,    ReplayMode::kFarRange,
+                               ReplayMode::kFarRange,  ReplayMode::kAcquisition, ReplayMode::kNearRange,
+                               ReplayMode::kNearRange, ReplayMode::kNearRange};
+  for (int i = 0; i < 8; ++i) {
+    FrameRecord f;
+    f.frame = i;
+    f.distance_m = 100.0 - 10.0 * i;
+    f.mode = modes[i];
+    f.status = i == 6 ? TrackStatus::kLost : (i >= 5 ? TrackStatus::kTracking : TrackStatus::kInit);
+    f.far_scored = f.mode == ReplayMode::kFarRange;
+    f.far_error = {0.01 * i, 2.0 * i - 5.0};
+    ev.frames.push_back(f);
+  }
+  return ev;
+}
+
+TEST(Plot, ModeTimelineLanes) {
+  const Evaluation ev = modeTimelineFixture();
+  const int width = 1000;
+  const Canvas c = renderModeTimeline(ev, width);
+  ASSERT_EQ(c.height(), kTimelineHeightPx);
+  // Plot area x [170, width - 32), y [34, 240 - 74); frame k spans k +- 0.5 of [-0.5, 7.5]; lane m (0 standby
+  // ... 3 near range) spans y values [m, m + 1] of [0, 4], y = 165 - v / 4 * 131. Probes sit 0.3 frame off
+  // the centres, where the grid lines of the frame ticks are.
+  const auto x = [&](double frame) {
+    return static_cast<int>(170 + (frame + 0.8) / 8.0 * (width - 32 - 170 - 1));
+  };
+  const auto y = [](double lane_centre) { return static_cast<int>(165 - lane_centre / 4.0 * 131); };
+  const auto is = [](Rgb p, Rgb q) { return p.r == q.r && p.g == q.g && p.b == q.b; };
+  const Rgb grey{150, 150, 150}, blue{30, 90, 200}, orange{240, 150, 0}, green{0, 150, 60},
+      white{255, 255, 255};
+  EXPECT_TRUE(is(c.pixel(x(0), y(0.5)), grey));
+  EXPECT_TRUE(is(c.pixel(x(0), y(1.5)), white));
+  EXPECT_TRUE(is(c.pixel(x(2), y(1.5)), blue));
+  EXPECT_TRUE(is(c.pixel(x(4), y(2.5)), orange));
+  EXPECT_TRUE(is(c.pixel(x(4), y(3.5)), white));
+  EXPECT_TRUE(is(c.pixel(x(7), y(3.5)), green));
+  EXPECT_TRUE(is(c.pixel(x(7), y(0.5)), white));
+  const int lost_x = static_cast<int>(std::lround(170 + 6.5 / 8.0 * (width - 32 - 170 - 1)));
+  EXPECT_TRUE(is(c.pixel(lost_x, 163), Rgb{120, 120, 120}));  // frame 6 lost: grey tick on the bottom axis
+}
+
+TEST(Plot, FarRangeAndTimelineRowsOnlyWhenPresent) {
+  Evaluation ev = modeTimelineFixture();
+  const PlotOptions o;
+  EXPECT_EQ(renderErrorPlot(ev, o).height(), 44 + 3 * o.panel_height_px + kTimelineHeightPx);
+  for (FrameRecord& f : ev.frames) f.far_scored = false;
+  EXPECT_EQ(renderErrorPlot(ev, o).height(), 44 + 2 * o.panel_height_px + kTimelineHeightPx);
+  for (FrameRecord& f : ev.frames) f.mode = ReplayMode::kUnknown;
+  EXPECT_EQ(renderErrorPlot(ev, o).height(), 44 + 2 * o.panel_height_px);  // an old replay: the old plot
 }
 
 }  // namespace

@@ -12,11 +12,6 @@
 #include "visnav/farrange/far_range_estimator.hpp"
 
 namespace visnav::far_eval {
-namespace {
-
-double angleDeg(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)) * kDegPerRad; }
-
-}  // namespace
 
 LoadError runSequence(const replay::Sequence& sequence, const far::FarRangeParams& params,
                       bool reset_each_frame, std::vector<FrameRecord>& out) {
@@ -61,10 +56,11 @@ LoadError runSequence(const replay::Sequence& sequence, const far::FarRangeParam
     r.cluster_count = result.cluster_count;
     r.flags = result.flags;
     r.step_us = result.timing.total_us;
-    if (result.valid) {
-      r.direction_error_deg = angleDeg(result.direction_c, t);
+    eval::FarRangeError error;  // the definitions visnav-eval uses (tools/eval metrics.hpp)
+    if (result.valid && eval::farRangeError(result.direction_c, result.distance_m, t, error)) {
+      r.direction_error_deg = error.direction_deg;
       r.distance_m = result.distance_m;
-      r.distance_error_pct = 100.0 * (result.distance_m - r.truth_range_m) / r.truth_range_m;
+      r.distance_error_pct = error.distance_pct;
       r.right_target = r.direction_error_deg <= r.target_radius_deg + 0.1;
     }
     out.push_back(r);

@@ -5,6 +5,43 @@
 #include <unordered_map>
 
 namespace visnav::eval {
+namespace {
+
+// Far-range errors of one row against its truth frame (far_valid rows only).
+void scoreFarRange(const ReplayRow& row, const Pose& truth, FrameRecord& rec) {
+  if (!row.far_valid) return;
+  const Vec3 direction =
+      directionFromAzimuthElevation(row.far_azimuth_deg * kRadPerDeg, row.far_elevation_deg * kRadPerDeg);
+  rec.far_scored = farRangeError(direction, row.far_distance_m, truth.t_c_m, rec.far_error);
+}
+
+// Mode counts, transitions and final mode; far-range statistics.
+void summariseModesAndFarRange(const std::vector<ReplayRow>& replay, const std::vector<FrameRecord>& frames,
+                               EvaluationSummary& s) {
+  std::vector<double> direction, distance;
+  ReplayMode previous = ReplayMode::kUnknown;
+  for (const FrameRecord& f : frames) {
+    if (f.far_scored) {
+      direction.push_back(f.far_error.direction_deg);
+      distance.push_back(f.far_error.distance_pct);
+    }
+    if (f.mode == ReplayMode::kUnknown) continue;
+    ++s.mode_frames[static_cast<std::size_t>(f.mode)];
+    if (previous != ReplayMode::kUnknown && f.mode != previous)
+      s.transitions.push_back({f.frame, previous, f.mode});
+    previous = f.mode;
+  }
+  s.far_direction_deg = absStats(direction);
+  s.far_distance_pct = absStats(distance);
+  const ReplayRow* last = nullptr;
+  for (const ReplayRow& r : replay) {
+    s.has_modes = s.has_modes || r.mode != ReplayMode::kUnknown;
+    if (last == nullptr || r.frame > last->frame) last = &r;
+  }
+  if (last != nullptr) s.final_mode = last->mode;
+}
+
+}  // namespace
 
 Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
                     const std::vector<TruthPose>& truth, const std::vector<ReplayRow>& replay,
@@ -35,6 +72,8 @@ Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
     if (it != by_frame.end()) {
       ++matched;
       rec.status = it->second->status;
+      rec.mode = it->second->mode;
+      scoreFarRange(*it->second, t.pose, rec);
       if (isTracked(rec.status) && it->second->has_pose) {
         rec.scored = true;
         Pose reference = t.pose;
@@ -55,21 +94,11 @@ Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
       }
     }
     switch (rec.status) {
-      case TrackStatus::kTracking:
-        ++s.frames_tracking;
-        break;
-      case TrackStatus::kDegraded:
-        ++s.frames_degraded;
-        break;
-      case TrackStatus::kLost:
-        ++s.frames_lost;
-        break;
-      case TrackStatus::kInit:
-        ++s.frames_init;
-        break;
-      case TrackStatus::kMissing:
-        ++s.frames_missing;
-        break;
+      case TrackStatus::kTracking: ++s.frames_tracking; break;
+      case TrackStatus::kDegraded: ++s.frames_degraded; break;
+      case TrackStatus::kLost: ++s.frames_lost; break;
+      case TrackStatus::kInit: ++s.frames_init; break;
+      case TrackStatus::kMissing: ++s.frames_missing; break;
     }
     if (i % static_cast<std::size_t>(stride) == 0 && n_env > 0) {
       solver.compute(t.pose, options.envelope_px, rec.envelopes);
@@ -101,6 +130,7 @@ Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
   for (EnvelopeSummary& es : s.envelopes)
     es.inside_fraction =
         es.frames_with_envelope > 0 ? static_cast<double>(es.inside_count) / es.frames_with_envelope : 0.0;
+  summariseModesAndFarRange(replay, ev.frames, s);
   return ev;
 }
 

@@ -37,6 +37,23 @@ double attitudeErrorDeg(const Pose& estimate, const Pose& truth) {
   return logSo3(estimate.R_c_m * truth.R_c_m.transpose()).norm() * kDegPerRad;
 }
 
+Vec3 directionFromAzimuthElevation(double azimuth_rad, double elevation_rad) {
+  const double c = std::cos(elevation_rad);
+  return Vec3(c * std::sin(azimuth_rad), -std::sin(elevation_rad), c * std::cos(azimuth_rad));
+}
+
+bool farRangeError(const Vec3& direction_c, double distance_m, const Vec3& t_c_m_truth, FarRangeError& out) {
+  const double z = t_c_m_truth.z();
+  if (!direction_c.allFinite() || !t_c_m_truth.allFinite() || !std::isfinite(distance_m) || !(z > 0.0) ||
+      !(direction_c.squaredNorm() > 0.0))
+    return false;
+  // atan2(|a x b|, a . b): accurate for the hundredths of a degree that matter here (acos is not).
+  out.direction_deg =
+      std::atan2(direction_c.cross(t_c_m_truth).norm(), direction_c.dot(t_c_m_truth)) * kDegPerRad;
+  out.distance_pct = 100.0 * (distance_m - z) / z;
+  return true;
+}
+
 double percentileSorted(const std::vector<double>& sorted, double p) {
   if (sorted.empty()) return 0.0;
   const double rank = std::clamp(p, 0.0, 1.0) * static_cast<double>(sorted.size() - 1);

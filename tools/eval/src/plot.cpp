@@ -5,20 +5,11 @@
 #include <cstdio>
 #include <numeric>
 
+#include "plot_parts.hpp"
+
 namespace visnav::eval {
-namespace {
 
-constexpr Rgb kWhite{255, 255, 255};
-constexpr Rgb kBlack{0, 0, 0};
-constexpr Rgb kGrid{225, 225, 225};
-constexpr Rgb kZero{150, 150, 150};
-constexpr Rgb kError{30, 90, 200};
-constexpr Rgb kClipped{200, 0, 200};
-constexpr Rgb kLost{120, 120, 120};
-constexpr Rgb kEnvelope[] = {{220, 30, 30}, {240, 150, 0}, {0, 150, 60}, {140, 60, 180}};
-constexpr int kText = 2;  // font scale: 10x14 px characters
-
-Rgb envelopeColour(std::size_t d) { return kEnvelope[d % (sizeof(kEnvelope) / sizeof(kEnvelope[0]))]; }
+namespace plot_parts {
 
 std::string formatTick(double v, int decimals) {
   char buf[32];
@@ -27,12 +18,36 @@ std::string formatTick(double v, int decimals) {
   return buf;
 }
 
-struct Frame {
-  int left, top, right, bottom;  // plot area, pixels
-  double x_lo, x_hi, y_lo, y_hi;
-  double px(double x) const { return left + (x - x_lo) / (x_hi - x_lo) * (right - left - 1); }
-  double py(double y) const { return bottom - 1 - (y - y_lo) / (y_hi - y_lo) * (bottom - top - 1); }
-};
+void drawAxes(Canvas& c, const PlotArea& f, const std::string& title, int title_y,
+              const std::string& xlabel) {
+  c.text(f.left + (f.right - f.left - Canvas::textWidth(title, kText)) / 2, title_y, title, kBlack, kText);
+  int decimals = 0;
+  for (double t : niceTicks(f.y_lo, f.y_hi, 6, decimals)) {
+    const double y = f.py(t);
+    c.line(f.left, y, f.right - 1, y, std::fabs(t) < 1e-15 ? kZero : kGrid);
+    const std::string label = formatTick(t, decimals);
+    c.text(f.left - 8 - Canvas::textWidth(label, kText), static_cast<int>(y) - 7, label, kBlack, kText);
+  }
+  for (double t : niceTicks(f.x_lo, f.x_hi, 6, decimals)) {
+    const double x = f.px(t);
+    c.line(x, f.top, x, f.bottom - 1, kGrid);
+    c.line(x, f.bottom, x, f.bottom + 5, kBlack);
+    const std::string label = formatTick(t, decimals);
+    c.text(static_cast<int>(x) - Canvas::textWidth(label, kText) / 2, f.bottom + 9, label, kBlack, kText);
+  }
+  c.text(f.left + (f.right - f.left - Canvas::textWidth(xlabel, kText)) / 2, f.bottom + 30, xlabel, kBlack,
+         kText);
+}
+
+}  // namespace plot_parts
+
+using namespace plot_parts;
+
+namespace {
+
+constexpr Rgb kEnvelope[] = {{220, 30, 30}, {240, 150, 0}, {0, 150, 60}, {140, 60, 180}};
+
+Rgb envelopeColour(std::size_t d) { return kEnvelope[d % (sizeof(kEnvelope) / sizeof(kEnvelope[0]))]; }
 
 // Symmetric y half-range: envelopes and the bulk (p99) of the errors, so one outlier cannot flatten the rest.
 double yHalfRange(const Evaluation& ev, int axis) {
@@ -52,27 +67,8 @@ double yHalfRange(const Evaluation& ev, int axis) {
 void drawPanel(Canvas& c, const Evaluation& ev, int axis, int x0, int y0, int w, int h, double x_lo,
                double x_hi, const std::vector<std::size_t>& by_distance) {
   const double half = yHalfRange(ev, axis);
-  Frame f{x0 + 100, y0 + 34, x0 + w - 32, y0 + h - 52, x_lo, x_hi, -half, half};
-  const std::string title = std::string(axisName(axis)) + " error [" + axisUnit(axis) + "]";
-  c.text(f.left + (f.right - f.left - Canvas::textWidth(title, kText)) / 2, y0 + 10, title, kBlack, kText);
-
-  int decimals = 0;
-  for (double t : niceTicks(-half, half, 6, decimals)) {
-    const double y = f.py(t);
-    c.line(f.left, y, f.right - 1, y, std::fabs(t) < 1e-15 ? kZero : kGrid);
-    const std::string label = formatTick(t, decimals);
-    c.text(f.left - 8 - Canvas::textWidth(label, kText), static_cast<int>(y) - 7, label, kBlack, kText);
-  }
-  for (double t : niceTicks(x_lo, x_hi, 6, decimals)) {
-    const double x = f.px(t);
-    c.line(x, f.top, x, f.bottom - 1, kGrid);
-    c.line(x, f.bottom, x, f.bottom + 5, kBlack);
-    const std::string label = formatTick(t, decimals);
-    c.text(static_cast<int>(x) - Canvas::textWidth(label, kText) / 2, f.bottom + 9, label, kBlack, kText);
-  }
-  const std::string xlabel = "distance [m]";
-  c.text(f.left + (f.right - f.left - Canvas::textWidth(xlabel, kText)) / 2, f.bottom + 30, xlabel, kBlack,
-         kText);
+  const PlotArea f{x0 + 100, y0 + 34, x0 + w - 32, y0 + h - 52, x_lo, x_hi, -half, half};
+  drawAxes(c, f, std::string(axisName(axis)) + " error [" + axisUnit(axis) + "]", y0 + 10, "distance [m]");
 
   c.setClip(f.left, f.top, f.right, f.bottom);
   for (std::size_t i : by_distance) {  // lost / missing frames: grey ticks at the bottom
@@ -133,7 +129,11 @@ Canvas renderErrorPlot(const Evaluation& ev, const PlotOptions& options) {
   const int w = options.panel_width_px;
   const int h = options.panel_height_px;
   const int legend_h = 44;
-  Canvas c(3 * w, 2 * h + legend_h, kWhite);
+  // Below the six pose panels: the far-range panels (when a row had far_valid = 1), then the mode timeline
+  // (when the replay has a mode column). An old replay CSV gives the plot it always gave.
+  const int far_h = hasFarRange(ev) ? h : 0;
+  const int timeline_h = hasModes(ev) ? kTimelineHeightPx : 0;
+  Canvas c(3 * w, legend_h + 2 * h + far_h + timeline_h, kWhite);
 
   // Legend strip: title, then one swatch per series.
   int x = 16;
@@ -169,6 +169,8 @@ Canvas renderErrorPlot(const Evaluation& ev, const PlotOptions& options) {
   }
   for (int axis = 0; axis < kAxisCount; ++axis)
     drawPanel(c, ev, axis, (axis % 3) * w, legend_h + (axis / 3) * h, w, h, x_lo, x_hi, by_distance);
+  if (far_h > 0) drawFarRangePanels(c, ev, 0, legend_h + 2 * h, 3 * w, far_h);
+  if (timeline_h > 0) drawModeTimeline(c, ev, 0, legend_h + 2 * h + far_h, 3 * w, timeline_h);
   return c;
 }
 

@@ -40,21 +40,20 @@ bool parseInt64(const std::string& text, std::int64_t& out) {
 }
 
 constexpr std::array<const char*, 7> kPoseColumns = {"x_m", "y_m", "z_m", "qw", "qx", "qy", "qz"};
+constexpr std::array<const char*, 3> kFarColumns = {"far_azimuth_deg", "far_elevation_deg", "far_distance_m"};
+// Indexed by ReplayMode (kUnknown last).
+constexpr std::array<const char*, kReplayModeCount + 1> kModeNames = {"standby", "far_range", "acquisition",
+                                                                      "near_range", "unknown"};
 
 }  // namespace
 
 const char* toString(TrackStatus status) {
   switch (status) {
-    case TrackStatus::kTracking:
-      return "tracking";
-    case TrackStatus::kDegraded:
-      return "degraded";
-    case TrackStatus::kLost:
-      return "lost";
-    case TrackStatus::kInit:
-      return "init";
-    case TrackStatus::kMissing:
-      return "missing";
+    case TrackStatus::kTracking: return "tracking";
+    case TrackStatus::kDegraded: return "degraded";
+    case TrackStatus::kLost: return "lost";
+    case TrackStatus::kInit: return "init";
+    case TrackStatus::kMissing: return "missing";
   }
   return "?";
 }
@@ -72,6 +71,21 @@ bool parseTrackStatus(const std::string& text, TrackStatus& out) {
     return false;
   }
   return true;
+}
+
+const char* toString(ReplayMode mode) {
+  const auto i = static_cast<std::size_t>(mode);
+  return i < kModeNames.size() ? kModeNames[i] : "?";
+}
+
+bool parseReplayMode(const std::string& text, ReplayMode& out) {
+  for (int i = 0; i < kReplayModeCount; ++i) {
+    if (text == kModeNames[static_cast<std::size_t>(i)]) {
+      out = static_cast<ReplayMode>(i);
+      return true;
+    }
+  }
+  return false;
 }
 
 std::vector<std::string> splitCsvLine(const std::string& line) {
@@ -115,6 +129,16 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
     if (column(required) < 0)
       return LoadError::failure(where(name, header_line) + "missing column '" + required + "' in the header");
   }
+  const int mode_col = column("mode");
+  const int far_valid_col = column("far_valid");
+  std::array<int, 3> far_cols{};
+  for (std::size_t k = 0; k < kFarColumns.size(); ++k) {
+    far_cols[k] = column(kFarColumns[k]);
+    if (far_valid_col >= 0 && far_cols[k] < 0) {
+      return LoadError::failure(where(name, header_line) + "column 'far_valid' needs column '" +
+                                kFarColumns[k] + "' in the header");
+    }
+  }
 
   std::vector<ReplayRow> rows;
   std::unordered_set<std::int64_t> seen;
@@ -137,6 +161,25 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
     if (!parseTrackStatus(f[status_col], row.status)) {
       return LoadError::failure(where(name, line_no) + "column 'status': unknown status '" + f[status_col] +
                                 "' (expected tracking, degraded, lost or init)");
+    }
+    if (mode_col >= 0 && !parseReplayMode(f[mode_col], row.mode)) {
+      return LoadError::failure(where(name, line_no) + "column 'mode': unknown mode '" + f[mode_col] +
+                                "' (expected standby, far_range, acquisition or near_range)");
+    }
+    if (far_valid_col >= 0) {
+      const std::string& flag = f[far_valid_col];
+      if (flag != "" && flag != "0" && flag != "1")
+        return LoadError::failure(where(name, line_no) + "column 'far_valid': expected 0 or 1, got '" + flag +
+                                  "'");
+      row.far_valid = flag == "1";
+      std::array<double*, 3> far_values = {&row.far_azimuth_deg, &row.far_elevation_deg, &row.far_distance_m};
+      for (std::size_t k = 0; row.far_valid && k < kFarColumns.size(); ++k) {
+        const std::string& text = f[far_cols[k]];
+        if (!parseDouble(text, *far_values[k]) || !std::isfinite(*far_values[k])) {
+          return LoadError::failure(where(name, line_no) + "column '" + kFarColumns[k] + "': bad number '" +
+                                    text + "' in a far_valid row");
+        }
+      }
     }
     std::array<double, 7> v{};
     bool all_finite = true;

@@ -37,6 +37,21 @@ std::string jstr(const std::string& s) {
 
 std::string axisColumn(int a) { return std::string(axisName(a)) + "_" + axisUnit(a); }
 
+// "median 0.0312 deg over 120 far_valid frames, required <= 0.1"; fails when nothing was scored.
+RequirementResult farMedianRequirement(const char* name, const ErrorStats& stats, const char* unit,
+                                       double bound) {
+  RequirementResult r{name, stats.count > 0 && stats.median <= bound, ""};
+  r.detail = stats.count > 0
+                 ? "median " + num(stats.median) + " " + unit + " over " + std::to_string(stats.count) +
+                       " far_valid frames, required <= " + num(bound)
+                 : "no far_valid frame to score";
+  return r;
+}
+
+std::string transitionText(const ModeChange& t) {
+  return "frame " + std::to_string(t.frame) + " " + toString(t.from) + " -> " + toString(t.to);
+}
+
 }  // namespace
 
 std::vector<RequirementResult> checkRequirements(const Evaluation& ev, const Requirements& req) {
@@ -60,6 +75,19 @@ std::vector<RequirementResult> checkRequirements(const Evaluation& ev, const Req
     }
     out.push_back(r);
   }
+  if (req.check_far_direction)
+    out.push_back(farMedianRequirement("far_direction_median", s.far_direction_deg, "deg",
+                                       req.max_far_direction_median_deg));
+  if (req.check_far_distance)
+    out.push_back(farMedianRequirement("far_distance_median", s.far_distance_pct, "%",
+                                       req.max_far_distance_median_pct));
+  if (req.check_final_mode) {
+    RequirementResult r{"final_mode", s.has_modes && s.final_mode == req.final_mode, ""};
+    r.detail = s.has_modes ? std::string("last row in ") + toString(s.final_mode) + ", required " +
+                                 toString(req.final_mode)
+                           : "the replay has no mode column";
+    out.push_back(r);
+  }
   return out;
 }
 
@@ -79,7 +107,7 @@ void writeFrameCsv(std::ostream& out, const Evaluation& ev) {
     for (int a = 0; a < kAxisCount; ++a) out << ",env_" << tag << "_" << axisColumn(a);
     out << ",env_" << tag << "_att_deg,inside_" << tag;
   }
-  out << '\n';
+  out << ",mode,far_scored,err_far_dir_deg,err_far_dist_pct\n";
   for (const FrameRecord& f : ev.frames) {
     out << f.frame << ',' << f.timestamp_ns << ',' << num(f.distance_m) << ',' << toString(f.status) << ','
         << (f.scored ? 1 : 0);
@@ -99,7 +127,9 @@ void writeFrameCsv(std::ostream& out, const Evaluation& ev) {
       out << ',' << (e.valid ? num(e.max_angle_deg) : "") << ','
           << (e.valid ? (f.inside[d] ? "1" : "0") : "");
     }
-    out << '\n';
+    out << ',' << (f.mode == ReplayMode::kUnknown ? "" : toString(f.mode)) << ',' << (f.far_scored ? 1 : 0)
+        << ',' << (f.far_scored ? num(f.far_error.direction_deg) : "") << ','
+        << (f.far_scored ? num(f.far_error.distance_pct) : "") << '\n';
   }
 }
 
@@ -138,7 +168,19 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
       out << (a ? ", " : "") << jstr(axisColumn(a)) << ": " << jnum(e.max_envelope[a]);
     out << "}}";
   }
-  out << (s.envelopes.empty() ? "],\n" : "\n  ],\n") << "  \"requirements\": [";
+  out << (s.envelopes.empty() ? "],\n" : "\n  ],\n") << "  \"far_range\": {\n";
+  stats("direction_deg", s.far_direction_deg, false);
+  stats("distance_pct", s.far_distance_pct, true);
+  out << "  },\n  \"modes\": {\"frames\": {";
+  for (int m = 0; m < kReplayModeCount; ++m)
+    out << (m ? ", " : "") << jstr(toString(static_cast<ReplayMode>(m))) << ": " << s.mode_frames[m];
+  out << "}, \"final\": " << (s.has_modes ? jstr(toString(s.final_mode)) : "null") << ", \"transitions\": [";
+  for (std::size_t i = 0; i < s.transitions.size(); ++i) {
+    const ModeChange& t = s.transitions[i];
+    out << (i ? ", " : "") << "{\"frame\": " << t.frame << ", \"from\": " << jstr(toString(t.from))
+        << ", \"to\": " << jstr(toString(t.to)) << "}";
+  }
+  out << "]},\n  \"requirements\": [";
   for (std::size_t i = 0; i < req.size(); ++i) {
     out << (i ? ",\n" : "\n") << "    {\"name\": " << jstr(req[i].name)
         << ", \"passed\": " << (req[i].passed ? "true" : "false") << ", \"detail\": " << jstr(req[i].detail)
@@ -193,6 +235,25 @@ std::string summaryText(const Evaluation& ev) {
     o << insideLine(e);
     if (e.failed_solves > 0) o << "  [" << e.failed_solves << " envelope LM solves did not converge]";
     o << '\n';
+  }
+  if (s.far_direction_deg.count > 0) {
+    o << "far range (" << s.far_direction_deg.count << " far_valid frames):\n";
+    for (const auto& [label, e] : {std::make_pair("far_dir_deg", s.far_direction_deg),
+                                   std::make_pair("far_dist_pct", s.far_distance_pct)}) {
+      std::snprintf(buf, sizeof(buf), "%-12s %10.6g %12.6g %12.6g\n", label, e.median, e.p95, e.max);
+      o << buf;
+    }
+  }
+  if (s.has_modes) {
+    o << "frames per mode:";
+    for (int m = 0; m < kReplayModeCount; ++m)
+      o << (m ? ", " : " ") << toString(static_cast<ReplayMode>(m)) << ' ' << s.mode_frames[m];
+    o << "; final mode " << toString(s.final_mode) << '\n' << "mode transitions: " << s.transitions.size();
+    constexpr std::size_t kListed = 20;  // chatter would flood the console: the CSV/JSON have them all
+    for (std::size_t i = 0; i < std::min(s.transitions.size(), kListed); ++i)
+      o << (i ? ", " : " (") << transitionText(s.transitions[i]);
+    if (s.transitions.size() > kListed) o << ", ... " << s.transitions.size() - kListed << " more";
+    o << (s.transitions.empty() ? "\n" : ")\n");
   }
   return o.str();
 }

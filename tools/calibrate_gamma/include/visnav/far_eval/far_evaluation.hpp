@@ -21,9 +21,9 @@ struct FrameRecord {
   double truth_range_m = 0.0;      ///< |t_c_m|
   double target_radius_deg = 0.0;  ///< angular radius of the model's bounding sphere at that range
   bool valid = false;
-  double direction_error_deg = 0.0;  ///< angle between estimated and true line of sight
+  double direction_error_deg = 0.0;  ///< angle between estimated and true line of sight (eval::farRangeError)
   double distance_m = 0.0;
-  double distance_error_pct = 0.0;  ///< 100 * (estimate - truth) / truth
+  double distance_error_pct = 0.0;  ///< 100 * (estimate - t_c_m.z) / t_c_m.z (eval::farRangeError)
   int cluster_pixels = 0;
   int raw_pixels = 0;
   int boundary_pixels = 0;

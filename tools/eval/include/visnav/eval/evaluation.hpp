@@ -1,4 +1,5 @@
-// Scores a replay against truth: per-frame errors, worst-case envelopes, summary and requirement checks.
+// Scores a replay against truth: per-frame errors, worst-case envelopes, far-range direction/distance errors,
+// the mode timeline, summary and requirement checks.
 #pragma once
 
 #include <cstdint>
@@ -25,8 +26,18 @@ struct FrameRecord {
   bool scored = false;  ///< tracked row with a pose: errors below are meaningful
   AxisValues error{};   ///< estimate - truth [m | deg]
   double attitude_error_deg = 0.0;
-  std::vector<FrameEnvelope> envelopes;  ///< one per envelope size; invalid when not computed (stride)
-  std::vector<std::uint8_t> inside;      ///< per envelope size: scored and |error| <= envelope on all axes
+  std::vector<FrameEnvelope> envelopes;    ///< one per envelope size; invalid when not computed (stride)
+  std::vector<std::uint8_t> inside;        ///< per envelope size: scored and |error| <= envelope on all axes
+  ReplayMode mode = ReplayMode::kUnknown;  ///< of the replay row (kUnknown: no row or no mode column)
+  bool far_scored = false;                 ///< the row has far_valid = 1: far_error is meaningful
+  FarRangeError far_error{};               ///< direction [deg], signed distance [%] (metrics.hpp)
+};
+
+/// One change of the replay's mode between consecutive truth frames that have a mode.
+struct ModeChange {
+  std::int64_t frame = 0;  ///< first frame in the new mode
+  ReplayMode from = ReplayMode::kUnknown;
+  ReplayMode to = ReplayMode::kUnknown;
 };
 
 struct EnvelopeSummary {
@@ -50,6 +61,12 @@ struct EvaluationSummary {
   std::array<ErrorStats, kAxisCount> axes{};
   ErrorStats attitude{};
   std::vector<EnvelopeSummary> envelopes;
+  ErrorStats far_direction_deg{};                   ///< over the far_scored frames
+  ErrorStats far_distance_pct{};                    ///< |distance error| [%] over the far_scored frames
+  bool has_modes = false;                           ///< the replay has a mode column
+  std::array<int, kReplayModeCount> mode_frames{};  ///< truth frames per mode (ReplayMode order)
+  std::vector<ModeChange> transitions;              ///< in frame order
+  ReplayMode final_mode = ReplayMode::kUnknown;     ///< mode of the replay row with the highest frame number
 };
 
 struct EvaluationOptions {

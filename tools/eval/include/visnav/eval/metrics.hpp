@@ -1,4 +1,5 @@
-// Per-frame pose errors on the six axes of paper fig. 6 and their summary statistics.
+// Per-frame pose errors on the six axes of paper fig. 6, the far-range direction/distance errors, and their
+// summary statistics.
 #pragma once
 
 #include <array>
@@ -24,6 +25,21 @@ double wrapDeg180(double angle_deg);
 AxisValues poseError(const Pose& estimate, const Pose& truth);
 /// Total attitude error |log(R_est * R_truth^T)| [deg].
 double attitudeErrorDeg(const Pose& estimate, const Pose& truth);
+
+/// Unit line of sight in the camera frame from azimuth = atan2(x, z) and elevation = atan2(-y, hypot(x, z))
+/// (CONVENTIONS.md, NavSolution): (cos el sin az, -sin el, cos el cos az).
+Vec3 directionFromAzimuthElevation(double azimuth_rad, double elevation_rad);
+
+/// Errors of one far-range estimate (paper sec. III). Shared by visnav-eval and visnav-far-eval so both
+/// report the same numbers.
+struct FarRangeError {
+  double direction_deg =
+      0.0;  ///< angle between the estimated line of sight and the truth's t_c_m (model origin)
+  double distance_pct = 0.0;  ///< 100 (d_est - t_c_m.z) / t_c_m.z, signed; distance is along the boresight
+};
+/// `direction_c` need not be unit length. False (and `out` untouched) when the truth is not in front of the
+/// camera (t_c_m.z <= 0) or an input is not finite or zero.
+bool farRangeError(const Vec3& direction_c, double distance_m, const Vec3& t_c_m_truth, FarRangeError& out);
 
 struct ErrorStats {
   int count = 0;

@@ -1,5 +1,6 @@
 // Paper fig. 6 style plot: six panels (x, y, z, yaw, pitch, roll) of error vs. distance (truth t_c_m.z),
-// errors as dots, worst-case envelopes as +- curves, lost frames as grey ticks on the bottom axis.
+// errors as dots, worst-case envelopes as +- curves, lost frames as grey ticks on the bottom axis; below them
+// the far-range direction/distance errors vs. distance and the mode timeline when the replay has them.
 #pragma once
 
 #include <string>
@@ -16,10 +17,18 @@ struct PlotOptions {
   std::string title = "pose error vs distance";
 };
 
-/// Renders into a new canvas of 3 x 2 panels plus a legend strip.
+/// Height of the mode timeline strip [px].
+constexpr int kTimelineHeightPx = 240;
+
+/// Renders into a new canvas: a legend strip, 3 x 2 pose panels, then (only when the replay has them) a row
+/// of two far-range panels of panel height and the mode timeline strip, each 3 panels wide.
 Canvas renderErrorPlot(const Evaluation& evaluation, const PlotOptions& options = {});
 LoadError writeErrorPlot(const std::string& path, const Evaluation& evaluation,
                          const PlotOptions& options = {});
+
+/// The mode timeline strip alone (`--timeline`), `width_px` wide.
+Canvas renderModeTimeline(const Evaluation& evaluation, int width_px = 1860);
+LoadError writeModeTimeline(const std::string& path, const Evaluation& evaluation, int width_px = 1860);
 
 /// Tick positions at 1, 2 or 5 x 10^k covering [lo, hi] with about `target` intervals; `decimals` receives
 /// the number of decimals that label them exactly.

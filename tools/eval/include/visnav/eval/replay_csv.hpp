@@ -20,17 +20,32 @@ bool parseTrackStatus(const std::string& text, TrackStatus& out);
 /// Tracking or degraded: the row carries a pose estimate that is scored.
 inline bool isTracked(TrackStatus s) { return s == TrackStatus::kTracking || s == TrackStatus::kDegraded; }
 
+/// Navigation mode column `mode` (the spellings of nav::toString(NavMode)); kUnknown: the CSV has no such
+/// column (replays written before the navigation pipeline).
+enum class ReplayMode : std::uint8_t { kStandby, kFarRange, kAcquisition, kNearRange, kUnknown };
+constexpr int kReplayModeCount = 4;  ///< the known modes (kUnknown excluded), in enum order
+
+const char* toString(ReplayMode mode);
+/// "standby", "far_range", "acquisition", "near_range". False for anything else.
+bool parseReplayMode(const std::string& text, ReplayMode& out);
+
 struct ReplayRow {
   std::int64_t frame = 0;
   std::int64_t timestamp_ns = 0;
   TrackStatus status = TrackStatus::kLost;
   bool has_pose = false;  ///< false when a lost/init row leaves the pose columns empty or non-finite
   Pose pose;              ///< T_c_m from (x_m, y_m, z_m) and the normalised quaternion (qw, qx, qy, qz)
+  ReplayMode mode = ReplayMode::kUnknown;
+  bool far_valid = false;  ///< far_valid = 1: the three far-range values below are finite
+  double far_azimuth_deg = 0.0;
+  double far_elevation_deg = 0.0;
+  double far_distance_m = 0.0;  ///< eq. 16, along the boresight
 };
 
-/// Parses a replay CSV. Required columns: frame, status, x_m, y_m, z_m, qw, qx, qy, qz (timestamp_ns is
-/// optional). `name` is used in messages ("name:line: problem"). Tracked rows must hold finite numbers;
-/// lost/init rows may leave the pose empty. Duplicate frames are an error.
+/// Parses a replay CSV. Required columns: frame, status, x_m, y_m, z_m, qw, qx, qy, qz. Optional:
+/// timestamp_ns, mode, and far_valid (0/1, empty = 0) which then needs far_azimuth_deg, far_elevation_deg,
+/// far_distance_m, finite on far_valid = 1 rows. `name` is used in messages ("name:line: problem"). Tracked
+/// rows must hold finite numbers; lost/init rows may leave the pose empty. Duplicate frames are an error.
 LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& out);
 LoadError loadReplayCsv(const std::string& path, std::vector<ReplayRow>& out);
 

@@ -15,6 +15,12 @@ struct Requirements {
   bool check_inside = false;         ///< inside fraction at `inside_envelope_px` >= `min_inside_fraction`
   double min_inside_fraction = 0.0;
   double inside_envelope_px = 0.25;
+  bool check_far_direction = false;  ///< far-range direction error median <= the bound (and some far frames)
+  double max_far_direction_median_deg = 0.0;
+  bool check_far_distance = false;  ///< far-range |distance error| median <= the bound (and some far frames)
+  double max_far_distance_median_pct = 0.0;
+  bool check_final_mode = false;  ///< the replay's last row is in `final_mode`
+  ReplayMode final_mode = ReplayMode::kNearRange;
 };
 
 std::vector<RequirementResult> checkRequirements(const Evaluation& evaluation, const Requirements& req);
@@ -32,7 +38,8 @@ LoadError writeSummaryJson(const std::string& path, const Evaluation& evaluation
                            const std::vector<RequirementResult>& req, const std::string& sequence,
                            const std::string& replay);
 
-/// Multi-line summary: frame counts, per-axis median/p95/max, envelope maxima and inside fractions.
+/// Multi-line summary: frame counts, per-axis median/p95/max, envelope maxima and inside fractions, far-range
+/// errors, frames per mode and the mode transitions.
 std::string summaryText(const Evaluation& evaluation);
 
 }  // namespace visnav::eval
