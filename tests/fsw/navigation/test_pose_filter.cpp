@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <cstdio>
 
 #include "../../support/alloc_counter.hpp"
 #include "visnav/core/rng.hpp"
@@ -142,6 +143,8 @@ TEST(PoseFilter, InnovationsAndErrorsAreChiSquareOnAConsistentModel) {
     nees_sum += e.dot(f.covariance().ldlt().solve(e));
   }
   const double n = kSteps - kSkip;
+  std::printf("NIS mean %.3f (chi2 6 dof: 6), NEES mean %.3f (chi2 12 dof: 12), gated %d of %d\n",
+              nis_sum / n, nees_sum / n, gated, kSteps);
   // Means of chi-square(6) and chi-square(12); the standard error of the mean over 2900 white samples is
   // ~0.06 (NIS) and ~0.09 (NEES, correlated in time: allow more).
   EXPECT_NEAR(nis_sum / n, 6.0, 0.35);

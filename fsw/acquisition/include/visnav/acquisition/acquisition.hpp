@@ -1,0 +1,142 @@
+// Acquisition (issue 3): from the far-range cue (direction, rough distance) and the image, a first 6-DOF pose
+// the near-range tracker converges from. A resumable state machine, one step() per frame, bounded per call:
+//   searching  : score hypotheses_per_cycle (attitude grid x distance) per frame on the cue's window against
+//                the coarse-spread edge evidence, keep the best search_candidates distinct ones;
+//   verifying  : one frame: refine every survivor by pattern search (coarse -> fine -> raw evidence), run
+//                the near-range tracker on the best `candidates` (tracker_iterations passes), keep those it
+//                tracks with a low residual, ordered by the edge evidence at the tracked pose;
+//   confirming : the best verified candidate must keep tracking for confirm_frames frames (else the next);
+//   succeeded / failed (no target in the window, no candidate verified, none confirmed, invalid cue).
+// All memory is sized in init(); start() and step() allocate nothing and throw nothing.
+#pragma once
+
+#include <cstdint>
+
+#include "visnav/acquisition/acquisition_params.hpp"
+#include "visnav/acquisition/attitude_grid.hpp"
+#include "visnav/acquisition/edge_scorer.hpp"
+#include "visnav/acquisition/working_image.hpp"
+#include "visnav/navigation/nav_solution.hpp"  // the FarRangeSolution contract (header only, not linked)
+#include "visnav/nearrange/near_range_tracker.hpp"
+
+namespace visnav::acq {
+
+enum class AcquisitionState : std::uint8_t {
+  kIdle,
+  kSearching,
+  kVerifying,
+  kConfirming,
+  kSucceeded,
+  kFailed
+};
+const char* toString(AcquisitionState state);
+
+enum class AcquisitionFailure : std::uint8_t {
+  kNone,
+  kInvalidCue,    ///< cue not valid, not in front of the camera, or distance not positive
+  kNoTarget,      ///< the window holds no edge structure above noise (min_edge_snr)
+  kNoCandidate,   ///< no refined candidate passed the tracker check
+  kNotConfirmed,  ///< every verified candidate lost track during confirmation
+};
+const char* toString(AcquisitionFailure failure);
+
+struct AcquisitionResult {
+  AcquisitionState state = AcquisitionState::kIdle;
+  AcquisitionFailure failure = AcquisitionFailure::kNone;
+  Pose pose;                       ///< the confirmed pose (succeeded) or the current candidate
+  Mat6 covariance = Mat6::Zero();  ///< tracker covariance over (omega, dt) of `pose`
+  double quality = 0.0;
+  double rms_px = 0.0;
+  int frames = 0;             ///< frames stepped since start()
+  int hypotheses_scored = 0;  ///< this step
+  int hypotheses_done = 0;    ///< since start()
+  int hypotheses_total = 0;   ///< attitude grid x range steps
+  int candidates_verified = 0;
+  int score_evaluations = 0;  ///< this step, including refinement
+  int tracker_calls = 0;      ///< this step
+  double best_score = 0.0;    ///< best coarse score [brightness / working px]
+  double edge_snr = 0.0;      ///< of this frame's window
+};
+
+/// A coarse-search survivor (debug view): grid attitude with its distance and lateral alignment.
+struct AcquisitionCandidate {
+  double score = -1.0;
+  Pose pose;
+  Mat3 attitude = Mat3::Identity();  ///< compared for distinctness: grid attitude R_lm, or R_c_m once refined
+};
+
+/// A refined candidate the near-range tracker accepted (debug view).
+struct AcquisitionVerified {
+  double score = 0.0;  ///< two-way edge agreement (F1) at the tracked pose minus rms_weight x rms
+  double rms_px = 0.0;
+  double quality = 0.0;
+  Pose pose;
+  Mat6 covariance = Mat6::Zero();
+};
+
+class Acquisition {
+ public:
+  /// Allocates everything. `nearrange` configures the verifying and confirming trackers.
+  LoadError init(const PinholeCamera& camera, const PolygonModel& model, const AcquisitionParams& params,
+                 const NearRangeParams& nearrange);
+
+  /// Begins a new acquisition from a cue: direction_c (unit, camera frame) and distance_m (t_c_m.z).
+  void start(const Vec3& direction_c, double distance_m, std::uint64_t frame_number);
+  void start(const nav::FarRangeSolution& cue, std::uint64_t frame_number);
+  void reset();
+
+  /// One frame. kInvalidArgument for an image of the wrong size (the step is skipped, nothing changes).
+  Status step(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
+
+  AcquisitionState state() const { return m_state; }
+  /// The best distinct coarse hypotheses so far, best first (debug view for tests and tools).
+  const BoundedBuffer<AcquisitionCandidate>& candidates() const { return m_candidates; }
+  /// The refined candidates the tracker checked, best first (debug view).
+  const BoundedBuffer<AcquisitionCandidate>& refined() const { return m_refined; }
+  /// The candidates the tracker accepted, best first (debug view).
+  const BoundedBuffer<AcquisitionVerified>& verified() const { return m_verified; }
+  /// The window of the last searched or verified frame (debug view).
+  const WorkingImage& window() const { return m_window; }
+  int hypothesisCount() const { return m_grid.size() * m_params.range_steps; }
+  const AcquisitionParams& params() const { return m_params; }
+
+ private:
+  using Candidate = AcquisitionCandidate;
+  using Verified = AcquisitionVerified;
+
+  void fail(AcquisitionFailure failure);
+  void prepareWindow(const MonoImage& image);
+  void search(AcquisitionResult& out);
+  static void offer(BoundedBuffer<Candidate>& list, const Candidate& c, double min_angle_rad);
+  void verify(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
+  bool trackCandidate(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
+                      int passes, Pose& pose, NearRangeResult& result, AcquisitionResult& out) const;
+  bool acceptable(const NearRangeResult& r) const;
+  void confirm(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
+
+  PinholeCamera m_camera;
+  AcquisitionParams m_params;
+  AttitudeGrid m_grid;
+  WorkingImage m_window;
+  EdgeScorer m_scorer;
+  NearRangeTracker m_verifier;   ///< wide scanlines: larger capture range on a candidate
+  NearRangeTracker m_confirmer;  ///< the flight tracker's settings: what the hand-over will meet
+  double m_bounding_radius_m = 0.0;
+
+  AcquisitionState m_state = AcquisitionState::kIdle;
+  AcquisitionFailure m_failure = AcquisitionFailure::kNone;
+  Vec3 m_cue_direction = Vec3::UnitZ();
+  double m_cue_distance_m = 0.0;
+  int m_next_hypothesis = 0;
+  int m_frames = 0;
+  double m_best_score = 0.0;
+  BoundedBuffer<Candidate> m_candidates;  ///< search survivors, best first
+  BoundedBuffer<Candidate> m_refined;     ///< refined, best first (the tracker checks these)
+  BoundedBuffer<Verified> m_verified;     ///< highest evidence first
+  int m_current = 0;                      ///< verified candidate under confirmation
+  int m_confirmed = 0;
+  Pose m_pose;
+  NearRangeResult m_last;
+};
+
+}  // namespace visnav::acq

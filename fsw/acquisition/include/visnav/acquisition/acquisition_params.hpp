@@ -1,0 +1,145 @@
+// Every tunable of acquisition (tracker initialisation, issue 3), with units, ranges and defaults. The
+// generated reference is config/PARAMETERS.md; a run takes its values from the [acquisition] table.
+#pragma once
+
+#include "visnav/core/param_visitor.hpp"
+
+namespace visnav::acq {
+
+struct AcquisitionParams {
+  // Search space (memory and the hypothesis count are fixed at init from these).
+  int view_directions = 120;
+  int roll_steps = 18;
+  double max_obliquity_deg = 50.0;
+  int range_steps = 5;
+  double range_span_rel = 0.35;
+  double direction_margin_deg = 2.0;
+  // Working image and scoring.
+  int working_radius_px = 48;
+  int max_working_side_px = 256;
+  int max_strong_pixels = 2048;
+  int fine_spread_px = 2;
+  int coarse_spread_px = 8;
+  int shift_steps = 1;
+  int samples_per_hypothesis = 64;
+  double internal_edge_weight = 0.5;
+  double evidence_cap = 4.0;
+  double min_edge_snr = 5.0;
+  // Budget per cycle.
+  int hypotheses_per_cycle = 4000;
+  int search_candidates = 48;
+  int candidates = 16;
+  int refine_levels = 6;
+  // Verification with the near-range tracker and hand-over.
+  int verify_scanline_half_length_px = 16;
+  int tracker_iterations = 4;
+  double max_rms_px = 0.6;
+  double rms_weight = 0.3;
+  double min_quality = 0.4;
+  int confirm_frames = 2;
+  bool accept_degraded = true;
+
+  template <typename Visitor>
+  void visit(Visitor& v) {
+    v.integer(
+        {"acquisition", "view_directions", "count", 1, 20000,
+         "viewing directions of the attitude grid (Fibonacci sphere, before dropping views that show no "
+         "surface within max_obliquity_deg)"},
+        view_directions);
+    v.integer({"acquisition", "roll_steps", "count", 1, 720, "in-plane roll steps per viewing direction"},
+              roll_steps);
+    v.real({"acquisition", "max_obliquity_deg", "deg", 1.0, 89.0,
+            "views where every surface is more oblique than this are not searched (the tracker starts below "
+            "45)"},
+           max_obliquity_deg);
+    v.integer({"acquisition", "range_steps", "count", 1, 64,
+               "distances tried per attitude, geometric over the cue distance / (1 + span) .. * (1 + span)"},
+              range_steps);
+    v.real({"acquisition", "range_span_rel", "-", 0.0, 3.0,
+            "relative distance error of the far-range cue covered"},
+           range_span_rel);
+    v.real({"acquisition", "direction_margin_deg", "deg", 0.0, 30.0,
+            "far-range direction error covered: the search window grows by this angle"},
+           direction_margin_deg);
+    v.integer({"acquisition", "working_radius_px", "px", 8, 512,
+               "the window is box-averaged so that the expected target radius is about this many pixels"},
+              working_radius_px);
+    v.integer({"acquisition", "max_working_side_px", "px", 32, 2048,
+               "capacity: side of the working window (a larger window is averaged more)"},
+              max_working_side_px);
+    v.integer({"acquisition", "max_strong_pixels", "count", 16, 1000000,
+               "capacity: strong-edge pixels kept for the image-to-model agreement (evenly thinned beyond)"},
+              max_strong_pixels);
+    v.integer({"acquisition", "fine_spread_px", "px", 0, 32,
+               "spread radius (tent-weighted max filter) of the orientation channels in the middle "
+               "refinement levels"},
+              fine_spread_px);
+    v.integer({"acquisition", "coarse_spread_px", "px", 0, 64,
+               "spread radius for the coarse search: tolerance to grid steps, distance steps and the "
+               "centring error of a hypothesis"},
+              coarse_spread_px);
+    v.integer(
+        {"acquisition", "shift_steps", "count", 0, 8,
+         "lateral shifts tried per hypothesis: (2 n + 1)^2, coarse_spread_px apart, around the window's "
+         "edge centroid"},
+        shift_steps);
+    v.integer({"acquisition", "samples_per_hypothesis", "count", 4, 4096,
+               "edge samples scored per hypothesis (cost per hypothesis)"},
+              samples_per_hypothesis);
+    v.real({"acquisition", "internal_edge_weight", "-", 0.0, 1.0,
+            "weight of edges between two front faces relative to outline edges (their contrast depends on "
+            "light)"},
+           internal_edge_weight);
+    v.real({"acquisition", "evidence_cap", "-", 0.1, 1000.0,
+            "edge evidence of a sample saturates at this multiple of the presence threshold (3 x median "
+            "gradient): every supported sample counts, the few strongest edges do not dominate"},
+           evidence_cap);
+    v.real({"acquisition", "min_edge_snr", "-", 1.0, 1000.0,
+            "99.9th-percentile / median gradient in the window below this (noise alone: ~3): no target, "
+            "acquisition fails"},
+           min_edge_snr);
+    v.integer({"acquisition", "hypotheses_per_cycle", "count", 1, 10000000,
+               "budget: hypotheses scored per frame; the search spans several frames"},
+              hypotheses_per_cycle);
+    v.integer({"acquisition", "search_candidates", "count", 1, 1024,
+               "best distinct coarse hypotheses kept by the search and refined"},
+              search_candidates);
+    v.integer({"acquisition", "candidates", "count", 1, 64,
+               "best distinct refined hypotheses verified with the near-range tracker"},
+              candidates);
+    v.integer({"acquisition", "refine_levels", "count", 1, 16,
+               "pattern-search levels per candidate (step halves per level)"},
+              refine_levels);
+    v.integer(
+        {"acquisition", "verify_scanline_half_length_px", "px", 0, 64,
+         "scanline half-length of the verifying tracker (0: as [nearrange]); longer widens its capture"},
+        verify_scanline_half_length_px);
+    v.integer({"acquisition", "tracker_iterations", "count", 1, 20,
+               "tracker passes on the same frame per candidate (each starts from the last result)"},
+              tracker_iterations);
+    v.real({"acquisition", "max_rms_px", "px", 0.01, 100.0,
+            "a candidate's tracker residual must stay below this"},
+           max_rms_px);
+    v.real({"acquisition", "rms_weight", "1/px", 0.0, 100.0,
+            "verified candidates are ranked by edge agreement (F1) minus this times the tracker residual"},
+           rms_weight);
+    v.real({"acquisition", "min_quality", "-", 0.0, 1.0, "a candidate's tracker quality must reach this"},
+           min_quality);
+    v.integer({"acquisition", "confirm_frames", "count", 0, 100,
+               "consecutive further frames the chosen candidate must track before hand-over"},
+              confirm_frames);
+    v.boolean({"acquisition", "accept_degraded", "-", 0, 1,
+               "accept tracker status degraded (not only tracking) during verification and confirmation"},
+              accept_degraded);
+  }
+
+  /// Cross-field checks the per-field ranges cannot express. Returns nullptr when valid.
+  const char* crossCheck() const {
+    if (2 * working_radius_px > max_working_side_px)
+      return "max_working_side_px must be >= 2 * working_radius_px";
+    if (candidates > search_candidates) return "candidates must be <= search_candidates";
+    return nullptr;
+  }
+};
+
+}  // namespace visnav::acq

@@ -1,0 +1,213 @@
+// The pieces of acquisition on their own: the attitude grid, the working image (gradient channels, spread,
+// statistics) and the edge scorer (score, two-way agreement, refinement) against hand-made and rendered
+// images.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "acquisition_fixture.hpp"
+#include "visnav/acquisition/attitude_grid.hpp"
+#include "visnav/acquisition/edge_scorer.hpp"
+#include "visnav/acquisition/working_image.hpp"
+
+namespace visnav::acq {
+namespace {
+
+TEST(AttitudeGrid, RotationZToReachesEveryDirection) {
+  for (const Vec3& u : {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(0.3, -0.4, 0.866).normalized()}) {
+    const Mat3 r = rotationZTo(u);
+    EXPECT_NEAR((r * Vec3::UnitZ() - u).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((r.transpose() * r - Mat3::Identity()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(r.determinant(), 1.0, 1e-12);
+  }
+}
+
+TEST(AttitudeGrid, PlateKeepsOnlyViewsThatSeeItsFace) {
+  const PolygonModel plate = makeRectanglePlate(2.3, 1.8);
+  AttitudeGrid grid;
+  ASSERT_TRUE(grid.init(plate, 200, 12, 50.0 * kRadPerDeg).ok);
+  // The kept cap (1 - cos 50 deg) / 2 = 17.9 % of the sphere; the Fibonacci lattice is equal-area.
+  EXPECT_NEAR(grid.views(), 200 * (1.0 - std::cos(50.0 * kRadPerDeg)) / 2.0, 2.0);
+  EXPECT_EQ(grid.size(), grid.views() * 12);
+  for (int i = 0; i < grid.size(); ++i) {
+    const Mat3 r = grid.rotation(i);
+    // The camera sits at -z of the line-of-sight frame: the face normal must point there within 50 deg.
+    const Vec3 normal_l = r * Vec3::UnitZ();
+    EXPECT_GT(-normal_l.z(), std::cos(50.0 * kRadPerDeg) - 1e-12) << i;
+    EXPECT_NEAR(r.determinant(), 1.0, 1e-12);
+  }
+  // A box always shows some face within acos(1 / sqrt(3)) = 54.7 deg (the corner view): all views at 55 deg,
+  // fewer at 50 deg (those around the 8 corners).
+  AttitudeGrid box;
+  ASSERT_TRUE(box.init(makeBox(0.8, 0.6, 0.5), 200, 12, 55.0 * kRadPerDeg).ok);
+  EXPECT_EQ(box.views(), 200);
+  ASSERT_TRUE(box.init(makeBox(0.8, 0.6, 0.5), 200, 12, 50.0 * kRadPerDeg).ok);
+  EXPECT_LT(box.views(), 200);
+  EXPECT_GT(box.views(), 150);
+}
+
+/// A vertical step at x = 100 px (dark left, bright right) in a 200 x 160 8-bit image.
+std::vector<std::uint8_t> stepImage() {
+  std::vector<std::uint8_t> pixels(200U * 160U);
+  for (int y = 0; y < 160; ++y)
+    for (int x = 0; x < 200; ++x) pixels[static_cast<std::size_t>(y * 200 + x)] = x < 100 ? 30 : 200;
+  return pixels;
+}
+
+TEST(WorkingImage, StepEdgeGivesEvidenceAcrossItOnly) {
+  const std::vector<std::uint8_t> pixels = stepImage();
+  const MonoImage image = MonoImage::from8(ImageView8(pixels.data(), 200, 160));
+  WorkingImage w;
+  ASSERT_TRUE(w.init(64, 256).ok);
+  // Window centred on the edge, 120 px wide, box factor 2 -> 60 x 60 working pixels.
+  EXPECT_EQ(w.setWindow(Vec2(100.0, 80.0), 60.0, 2), 2);
+  w.prepare(image, 1, 4, 1000.0);
+  EXPECT_EQ(w.width(), 60);
+  EXPECT_NEAR((w.toFull(w.toWorking(Vec2(123.0, 45.5))) - Vec2(123.0, 45.5)).norm(), 0.0, 1e-12);
+  const Vec2 on_edge = w.toWorking(Vec2(100.0, 80.0));
+  // Sobel / 8 of a step of (200 - 30) / 255 across one working pixel: half of it on each neighbour column.
+  const double step = 170.0 / 255.0;
+  EXPECT_NEAR(w.evidence(on_edge, 0.0, Evidence::kRaw), 0.5 * step, 0.02);
+  EXPECT_NEAR(w.evidence(on_edge, kPi, Evidence::kRaw), 0.5 * step, 0.02);  // either contrast
+  EXPECT_NEAR(w.evidence(on_edge, 0.5 * kPi, Evidence::kRaw), 0.0, 1e-6);   // along the edge: nothing
+  EXPECT_NEAR(w.evidence(on_edge, 0.25 * kPi, Evidence::kRaw), 0.5 * step * std::cos(0.25 * kPi), 0.02);
+  // Spread: 3 working px off the edge only the coarse copy (radius 4) still sees it, with the tent weight
+  // 1 - 3 / 5 of the nearest edge column.
+  const Vec2 off = on_edge + Vec2(3.0, 0.0);
+  EXPECT_NEAR(w.evidence(off, 0.0, Evidence::kRaw), 0.0, 1e-6);
+  EXPECT_NEAR(w.evidence(off, 0.0, Evidence::kFine), 0.0, 1e-6);
+  EXPECT_NEAR(w.evidence(off, 0.0, Evidence::kCoarse), 0.4 * 0.5 * step, 0.01);
+  EXPECT_NEAR(w.evidence(on_edge, 0.0, Evidence::kCoarse), 0.5 * step, 0.02);  // peaks on the edge
+  EXPECT_EQ(w.evidence(Vec2(-1.0, 5.0), 0.0, Evidence::kRaw), 0.0);            // outside the window
+  EXPECT_TRUE(w.stats().has_strong);
+  EXPECT_NEAR(w.toFull(w.stats().strong_centroid_w).x(), 100.0, 2.0);
+  // Saturation: with a cap of 4 x 3 x (quarter code step) every value is clipped to the cap.
+  w.prepare(image, 1, 4, 4.0);
+  EXPECT_NEAR(w.cap(), 4.0 * 3.0 * 0.25 / 255.0, 1e-7);
+  EXPECT_NEAR(w.evidence(on_edge, 0.0, Evidence::kRaw), w.cap(), 1e-7);
+  EXPECT_NEAR(w.evidence(on_edge, 0.0, Evidence::kCoarse), w.cap(), 1e-7);
+}
+
+TEST(WorkingImage, NoiseAloneHasLowEdgeSnrAndATargetHigh) {
+  const test::Scene scene = test::makeScene(test::Target::kPlate);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
+  const Pose truth = test::plateAt(15.0);
+  const test::RenderedFrame target = test::renderFrame(renderer, truth, 3);
+  const test::RenderedFrame empty = test::renderFrame(renderer, test::plateAt(15.0, 100.0), 3);
+  WorkingImage w;
+  ASSERT_TRUE(w.init(256, 2048).ok);
+  w.setWindow(Vec2(320.0, 240.0), 120.0, 1);
+  w.prepare(empty.image(), 2, 8, 4.0);
+  // Rayleigh-distributed noise gradients: p99.9 / median = sqrt(2 ln 1000) / sqrt(2 ln 2) = 3.2.
+  EXPECT_NEAR(w.stats().edge_snr, 3.2, 0.8);
+  w.prepare(target.image(), 2, 8, 4.0);
+  EXPECT_GT(w.stats().edge_snr, 8.0);
+  const Vec2 centre = w.toFull(w.stats().strong_centroid_w);
+  EXPECT_NEAR((centre - Vec2(320.0, 240.0)).norm(), 0.0, 3.0);  // the plate's outline is centred there
+}
+
+class ScorerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene = test::makeScene(test::Target::kPlate);
+    ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
+    truth = Pose{test::tiltedAttitude(25.0, 30.0, 40.0), Vec3(0.2, -0.1, 12.0)};
+    frame = test::renderFrame(renderer, truth, 21);
+    ASSERT_TRUE(window.init(256, 2048).ok);
+    Vec2 centre;
+    test::vgaCamera().project(truth.t_c_m, centre);
+    window.setWindow(centre, 200.0, 4);
+    window.prepare(frame.image(), 2, 8, 4.0);
+    ASSERT_TRUE(scorer.init(test::vgaCamera(), scene.model, ScorerSettings{}).ok);
+  }
+  test::Scene scene;
+  synthetic::Renderer renderer;
+  Pose truth;
+  test::RenderedFrame frame;
+  WorkingImage window;
+  EdgeScorer scorer;
+};
+
+TEST_F(ScorerTest, TruthScoresBestAndAgreesBothWays) {
+  Vec6 off;
+  off << 0.0, 0.0, 0.0, 0.2, 0.0, 0.0;  // 0.2 m at 12 m: 17 px, 4 working px
+  const Pose shifted = truth.boxPlus(off);
+  EXPECT_GT(scorer.score(truth, window, Evidence::kRaw), 0.8);  // every sample on a clear edge (saturated)
+  EXPECT_LT(scorer.score(shifted, window, Evidence::kRaw), 0.6);
+  // The coarse copy still sees the shifted outline, less (tent-weighted): a slope towards the truth.
+  EXPECT_GT(scorer.score(shifted, window, Evidence::kCoarse), 0.5);
+  EXPECT_LT(scorer.score(shifted, window, Evidence::kCoarse),
+            scorer.score(truth, window, Evidence::kCoarse) - 0.1);
+  const EdgeAgreement at_truth = scorer.agreement(truth, window, 2.5);
+  EXPECT_GT(at_truth.precision, 0.95);
+  EXPECT_GT(at_truth.recall, 0.95);
+  EXPECT_LT(scorer.agreement(shifted, window, 2.5).f1, 0.7);
+  // Seen from behind nothing is visible: no score.
+  Pose behind = truth;
+  behind.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitX()).toRotationMatrix();
+  EXPECT_EQ(scorer.score(behind, window, Evidence::kRaw), -1.0);
+}
+
+TEST_F(ScorerTest, AlignedScoreFindsTheShift) {
+  Vec6 off;
+  off << 0.0, 0.0, 0.0, 0.25, -0.15, 0.0;  // 5.2 and 3.1 working px
+  Vec2 shift;
+  // Centroid alignment then +-2 one-pixel steps on the raw evidence: back within a pixel.
+  const double aligned = scorer.scoreAligned(truth.boxPlus(off), window, Evidence::kRaw,
+                                             window.stats().strong_centroid_w, 2, 1.0, shift);
+  EXPECT_GT(aligned, 0.8);
+  const Pose back = scorer.shifted(truth.boxPlus(off), window, shift);
+  EXPECT_LT((back.t_c_m - truth.t_c_m).norm(), 0.05);  // one working px is 4.8 cm here
+  // On a plateau of the coarse evidence the centred shift wins the tie.
+  Vec2 coarse_shift;
+  scorer.scoreAligned(truth, window, Evidence::kCoarse, window.stats().strong_centroid_w, 1, 8.0,
+                      coarse_shift);
+  EXPECT_LT(coarse_shift.norm(), 2.0);
+}
+
+/// RMS image distance [px, full resolution] between the model's vertices at two poses.
+double vertexRmsPx(const PolygonModel& model, const Pose& a, const Pose& b) {
+  double sum = 0.0;
+  for (const Vec3& v : model.vertices()) {
+    Vec2 pa, pb;
+    test::vgaCamera().project(a.transform(v), pa);
+    test::vgaCamera().project(b.transform(v), pb);
+    sum += (pa - pb).squaredNorm();
+  }
+  return std::sqrt(sum / static_cast<double>(model.vertices().size()));
+}
+
+TEST_F(ScorerTest, RefinementClimbsBackToTheTruth) {
+  Vec6 off;
+  off << 0.08, -0.06, 0.1, 0.1, 0.05, 0.8;  // ~8 deg, 10 cm lateral, 7 % range
+  Pose pose = truth.boxPlus(off);
+  int evaluations = 0;
+  const double s = scorer.refine(window, RefineSettings{}, pose, evaluations);
+  EXPECT_GT(s, scorer.score(truth.boxPlus(off), window, Evidence::kRaw));
+  // What the tracker needs is the image: the outline comes back within its wide scanlines (16 px). Tilt and
+  // range of a plate trade against each other at this resolution, so the pose itself may stay a few deg off.
+  const double before_px = vertexRmsPx(scene.model, truth.boxPlus(off), truth);
+  const double after_px = vertexRmsPx(scene.model, pose, truth);
+  EXPECT_GT(before_px, 15.0);
+  EXPECT_LT(after_px, 0.3 * before_px);
+  EXPECT_LT(after_px, 6.0);
+  // Bounded: levels x (1 + sweeps x 12 trials).
+  const RefineSettings r;
+  EXPECT_LE(evaluations, r.levels * (1 + r.sweeps_per_level * 12));
+}
+
+TEST(AcquisitionParamsTest, CrossCheckAndInit) {
+  AcquisitionParams p;
+  EXPECT_EQ(p.crossCheck(), nullptr);
+  p.candidates = p.search_candidates + 1;
+  EXPECT_NE(p.crossCheck(), nullptr);
+  Acquisition a;
+  const LoadError e = a.init(test::vgaCamera(), makeRectanglePlate(2.3, 1.8), p, NearRangeParams{});
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("candidates"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace visnav::acq
