@@ -4,29 +4,25 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/app/visnav_config.hpp"
 #include "visnav/camera/camera_params.hpp"
 #include "visnav/executive/executive_params.hpp"
 #include "visnav/farrange/far_range_params.hpp"
-#include "visnav/io/config_io.hpp"
 #include "visnav/io/param_docs.hpp"
 #include "visnav/nearrange/near_range_params.hpp"
 #include "visnav/telemetry/telemetry_params.hpp"
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--check") == 0) {
-    visnav::io::ConfigFile config;
-    visnav::NearRangeParams nearrange;
-    visnav::far::FarRangeParams farrange;
-    visnav::camera::CameraParams camera;
-    visnav::exec::ExecutiveParams executive;
-    visnav::telemetry::TelemetryParams telemetry;
-    visnav::LoadError e = config.open(argv[2]);
-    if (e.ok) e = config.apply(nearrange);
-    if (e.ok) e = config.apply(farrange);
-    if (e.ok) e = config.apply(camera);
-    if (e.ok) e = config.apply(executive);
-    if (e.ok) e = visnav::telemetry::applyTelemetryConfig(config, telemetry);
-    if (e.ok) e = config.checkNoUnknownKeys();
+    // The loader visnavd and visnav-replay use (fsw/app): every table, cross-checks, unknown keys, and the
+    // [files] it names. One source of truth for what a valid config is.
+    visnav::app::VisnavConfig config;
+    visnav::CameraIntrinsics intrinsics;
+    visnav::PolygonModel model;
+    bool have_camera = false;
+    bool have_model = false;
+    visnav::LoadError e = visnav::app::loadVisnavConfig(argv[2], config);
+    if (e.ok) e = visnav::app::loadConfiguredFiles(config, intrinsics, have_camera, model, have_model);
     if (!e.ok) {
       std::fprintf(stderr, "visnav-params: %s\n", e.message.c_str());
       return 2;
@@ -56,5 +52,9 @@ int main(int argc, char** argv) {
               visnav::io::parameterTableMarkdown(visnav::exec::ExecutiveParams{}).c_str());
   std::printf("\n## [telemetry]: DDS telemetry and ground commands (fsw/telemetry/README.md)\n\n%s",
               visnav::telemetry::telemetryParametersMarkdown().c_str());
+  std::printf("\n## [files]: calibration and target model of visnavd (fsw/app/README.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::app::FilesParams{}).c_str());
+  std::printf("\n## [daemon]: how visnavd plays a recorded camera and logs (fsw/app/README.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::app::DaemonParams{}).c_str());
   return 0;
 }

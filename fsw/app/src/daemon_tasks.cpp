@@ -1,0 +1,186 @@
+// The four cycle tasks of visnavd and the event lines they write. Nothing here allocates: the frame, the
+// solution, the health record and the command batch are members sized at init, log lines are formatted on
+// the stack (event_log.hpp).
+#include <algorithm>
+#include <cinttypes>
+#include <cstdio>
+
+#include "visnav/app/daemon.hpp"
+#include "visnav/telemetry/sample_mapping.hpp"
+
+namespace visnav::app {
+
+const char* faultName(int bit) {
+  static constexpr const char* kNames[nav::kFaultBitCount] = {
+      "inlier_ratio",        "too_few_lines",      "residual",  "not_converged",
+      "innovation",          "implausible",        "frame_age", "no_frame",
+      "far_range_no_target", "acquisition_failed", "cycle_slip"};
+  return bit >= 0 && bit < nav::kFaultBitCount ? kNames[bit] : "unknown";
+}
+
+bool Daemon::allowLog(std::uint64_t& reported) {
+  if (reported < static_cast<std::uint64_t>(m_config.daemon.log_throttle)) {
+    ++reported;
+    return true;
+  }
+  ++m_counters.log_suppressed;
+  return false;
+}
+
+Status Daemon::acquireTask(const exec::CycleInfo& cycle) {
+  m_skip_cycle = false;
+  const std::int64_t start_ns = m_clock->nowNs();
+  // Bounded wait: never past the cycle's deadline (issue 4: a late camera must not block the cycle).
+  const std::int64_t left_ns = std::max<std::int64_t>(0, cycle.deadline_ns - start_ns);
+  const std::int64_t timeout_ns = std::min(m_config.camera.acquireTimeoutNs(), left_ns);
+  const camera::AcquireResult result = m_camera.source->acquire(timeout_ns, m_frame);
+  m_have_frame = result == camera::AcquireResult::kFrame;
+  noteCameraResult(result);
+  m_acquire_us = static_cast<double>(m_clock->nowNs() - start_ns) * 1e-3;
+  const bool failed = result == camera::AcquireResult::kError || result == camera::AcquireResult::kDeviceLost;
+  return failed ? Status::kNotEnoughData : Status::kOk;
+}
+
+void Daemon::noteCameraResult(camera::AcquireResult result) {
+  camera::CameraSource& source = *m_camera.source;
+  switch (result) {
+    case camera::AcquireResult::kFrame:
+      ++m_counters.frames;
+      if (m_camera_lost) {
+        m_camera_lost = false;
+        m_log.event(LogLevel::kNotice, "camera_recovered", "driver=%s", source.name());
+      }
+      return;
+    case camera::AcquireResult::kTimeout: ++m_counters.cycles_without_frame; return;
+    case camera::AcquireResult::kEndOfStream:
+      if (!m_counters.end_of_stream)
+        m_log.event(LogLevel::kNotice, "end_of_stream", "driver=%s frames=%" PRIu64 " action=%s",
+                    source.name(), source.counters().frames_delivered,
+                    m_config.daemon.stop_at_end_of_stream ? "stop" : "continue");
+      m_counters.end_of_stream = true;
+      if (m_config.daemon.stop_at_end_of_stream) {
+        m_skip_cycle = true;  // nothing to publish for a frame that does not exist
+        m_executive.requestStop();
+      } else {
+        ++m_counters.cycles_without_frame;
+      }
+      return;
+    case camera::AcquireResult::kDeviceLost:
+      ++m_counters.cycles_without_frame;
+      if (!m_camera_lost) {
+        m_camera_lost = true;
+        std::array<char, 160> text{};
+        m_log.event(LogLevel::kError, "camera_lost", "driver=%s error=\"%s\"", source.name(),
+                    quotable(source.lastError(), text));
+      }
+      if (source.recover()) {  // one bounded reopen attempt per cycle
+        m_camera_lost = false;
+        m_log.event(LogLevel::kNotice, "camera_recovered", "driver=%s recoveries=%" PRIu64, source.name(),
+                    source.counters().recoveries);
+      }
+      return;
+    case camera::AcquireResult::kError: {
+      ++m_counters.cycles_without_frame;
+      ++m_counters.camera_errors;
+      std::array<char, 160> text{};
+      if (allowLog(m_camera_logs))
+        m_log.event(LogLevel::kWarning, "camera_error", "driver=%s error=\"%s\"", source.name(),
+                    quotable(source.lastError(), text));
+      return;
+    }
+  }
+}
+
+Status Daemon::processTask(const exec::CycleInfo&) {
+  if (m_skip_cycle) return Status::kOk;
+  const Status status = m_pipeline.process(m_have_frame ? &m_frame : nullptr, m_clock->nowNs(), m_solution);
+  m_solution.timing.acquire_us = m_acquire_us;
+  if (m_have_frame) {  // the solution holds no reference into the frame: the driver gets its buffer back now
+    m_camera.source->release(m_frame);
+    m_have_frame = false;
+  }
+  logTransitions();
+  logFaultOnsets(m_solution.fault_bits, m_solution.frame_number);
+  return status;
+}
+
+Status Daemon::publishTask(const exec::CycleInfo&) {
+  if (m_skip_cycle || !m_telemetry_on) return Status::kOk;
+  // A failed write (counted by the writer) is a task failure: the executive counts and reports it.
+  return m_writer.publishNav(m_solution) ? Status::kOk : Status::kCapacityExceeded;
+}
+
+Status Daemon::healthTask(const exec::CycleInfo&) {
+  if (m_skip_cycle) return Status::kOk;
+  handleCommands();
+  m_pipeline.fillHealth(m_health);
+  if (m_any_command) m_health.last_command = m_last_ack;  // includes rejections the pipeline never saw
+  const exec::ExecutiveCounters& counters = m_executive.counters();
+  m_health.frames_dropped = m_camera.source->counters().frames_dropped + m_counters.cycles_without_frame;
+  m_health.cycle_slips = counters.slips;
+  constexpr int kSlipBit = 10;  // kFaultCycleSlip: the executive's, not FDIR's
+  static_assert(nav::kFaultCycleSlip == 1U << kSlipBit, "slip bit index");
+  if (counters.slips > m_slips_seen)
+    m_health.fault_bits |= nav::kFaultCycleSlip;  // the previous cycle slipped
+  m_slips_seen = counters.slips;
+  m_health.fault_counts[kSlipBit] =
+      static_cast<std::uint32_t>(std::min<std::uint64_t>(counters.slips, UINT32_MAX));
+  for (int task = 0; task < nav::kTaskCount && task < m_executive.taskCount(); ++task)
+    exec::fillTimingSummary(m_executive.taskStats(task).exec,
+                            m_health.task_timing[static_cast<std::size_t>(task)]);
+  m_notifier.watchdog();  // the whole cycle ran: systemd may stop waiting
+  if (!m_telemetry_on) return Status::kOk;
+  return m_writer.publishHealth(m_health) ? Status::kOk : Status::kCapacityExceeded;
+}
+
+void Daemon::handleCommands() {
+  if (!m_telemetry_on) return;
+  const int count = m_commands.poll(m_received.data(), static_cast<int>(m_received.size()));
+  for (int i = 0; i < count; ++i) {
+    const telemetry::ReceivedCommand& command = m_received[static_cast<std::size_t>(i)];
+    nav::CommandAck ack;
+    const bool accepted =
+        command.valid && m_pipeline.command(command.kind, command.command_id, m_solution.frame_number, ack);
+    if (!command.valid) ack = command.rejection();
+    m_last_ack = ack;
+    m_any_command = true;
+    ++m_counters.commands;
+    m_counters.commands_accepted += accepted ? 1U : 0U;
+    std::array<char, 80> reason{};
+    m_log.event(accepted ? LogLevel::kNotice : LogLevel::kWarning, "command",
+                "id=%" PRIu32 " kind=%s raw_kind=%u accepted=%s reason=\"%s\" mode=%s", command.command_id,
+                command.valid ? nav::toString(command.kind) : "unknown",
+                static_cast<unsigned>(command.raw_kind), accepted ? "yes" : "no",
+                quotable(ack.reason.data(), reason), nav::toString(m_pipeline.mode()));
+    logTransitions();
+  }
+}
+
+void Daemon::logTransitions() {
+  const std::uint64_t count = m_pipeline.modes().transitionCount();
+  if (count == m_transitions_logged) return;
+  const nav::ModeTransition& t = m_pipeline.modes().lastTransition();
+  std::array<char, 80> reason{};
+  m_log.event(LogLevel::kNotice, "mode_transition",
+              "frame=%" PRIu64 " from=%s to=%s reason=\"%s\" transitions=%" PRIu64 " unlogged=%" PRIu64,
+              t.frame_number, nav::toString(t.from), nav::toString(t.to), quotable(t.reason.data(), reason),
+              count, count - m_transitions_logged - 1U);
+  m_transitions_logged = count;
+  char status[96];
+  std::snprintf(status, sizeof(status), "mode %s since frame %" PRIu64, nav::toString(t.to), t.frame_number);
+  m_notifier.status(status);
+}
+
+void Daemon::logFaultOnsets(std::uint32_t faults, std::uint64_t frame) {
+  const std::uint32_t onsets = faults & ~m_previous_faults;
+  m_previous_faults = faults;
+  for (int bit = 0; bit < nav::kFaultBitCount; ++bit) {
+    if ((onsets & (1U << bit)) == 0U) continue;
+    ++m_counters.fault_onsets;
+    if (allowLog(m_fault_logs[static_cast<std::size_t>(bit)]))
+      m_log.event(LogLevel::kWarning, "fault_onset", "fault=%s frame=%" PRIu64 " mode=%s", faultName(bit),
+                  frame, nav::toString(m_pipeline.mode()));
+  }
+}
+
+}  // namespace visnav::app

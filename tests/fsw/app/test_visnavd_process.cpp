@@ -1,0 +1,171 @@
+// visnavd as a process: exit codes, --check, the systemd notify protocol against a socket of the test (READY,
+// one WATCHDOG per cycle, STOPPING), and SIGTERM/SIGINT ending the loop within one cycle.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../telemetry/process_util.hpp"
+#include "app_test_support.hpp"
+#include "visnav/executive/clock.hpp"
+
+namespace visnav::app {
+namespace {
+
+using telemetry::test::readText;
+using telemetry::test::spawnProcess;
+using telemetry::test::waitProcess;
+
+/// Runs visnavd with `args` through /bin/sh so stderr lands in `log_path`. Returns the pid.
+pid_t spawnDaemon(const std::string& args, const std::string& log_path) {
+  return spawnProcess(
+      {"/bin/sh", "-c", std::string("exec ") + VISNAV_DAEMON + " " + args + " 2> " + log_path});
+}
+
+int runDaemon(const std::string& args, const std::string& log_path, double timeout_s = 30.0) {
+  const pid_t pid = spawnDaemon(args, log_path);
+  EXPECT_GT(pid, 0);
+  return waitProcess(pid, timeout_s);
+}
+
+TEST(Visnavd, ExitCodes) {
+  test::TempDir dir("visnavd");
+  const std::string log = dir.path() + "/stderr.txt";
+  EXPECT_EQ(runDaemon("", log), 2);
+  EXPECT_EQ(runDaemon("--config x.toml --cycles -3", log), 2);
+  EXPECT_EQ(runDaemon("--config x.toml --bogus", log), 2);
+  EXPECT_NE(readText(log).find("unknown, incomplete or out-of-range argument '--bogus'"), std::string::npos);
+
+  const std::string typo =
+      dir.write("typo.toml", "[executive]\nmajor_frame_hz = 5.0\n\n[camera]\ndrivr = \"replay\"\n");
+  EXPECT_EQ(runDaemon("--config " + typo, log), 3);
+  EXPECT_NE(readText(log).find("level=error event=config_invalid message=\"" + typo +
+                               ":5: unknown key [camera] drivr\""),
+            std::string::npos)
+      << readText(log);
+  EXPECT_EQ(runDaemon("--config " + dir.path() + "/none.toml", log), 3);
+
+  const std::string no_sequence =
+      dir.write("nosequence.toml",
+                "[camera]\ndriver = \"replay\"\ndevice = \"missing\"\n[telemetry]\nenabled = false\n");
+  EXPECT_EQ(runDaemon("--config " + no_sequence + " --check", log), 0);  // the device is not the config's
+  EXPECT_EQ(runDaemon("--config " + no_sequence, log), 4);
+  EXPECT_NE(readText(log).find("event=init_failed stage=camera"), std::string::npos) << readText(log);
+
+  const std::string no_reader = dir.write(
+      "noreader.toml", "[camera]\ndriver = \"synthetic\"\ndevice = \"" + std::string(VISNAV_SOURCE_DIR) +
+                           "/config/scenarios/approach_ci.toml\"\n[telemetry]\npartition = \"nobody-" +
+                           std::to_string(getpid()) + "\"\n");
+  EXPECT_EQ(runDaemon("--config " + no_reader + " --wait-subscribers 1 --wait-timeout 0.5", log), 4);
+  EXPECT_NE(readText(log).find("stage=telemetry message=\"fewer than 1 readers on visnav_pose"),
+            std::string::npos)
+      << readText(log);
+
+  for (const char* shipped : {"visnavd.toml", "visnavd-testbed.toml"})
+    EXPECT_EQ(
+        runDaemon(std::string("--config ") + VISNAV_SOURCE_DIR + "/config/" + shipped + " --check", log), 0)
+        << shipped;
+}
+
+/// systemd's end of the notify protocol.
+class NotifySocket {
+ public:
+  NotifySocket() : m_path("/tmp/visnavd-notify-" + std::to_string(getpid())) {
+    m_fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::strncpy(address.sun_path, m_path.c_str(), sizeof(address.sun_path) - 1);
+    unlink(m_path.c_str());
+    EXPECT_EQ(bind(m_fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)), 0);
+  }
+  ~NotifySocket() {
+    close(m_fd);
+    unlink(m_path.c_str());
+  }
+  const std::string& path() const { return m_path; }
+  /// Next message within `timeout_ms`, "" when none came.
+  std::string next(int timeout_ms) {
+    timeval tv{timeout_ms / 1000, (timeout_ms % 1000) * 1000};
+    setsockopt(m_fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof(tv));
+    char buffer[512];
+    const ssize_t n = recv(m_fd, buffer, sizeof(buffer), 0);
+    return n > 0 ? std::string(buffer, static_cast<std::size_t>(n)) : std::string();
+  }
+
+ private:
+  std::string m_path;
+  int m_fd = -1;
+};
+
+TEST(Visnavd, NotifiesSystemdReadyOneWatchdogPerCycleAndStopping) {
+  const std::string sequence = test::renderedApproachCi(VISNAV_APP_TEST_FRAMES);
+  ASSERT_FALSE(sequence.empty());
+  test::TempDir dir("visnavd");
+  const std::string config = dir.write(
+      "notify.toml", "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
+                         "\"\n[daemon]\nplayback_pacing = \"as_fast_as_possible\"\nplayback_loop = true\n"
+                         "[executive]\nmajor_frame_hz = 20.0\n[telemetry]\nenabled = false\n");
+  NotifySocket systemd;
+  setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
+  const pid_t pid =
+      spawnDaemon("--config " + config + " --cycles 6 --simulated-clock", dir.path() + "/log.txt");
+  unsetenv("NOTIFY_SOCKET");
+  ASSERT_GT(pid, 0);
+  std::vector<std::string> messages;
+  for (std::string m = systemd.next(10000); !m.empty(); m = systemd.next(3000)) {
+    messages.push_back(m);
+    if (m == "STOPPING=1") break;
+  }
+  EXPECT_EQ(waitProcess(pid, 10.0), 0);
+  ASSERT_GE(messages.size(), 8U) << readText(dir.path() + "/log.txt");
+  EXPECT_EQ(messages.front().rfind("READY=1\nSTATUS=running, mode ", 0), 0U) << messages.front();
+  EXPECT_EQ(messages.back(), "STOPPING=1");
+  int watchdogs = 0;
+  for (const std::string& m : messages) watchdogs += m == "WATCHDOG=1" ? 1 : 0;
+  EXPECT_EQ(watchdogs, 6);  // one per cycle
+  const std::string log = readText(dir.path() + "/log.txt");
+  EXPECT_NE(log.find("systemd=yes"), std::string::npos) << log;
+  EXPECT_NE(log.find("event=stop reason=cycle_limit cycles=6"), std::string::npos) << log;
+  EXPECT_NE(log.find("watchdog_notifications="), std::string::npos) << log;
+}
+
+TEST(Visnavd, StopsWithinOneCycleOnSigtermAndSigint) {
+  const std::string sequence = test::renderedApproachCi(VISNAV_APP_TEST_FRAMES);
+  test::TempDir dir("visnavd");
+  const std::string config =
+      dir.write("signal.toml", "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
+                                   "\"\n[daemon]\nplayback_loop = true\n[telemetry]\npartition = \"signal-" +
+                                   std::to_string(getpid()) + "\"\n");
+  for (int signal_number : {SIGTERM, SIGINT}) {
+    NotifySocket systemd;
+    setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
+    const std::string log_path = dir.path() + "/signal" + std::to_string(signal_number) + ".txt";
+    const pid_t pid = spawnDaemon("--config " + config, log_path);
+    unsetenv("NOTIFY_SOCKET");
+    ASSERT_GT(pid, 0);
+    ASSERT_EQ(systemd.next(20000).rfind("READY=1", 0), 0U) << readText(log_path);
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // a few 5 Hz cycles
+    const std::int64_t sent_ns = exec::monotonicNowNs();
+    kill(pid, signal_number);
+    std::string message;
+    for (int i = 0; i < 100 && message != "STOPPING=1"; ++i) message = systemd.next(1000);  // skip WATCHDOG=1
+    EXPECT_EQ(message, "STOPPING=1");
+    const std::int64_t stopped_ns = exec::monotonicNowNs();
+    EXPECT_EQ(waitProcess(pid, 10.0), 0) << readText(log_path);
+    EXPECT_LT(stopped_ns - sent_ns, 200'000'000) << "longer than one 5 Hz cycle";
+    const std::string log = readText(log_path);
+    EXPECT_NE(log.find("event=stop reason=stop_request"), std::string::npos) << log;
+    EXPECT_NE(log.find("event=stop_timing clock=monotonic"), std::string::npos) << log;
+  }
+}
+
+}  // namespace
+}  // namespace visnav::app
