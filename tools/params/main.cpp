@@ -4,11 +4,14 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/acquisition/acquisition_params.hpp"
 #include "visnav/app/visnav_config.hpp"
 #include "visnav/camera/camera_params.hpp"
 #include "visnav/executive/executive_params.hpp"
 #include "visnav/farrange/far_range_params.hpp"
 #include "visnav/io/param_docs.hpp"
+#include "visnav/navigation/navigation_params.hpp"
+#include "visnav/navigation/pose_filter_params.hpp"
 #include "visnav/nearrange/near_range_params.hpp"
 #include "visnav/telemetry/telemetry_params.hpp"
 
@@ -56,5 +59,11 @@ int main(int argc, char** argv) {
               visnav::io::parameterTableMarkdown(visnav::app::FilesParams{}).c_str());
   std::printf("\n## [daemon]: how visnavd plays a recorded camera and logs (fsw/app/README.md)\n\n%s",
               visnav::io::parameterTableMarkdown(visnav::app::DaemonParams{}).c_str());
+  std::printf("\n## [acquisition]: first 6-DOF pose from the far-range cue (fsw/acquisition/README.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::acq::AcquisitionParams{}).c_str());
+  std::printf("\n## [filter]: relative-pose Kalman filter (fsw/navigation/POSE_FILTER.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::nav::PoseFilterParams{}).c_str());
+  std::printf("\n## [navigation]: modes, hysteresis and FDIR (fsw/navigation/README.md)\n\n%s",
+              visnav::io::parameterTableMarkdown(visnav::nav::NavigationParams{}).c_str());
   return 0;
 }

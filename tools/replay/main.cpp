@@ -1,4 +1,4 @@
-// visnav-replay: the near-range pipeline over a sequence directory, as fast as possible. See README.md.
+// visnav-replay: the flight pipeline over a sequence directory, as fast as possible. See README.md.
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -10,7 +10,8 @@ namespace {
 void usage() {
   std::fputs(
       "usage: visnav-replay --sequence DIR --out replay.csv [--config FILE] [--camera FILE] [--model FILE]\n"
-      "                     [--initial-pose x,y,z,yaw_deg,pitch_deg,roll_deg] [--overlay-dir DIR]\n"
+      "                     [--initial-pose x,y,z,yaw_deg,pitch_deg,roll_deg | --init-from-truth]\n"
+      "                     [--overlay-dir DIR]\n"
       "                     [--overlay-every N] [--max-frames N] [--residual vertex|point_to_line]\n"
       "                     [--no-timing] [--no-progress]\n",
       stderr);
@@ -46,7 +47,9 @@ int main(int argc, char** argv) {
         std::fputs("visnav-replay: --initial-pose wants x,y,z,yaw_deg,pitch_deg,roll_deg\n", stderr);
         return 2;
       }
-      options.have_initial_pose = true;
+      options.start = visnav::replay_tool::ReplayOptions::Start::kInitialPose;
+    } else if (arg == "--init-from-truth") {
+      options.start = visnav::replay_tool::ReplayOptions::Start::kFirstTruth;
     } else if (arg == "--residual" && has_value) {
       const std::string r = value();
       if (r != "vertex" && r != "point_to_line") {
@@ -80,8 +83,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf(
-      "visnav-replay: %d frames: tracking %d, degraded %d, lost %d; step time median %.1f us, p95 %.1f us\n",
-      summary.frames, summary.tracking, summary.degraded, summary.lost, summary.median_total_us,
-      summary.p95_total_us);
+      "visnav-replay: %d frames: far range %d, acquisition %d, near range: tracking %d, degraded %d, lost %d; "
+      "%d mode transitions; step time median %.1f us, p95 %.1f us\n",
+      summary.frames, summary.far_range, summary.acquisition, summary.tracking, summary.degraded, summary.lost,
+      summary.transitions, summary.median_total_us, summary.p95_total_us);
   return 0;
 }

@@ -10,10 +10,11 @@
 #include <sstream>
 #include <vector>
 
+#include "visnav/app/visnav_config.hpp"
 #include "visnav/io/camera_io.hpp"
 #include "visnav/io/config_io.hpp"
 #include "visnav/io/model_io.hpp"
-#include "visnav/nearrange/near_range_tracker.hpp"
+#include "visnav/navigation/navigation_pipeline.hpp"
 #include "visnav/replay/sequence.hpp"
 #include "visnav/replay_tool/overlay.hpp"
 
@@ -33,26 +34,47 @@ void writeHeader(std::FILE* f) {
     for (int j = 0; j < 6; ++j) std::fprintf(f, ",cov_%d_%d", i, j);
   std::fputs(
       ",tracked_surfaces,surface_mask,lines_total,lines_used,edge_points,inlier_points,texture_points,"
-      "vertices,rms_px,lm_iterations,t_project_us,t_scan_us,t_ransac_us,t_pose_us,t_total_us\n",
+      "vertices,rms_px,lm_iterations,t_project_us,t_scan_us,t_ransac_us,t_pose_us,t_total_us,"
+      "fault_bits,far_valid,far_azimuth_deg,far_elevation_deg,far_distance_m,far_cluster_px,far_circularity,"
+      "far_clusters\n",
       f);
 }
 
-void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const NearRangeResult& r) {
-  Eigen::Quaterniond q = r.pose.quaternion();
-  if (q.w() < 0.0) q.coeffs() *= -1.0;  // CONVENTIONS.md: w >= 0
-  const YawPitchRoll ypr = r.pose.ypr();
-  const Vec3& t = r.pose.t_c_m;
-  std::fprintf(f, "%lld,%lld,%s,%u,near,%.6f,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g",
-               static_cast<long long>(frame), static_cast<long long>(timestamp_ns), toString(r.status),
-               r.flags, r.quality, t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z(), ypr.yaw_rad * kDegPerRad,
-               ypr.pitch_rad * kDegPerRad, ypr.roll_rad * kDegPerRad);
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.6g", r.covariance(i, j));
-  std::fprintf(f, ",%d,%llu,%d,%d,%d,%d,%d,%d,%.6f,%d,%.2f,%.2f,%.2f,%.2f,%.2f\n", r.tracked_surfaces,
-               static_cast<unsigned long long>(r.tracked_surface_mask), r.lines_total, r.lines_used,
-               r.edge_points, r.inlier_points, r.texture_points, r.vertices, r.rms_px, r.lm_iterations,
-               r.timing.project_us, r.timing.scan_us, r.timing.ransac_us, r.timing.pose_us,
-               r.timing.total_us);
+/// Status column: the near-range verdict in near range (a coasted frame is "lost" with the filter's pose),
+/// "init" while the 6-DOF track does not exist yet (standby, far range, acquisition).
+const char* statusText(const nav::NavSolution& sol, const NearRangeResult& near) {
+  if (sol.mode != nav::NavMode::kNearRange) return "init";
+  return toString(near.status);
+}
+
+void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const nav::NavSolution& sol,
+              const NearRangeResult& near_in) {
+  // Near-range details only for frames the tracker ran on.
+  const NearRangeResult near = sol.mode == nav::NavMode::kNearRange ? near_in : NearRangeResult{};
+  std::fprintf(f, "%lld,%lld,%s,%u,%s,%.6f", static_cast<long long>(frame), static_cast<long long>(timestamp_ns),
+               statusText(sol, near), near.flags, nav::toString(sol.mode), sol.quality);
+  if (sol.pose_valid) {
+    Eigen::Quaterniond q = sol.pose.quaternion();
+    if (q.w() < 0.0) q.coeffs() *= -1.0;  // CONVENTIONS.md: w >= 0
+    const YawPitchRoll ypr = sol.pose.ypr();
+    const Vec3& t = sol.pose.t_c_m;
+    std::fprintf(f, ",%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", t.x(), t.y(), t.z(), q.w(),
+                 q.x(), q.y(), q.z(), ypr.yaw_rad * kDegPerRad, ypr.pitch_rad * kDegPerRad,
+                 ypr.roll_rad * kDegPerRad);
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.6g", sol.covariance(i, j));
+  } else {
+    for (int i = 0; i < 10 + 36; ++i) std::fputc(',', f);  // no 6-DOF pose: empty fields
+  }
+  std::fprintf(f, ",%d,%llu,%d,%d,%d,%d,%d,%d,%.6f,%d,%.2f,%.2f,%.2f,%.2f,%.2f", near.tracked_surfaces,
+               static_cast<unsigned long long>(near.tracked_surface_mask), near.lines_total, near.lines_used,
+               near.edge_points, near.inlier_points, near.texture_points, near.vertices, near.rms_px,
+               near.lm_iterations, near.timing.project_us, near.timing.scan_us, near.timing.ransac_us,
+               near.timing.pose_us, sol.timing.process_us);
+  const nav::FarRangeSolution& far = sol.far;
+  std::fprintf(f, ",%u,%d,%.9g,%.9g,%.9g,%d,%.6f,%d\n", sol.fault_bits, far.valid ? 1 : 0,
+               far.azimuth_rad * kDegPerRad, far.elevation_rad * kDegPerRad, far.distance_m, far.cluster_pixels,
+               far.circularity, far.cluster_count);
 }
 
 void drawProgress(int done, int total, const ReplaySummary& s) {
@@ -94,28 +116,27 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
   PolygonModel model = sequence.model;
   if (!options.model_path.empty())
     if (LoadError e = io::loadModel(options.model_path, model); !e.ok) return e;
-  NearRangeParams params;
+  nav::PipelineParams params;
   if (!options.config_path.empty()) {
-    io::ConfigFile config;
-    if (LoadError e = config.open(options.config_path); !e.ok) return e;
-    if (LoadError e = config.apply(params); !e.ok) return e;
-    if (LoadError e = config.checkNoUnknownKeys(); !e.ok) return e;
+    // visnavd's whole-config loader (fsw/app): every table is checked (a typo anywhere is an error), the
+    // pipeline tables are used, the others ([camera], [executive], [telemetry], ...) are ignored here.
+    app::VisnavConfig config;
+    if (LoadError e = app::loadVisnavConfig(options.config_path, config); !e.ok) return e;
+    params = config.pipeline;
   }
-  if (options.override_residual) params.pose_residual = static_cast<int>(options.residual);
+  if (options.override_residual) params.nearrange.pose_residual = static_cast<int>(options.residual);
 
-  Pose pose;
-  if (options.have_initial_pose) {
-    pose = options.initial_pose;
-  } else if (!sequence.truth.empty()) {
-    pose = sequence.truth.front().pose;
-  } else {
-    return LoadError::failure(options.sequence_dir +
-                              ": sequence has no truth.csv; give the initial pose with --initial-pose");
+  nav::NavigationPipeline pipeline;
+  if (LoadError e = pipeline.init(PinholeCamera(intrinsics), model, params); !e.ok) return e;
+  if (options.timing) pipeline.setClock(&monotonicNs);
+  using Start = ReplayOptions::Start;
+  if (options.start == Start::kInitialPose) {
+    pipeline.startNearRange(options.initial_pose, 0);
+  } else if (options.start == Start::kFirstTruth) {
+    if (sequence.truth.empty())
+      return LoadError::failure(options.sequence_dir + ": sequence has no truth.csv to start from");
+    pipeline.startNearRange(sequence.truth.front().pose, 0);
   }
-
-  NearRangeTracker tracker;
-  if (LoadError e = tracker.init(PinholeCamera(intrinsics), model, params); !e.ok) return e;
-  if (options.timing) tracker.setClock(&monotonicNs);
 
   const std::size_t bytes_per_pixel = sequence.bit_depth > 8 ? 2U : 1U;
   const std::size_t capacity =
@@ -131,8 +152,6 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
   times.reserve(static_cast<std::size_t>(total));
   const bool tty = options.progress && isatty(STDERR_FILENO) != 0;
   LoadError failure;
-  bool have_previous = false;
-  Vec3 previous_t = Vec3::Zero();
   for (int i = 0; i < total; ++i) {
     const replay::FrameEntry& entry = sequence.frames[static_cast<std::size_t>(i)];
     int w = 0, h = 0, maxval = 0;
@@ -146,31 +165,40 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
                                    std::to_string(intrinsics.height_px));
       break;
     }
-    const MonoImage image =
-        maxval > 255
-            ? MonoImage::from16(ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.get()), w, h),
-                                static_cast<std::uint16_t>(maxval))
-            : MonoImage::from8(ImageView8(buffer.get(), w, h));
-    NearRangeResult result;
-    tracker.track(image, pose, static_cast<std::uint64_t>(entry.frame), result);
-    // Stand-in for the navigation filter (issue 3): constant-velocity prediction of the translation from
-    // the last two measured frames; the attitude is held (at 25 m its frame-to-frame noise would only be
-    // amplified by extrapolation). After a lost frame the prediction is the last pose.
-    const bool measured = result.status != TrackStatus::kLost;
-    pose = result.pose;
-    if (measured && have_previous) pose.t_c_m += result.pose.t_c_m - previous_t;
-    have_previous = measured;
-    previous_t = result.pose.t_c_m;
-    writeRow(csv, entry.frame, entry.timestamp_ns, result);
+    Frame frame;
+    frame.image = maxval > 255
+                      ? MonoImage::from16(ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.get()), w, h),
+                                          static_cast<std::uint16_t>(maxval))
+                      : MonoImage::from8(ImageView8(buffer.get(), w, h));
+    frame.exposure_time_ns = entry.timestamp_ns;
+    frame.sequence = static_cast<std::uint64_t>(entry.frame);
+    const std::uint64_t transitions_before = pipeline.modes().transitionCount();
+    nav::NavSolution solution;
+    // Simulated clock: the frame is processed at its exposure time.
+    pipeline.process(&frame, entry.timestamp_ns, solution);
+    const NearRangeResult& result = pipeline.lastNearRange();
+    writeRow(csv, entry.frame, entry.timestamp_ns, solution, result);
+    if (pipeline.modes().transitionCount() != transitions_before) {
+      const nav::ModeTransition& t = pipeline.modes().lastTransition();
+      ++summary.transitions;
+      if (options.progress) {
+        std::fprintf(stderr, "%sframe %lld: %s -> %s (%s)\n", tty ? "\r" : "", static_cast<long long>(entry.frame),
+                     nav::toString(t.from), nav::toString(t.to), t.reason.data());
+      }
+    }
     ++summary.frames;
-    summary.tracking += result.status == TrackStatus::kTracking ? 1 : 0;
-    summary.degraded += result.status == TrackStatus::kDegraded ? 1 : 0;
-    summary.lost += result.status == TrackStatus::kLost ? 1 : 0;
-    times.push_back(result.timing.total_us);
-    if (!options.overlay_dir.empty() && options.overlay_every > 0 && i % options.overlay_every == 0) {
+    const bool near = solution.mode == nav::NavMode::kNearRange;
+    summary.tracking += near && result.status == TrackStatus::kTracking ? 1 : 0;
+    summary.degraded += near && result.status == TrackStatus::kDegraded ? 1 : 0;
+    summary.lost += near && result.status == TrackStatus::kLost ? 1 : 0;
+    summary.far_range += solution.mode == nav::NavMode::kFarRange ? 1 : 0;
+    summary.acquisition += solution.mode == nav::NavMode::kAcquisition ? 1 : 0;
+    times.push_back(solution.timing.process_us);
+    if (near && !options.overlay_dir.empty() && options.overlay_every > 0 && i % options.overlay_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "/overlay_%06lld.png", static_cast<long long>(entry.frame));
-      if (LoadError e = writeOverlayPng(options.overlay_dir + name, image, tracker, result); !e.ok) {
+      if (LoadError e = writeOverlayPng(options.overlay_dir + name, frame.image, pipeline.nearRange(), result);
+          !e.ok) {
         failure = e;
         break;
       }

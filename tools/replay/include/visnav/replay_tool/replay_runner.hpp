@@ -1,4 +1,5 @@
-// visnav-replay's engine: the flight pipeline over a recorded sequence as fast as the CPU allows, on the
+// visnav-replay's engine: the flight pipeline (fsw/navigation NavigationPipeline: modes, far range,
+// acquisition, near range, Kalman filter, FDIR) over a recorded sequence as fast as the CPU allows, on the
 // sequence's own timestamps (simulated clock). A library so tests run exactly what the tool runs.
 #pragma once
 
@@ -19,8 +20,11 @@ struct ReplayOptions {
   std::string output_csv;   ///< required
   std::string overlay_dir;  ///< optional: PNG overlays (paper fig. 3) go here
   int overlay_every = 10;   ///< every N-th frame gets an overlay
-  bool have_initial_pose = false;
-  Pose initial_pose;      ///< else the sequence's first truth row
+  /// How the run starts: automatic (far range, then acquisition hands over to near range by itself), from
+  /// `initial_pose`, or from the sequence's first truth row (near-range accuracy runs).
+  enum class Start { kAutomatic, kInitialPose, kFirstTruth };
+  Start start = Start::kAutomatic;
+  Pose initial_pose;
   int max_frames = -1;    ///< -1: all
   bool progress = false;  ///< progress bar on stderr
   bool timing = true;     ///< false: timing columns are 0 (byte-identical CSVs across runs)
@@ -33,6 +37,9 @@ struct ReplaySummary {
   int tracking = 0;
   int degraded = 0;
   int lost = 0;
+  int far_range = 0;    ///< frames processed in far range
+  int acquisition = 0;  ///< frames processed in acquisition
+  int transitions = 0;
   double median_total_us = 0.0;
   double p95_total_us = 0.0;
 };

@@ -1,0 +1,85 @@
+// The pipeline of architecture.md: per frame the mode manager calls exactly one estimator (far range,
+// acquisition or near range), then the Kalman filter, then FDIR, and returns a NavSolution. Replay, tests
+// and the daemon run this same object; only the camera and the clock differ. All memory is sized in init();
+// process() allocates nothing, throws nothing and is bounded (acquisition spreads its search over cycles).
+#pragma once
+
+#include <cstdint>
+
+#include "visnav/acquisition/acquisition.hpp"
+#include "visnav/core/frame.hpp"
+#include "visnav/farrange/far_range_estimator.hpp"
+#include "visnav/navigation/fdir_monitor.hpp"
+#include "visnav/navigation/mode_manager.hpp"
+#include "visnav/navigation/nav_solution.hpp"
+#include "visnav/navigation/navigation_params.hpp"
+#include "visnav/navigation/pose_filter.hpp"
+#include "visnav/nearrange/near_range_tracker.hpp"
+
+namespace visnav::nav {
+
+struct PipelineParams {
+  NavigationParams navigation;
+  NearRangeParams nearrange;
+  far::FarRangeParams farrange;
+  acq::AcquisitionParams acquisition;
+  PoseFilterParams filter;
+};
+
+class NavigationPipeline {
+ public:
+  LoadError init(const PinholeCamera& camera, const PolygonModel& model, const PipelineParams& params);
+  /// Per-stage timing source (CLOCK_MONOTONIC in flight; nullptr reports zero timings, as replay does for
+  /// bit-identical output).
+  void setClock(MonotonicClockNs clock);
+  /// Enters near range from a known pose (replay with an initial pose, tests), bypassing acquisition.
+  void startNearRange(const Pose& pose, std::uint64_t frame_number);
+
+  /// One cycle. `frame` nullptr: the camera delivered nothing (counted, the filter coasts). `now_ns` is the
+  /// cycle time on the executive's clock (simulated in replay), used for the frame-age check.
+  Status process(const Frame* frame, std::int64_t now_ns, NavSolution& out);
+  /// Ground command, validated and acknowledged (also in the health record).
+  bool command(ModeCommandKind kind, std::uint32_t command_id, std::uint64_t frame_number, CommandAck& ack);
+  /// Health record: mode, faults, counters, last transition, last command (task timing is the executive's).
+  void fillHealth(HealthRecord& health) const;
+
+  NavMode mode() const { return m_modes.mode(); }
+  const ModeManager& modes() const { return m_modes; }
+  const NearRangeTracker& nearRange() const { return m_near; }
+  const NearRangeResult& lastNearRange() const { return m_near_result; }
+  const far::FarRangeEstimator& farRange() const { return m_far; }
+  const far::FarRangeResult& lastFarRange() const { return m_far_result; }
+  const PoseFilter& filter() const { return m_filter; }
+
+ private:
+  void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
+  void runAcquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
+  void runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
+  void coast(NavSolution& out);
+  void enterMode(NavMode mode, std::uint64_t frame_number);
+  bool centreInImage(const Pose& pose) const;
+
+  PinholeCamera m_camera;
+  PipelineParams m_params;
+  MonotonicClockNs m_clock = nullptr;
+  ModeManager m_modes;
+  FdirMonitor m_fdir;
+  PoseFilter m_filter;
+  NearRangeTracker m_near;
+  far::FarRangeEstimator m_far;
+  acq::Acquisition m_acquisition;
+
+  NearRangeResult m_near_result;
+  far::FarRangeResult m_far_result;
+  FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
+  Pose m_last_pose;                 ///< last trusted 6-DOF pose
+  bool m_have_pose = false;
+  int m_coasted = 0;  ///< consecutive near-range frames without a usable measurement
+  bool m_have_last_exposure = false;
+  std::int64_t m_last_exposure_ns = 0;
+  std::uint64_t m_frames_processed = 0;
+  std::uint64_t m_frames_missing = 0;
+  CommandAck m_last_command;
+};
+
+}  // namespace visnav::nav

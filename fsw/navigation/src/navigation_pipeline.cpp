@@ -1,0 +1,224 @@
+#include "visnav/navigation/navigation_pipeline.hpp"
+
+#include <cmath>
+
+#include "visnav/farrange/nav_conversion.hpp"
+
+namespace visnav::nav {
+
+LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonModel& model,
+                                   const PipelineParams& params) {
+  m_camera = camera;
+  m_params = params;
+  LoadError e = m_modes.init(params.navigation);
+  if (e.ok) e = m_filter.init(params.filter);
+  if (e.ok) e = m_near.init(camera, model, params.nearrange);
+  if (e.ok) e = m_far.init(camera, params.farrange);
+  if (e.ok) e = m_acquisition.init(camera, model, params.acquisition, params.nearrange);
+  if (!e.ok) return e;
+  m_fdir.init(params.navigation);
+  m_last_command = CommandAck{};
+  copyReason(m_last_command.reason, "none");
+  return LoadError::success();
+}
+
+void NavigationPipeline::setClock(MonotonicClockNs clock) {
+  m_clock = clock;
+  m_near.setClock(clock);
+  m_far.setClock(clock);
+}
+
+void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_number) {
+  m_last_pose = pose;
+  m_have_pose = true;
+  m_coasted = 0;
+  m_filter.reset();
+  m_near.reset();
+  m_modes.transition(NavMode::kNearRange, "start: initial pose given", frame_number);
+  m_fdir.resetPersistence();
+}
+
+bool NavigationPipeline::centreInImage(const Pose& pose) const {
+  Vec2 px;
+  if (!m_camera.project(pose.t_c_m, px)) return false;
+  return px.x() >= 0.0 && px.y() >= 0.0 && px.x() < m_camera.width() && px.y() < m_camera.height();
+}
+
+void NavigationPipeline::coast(NavSolution& out) {
+  // Sec. II-H: no usable surface this frame; the filter's prediction stands in for a few frames.
+  if (!m_filter.initialised() || !m_filter.attitudeKnown() || m_coasted >= m_params.navigation.coast_frames)
+    return;
+  ++m_coasted;
+  out.pose_valid = true;
+  out.pose = m_filter.pose();
+  out.covariance = m_filter.poseCovariance();
+  out.quality = 0.0;
+}
+
+void NavigationPipeline::runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in) {
+  // The far-range estimator gates by its own light track (last position, velocity, size). The filter's
+  // prediction is not fed to it: from a few-pixel cluster the early distances are off by up to ~60 %, and a
+  // filter initialised on them predicted a size that gated the true target out (measured on
+  // full_approach_ci: far range lost the target from frame 20 on).
+  m_far.estimate(image, m_far_result);
+  out.far = far::toFarRangeSolution(m_far_result);
+  if (!out.far.valid) {
+    m_fdir.raise(kFaultFarRangeNoTarget);
+    return;
+  }
+  m_last_far_fix = out.far;
+  in.far_valid = true;
+  in.far_distance_m = out.far.distance_m;
+  if (!m_filter.initialised()) {
+    Vec3 t;
+    Mat3 cov;
+    if (positionFromFarRange(out.far.direction_c, out.far.distance_m, m_params.filter.far_direction_sigma_deg * kRadPerDeg,
+                             m_params.filter.far_distance_sigma_rel, t, cov))
+      m_filter.initialisePosition(t, cov);
+    return;
+  }
+  // updateFarRange scales the uncertainty with the predicted range (the measured one would trust short
+  // readings more and bias the range low).
+  if (!m_filter.updateFarRange(out.far.direction_c, out.far.distance_m).accepted &&
+      m_filter.consecutiveRejections() >= 3)
+    m_filter.reset();  // the filter lost the target: the next fix restarts it
+}
+
+void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
+                                        ModeInputs& in) {
+  acq::AcquisitionResult result;
+  m_acquisition.step(image, frame_number, result);
+  if (result.state == acq::AcquisitionState::kFailed) {
+    in.acquisition_failed = true;
+    m_fdir.raise(kFaultAcquisitionFailed);
+    return;
+  }
+  if (result.state != acq::AcquisitionState::kSucceeded) return;
+  in.acquisition_succeeded = true;
+  m_last_pose = result.pose;
+  m_have_pose = true;
+  m_filter.initialise(result.pose, result.covariance);
+  out.pose_valid = true;
+  out.pose = result.pose;
+  out.covariance = result.covariance;
+  out.quality = result.quality;
+}
+
+void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
+                                      ModeInputs& in) {
+  const bool predicted_by_filter = m_filter.initialised() && m_filter.attitudeKnown();
+  const Pose predicted = predicted_by_filter ? m_filter.pose() : m_last_pose;
+  m_near.track(image, predicted, frame_number, m_near_result);
+  const NearRangeResult& r = m_near_result;
+  out.tracked_surfaces = r.tracked_surfaces;
+  out.lines_used = r.lines_used;
+  out.lines_total = r.lines_total;
+
+  NearRangeCheck check;
+  check.near = &r;
+  const bool measured = r.status != TrackStatus::kLost;
+  if (measured) {
+    check.centre_in_image = centreInImage(r.pose);
+    if (predicted_by_filter) {
+      const FilterUpdate u = m_filter.update(r.pose, r.covariance);
+      check.innovation_checked = true;
+      check.innovation_accepted = u.accepted;
+      // A clean track the filter keeps rejecting means the filter diverged (e.g. a poor first velocity).
+      if (!u.accepted && r.status == TrackStatus::kTracking && m_filter.consecutiveRejections() >= 2)
+        m_filter.initialise(r.pose, r.covariance);
+    } else {
+      m_filter.initialise(r.pose, r.covariance);
+    }
+  }
+  const std::uint32_t faults = m_fdir.checkNearRange(check);
+  if (measured) {
+    // The tracker's pose is reported whenever it has one: a fault (e.g. the filter's innovation gate) is
+    // flagged in fault_bits and halves the quality, it does not silently swap the measurement for the
+    // prediction. Persistent faults make the mode manager fall back.
+    m_coasted = 0;
+    m_last_pose = r.pose;
+    m_have_pose = true;
+    out.pose_valid = true;
+    out.pose = r.pose;
+    out.covariance = r.covariance;
+    out.quality = faults == 0U ? r.quality : 0.5 * r.quality;
+  } else {
+    coast(out);
+  }
+  in.near_fault_persisted = m_fdir.faultPersisted();
+  in.range_known = m_have_pose;
+  in.range_m = out.pose_valid ? out.pose.t_c_m.z() : m_last_pose.t_c_m.z();
+}
+
+void NavigationPipeline::enterMode(NavMode mode, std::uint64_t frame_number) {
+  m_fdir.resetPersistence();
+  m_coasted = 0;
+  switch (mode) {
+    case NavMode::kStandby: break;
+    case NavMode::kFarRange: m_far.reset(); break;
+    case NavMode::kAcquisition: m_acquisition.start(m_last_far_fix, frame_number); break;
+    case NavMode::kNearRange: m_near.reset(); break;
+  }
+}
+
+Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavSolution& out) {
+  out = NavSolution{};
+  const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
+  out.frame_number = m_frames_processed + m_frames_missing;
+  const NavMode mode_before = m_modes.mode();
+  out.mode = mode_before;
+  Status status = Status::kOk;
+  ModeInputs in;
+  if (frame == nullptr || frame->image.empty()) {
+    ++m_frames_missing;
+    m_fdir.raise(kFaultNoFrame);
+    if (mode_before == NavMode::kNearRange) coast(out);
+  } else if (frame->image.width() != m_camera.width() || frame->image.height() != m_camera.height()) {
+    ++m_frames_processed;
+    m_fdir.raise(kFaultNoFrame);
+    status = Status::kInvalidArgument;
+  } else {
+    ++m_frames_processed;
+    out.frame_number = frame->sequence;
+    out.exposure_time_ns = frame->exposure_time_ns;
+    m_fdir.checkFrameAge(static_cast<double>(now_ns - frame->exposure_time_ns) * 1e-6);
+    // Propagate the filter to this exposure (two periods after a missed frame: the timestamps say so).
+    if (m_have_last_exposure && m_filter.initialised()) {
+      const double dt_s = static_cast<double>(frame->exposure_time_ns - m_last_exposure_ns) * 1e-9;
+      if (dt_s > 0.0) m_filter.predict(dt_s);
+    }
+    m_have_last_exposure = true;
+    m_last_exposure_ns = frame->exposure_time_ns;
+    switch (mode_before) {
+      case NavMode::kStandby: break;
+      case NavMode::kFarRange: runFarRange(frame->image, out, in); break;
+      case NavMode::kAcquisition: runAcquisition(frame->image, out.frame_number, out, in); break;
+      case NavMode::kNearRange: runNearRange(frame->image, out.frame_number, out, in); break;
+    }
+  }
+  if (m_modes.step(in, out.frame_number)) enterMode(m_modes.mode(), out.frame_number);
+  out.fault_bits = m_fdir.endFrame();
+  if (m_clock != nullptr) out.timing.process_us = static_cast<double>(m_clock() - start) * 1e-3;
+  return status;
+}
+
+bool NavigationPipeline::command(ModeCommandKind kind, std::uint32_t command_id, std::uint64_t frame_number,
+                                 CommandAck& ack) {
+  const NavMode before = m_modes.mode();
+  const bool accepted = m_modes.command(kind, command_id, m_last_far_fix.valid, frame_number, ack);
+  if (accepted && m_modes.mode() != before) enterMode(m_modes.mode(), frame_number);
+  m_last_command = ack;
+  return accepted;
+}
+
+void NavigationPipeline::fillHealth(HealthRecord& health) const {
+  health.mode = m_modes.mode();
+  health.fault_bits = m_fdir.activeFaults();
+  health.fault_counts = m_fdir.faultCounts();
+  health.frames_processed = m_frames_processed;
+  health.mode_transitions = m_modes.transitionCount();
+  health.last_transition = m_modes.lastTransition();
+  health.last_command = m_last_command;
+}
+
+}  // namespace visnav::nav

@@ -1,0 +1,113 @@
+// The navigation pipeline end to end on rendered frames: far range -> acquisition -> near range without
+// help, ground commands, and no allocation after init in any mode or across any transition.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "../../support/alloc_counter.hpp"
+#include "../nearrange/tracker_fixture.hpp"
+#include "visnav/navigation/navigation_pipeline.hpp"
+
+namespace visnav::nav {
+namespace {
+
+/// The paper's plate approaching from 26 m to 20 m (frames at 5 Hz), rendered with the paper's recipe.
+class PipelineTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    model = makeRectanglePlate(2.3, 1.8);
+    ASSERT_TRUE(renderer.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    for (int i = 0; i < kFrames; ++i) {
+      const double d = 26.0 - 0.1 * i;
+      frames.push_back(test::renderFrame(renderer, test::plateAt(d, 0.1, 1.0, -1.0), 100U + i));
+    }
+    // gamma for this plate (visnav-calibrate-gamma on approach_ci prints 2011): far range then reads ~26 m.
+    params.farrange.gamma = 2011.0;
+  }
+  Frame frameAt(int i) const {
+    Frame f;
+    f.image = frames[static_cast<std::size_t>(i)].image();
+    f.exposure_time_ns = 200000000LL * i;
+    f.sequence = static_cast<std::uint64_t>(i);
+    return f;
+  }
+  static constexpr int kFrames = 60;
+  PolygonModel model;
+  synthetic::Renderer renderer;
+  std::vector<test::RenderedFrame> frames;
+  PipelineParams params;
+};
+
+TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
+  NavigationPipeline pipeline;
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
+  ASSERT_EQ(pipeline.mode(), NavMode::kFarRange);
+  NavSolution out;
+  int first_near = -1;
+  for (int i = 0; i < kFrames; ++i) {
+    const Frame f = frameAt(i);
+    ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+    if (out.mode == NavMode::kFarRange) {
+      EXPECT_TRUE(out.far.valid) << "frame " << i;
+      EXPECT_NEAR(out.far.distance_m, 26.0 - 0.1 * i, 2.6) << "frame " << i;  // within 10 %
+    }
+    if (out.mode == NavMode::kNearRange && first_near < 0) first_near = i;
+  }
+  ASSERT_GE(first_near, 0) << "never reached near range";
+  EXPECT_LT(first_near, 20);
+  EXPECT_EQ(pipeline.mode(), NavMode::kNearRange);
+  EXPECT_EQ(pipeline.modes().transitionCount(), 2U);  // far -> acquisition -> near, no chatter
+  ASSERT_TRUE(out.pose_valid);
+  // The plate is 2-fold symmetric about its normal: compare with the nearer twin of the truth.
+  const Pose truth = frames.back().truth;
+  Pose twin = truth;
+  twin.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitZ()).toRotationMatrix();
+  const Vec6 e1 = truth.boxMinus(out.pose), e2 = twin.boxMinus(out.pose);
+  const Vec6 err = e1.head<3>().norm() < e2.head<3>().norm() ? e1 : e2;
+  EXPECT_LT(err.tail<3>().norm(), 0.1);
+  EXPECT_LT(err.head<3>().norm() * kDegPerRad, 3.0);
+}
+
+TEST_F(PipelineTest, CommandsAndFallbackAllocateNothingAfterInit) {
+  NavigationPipeline pipeline;
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
+  NavSolution out;
+  CommandAck ack;
+  int modes_seen = 0;
+  const std::uint64_t before = test::allocationCount();
+  for (int round = 0; round < 4; ++round) {
+    for (int i = 0; i < kFrames; ++i) {
+      const Frame f = frameAt(i);
+      pipeline.process(&f, f.exposure_time_ns, out);
+      modes_seen |= 1 << static_cast<int>(out.mode);
+      if (i == 40) pipeline.command(ModeCommandKind::kForceFarRange, 1U + round, i, ack);
+      if (i == 45) pipeline.command(ModeCommandKind::kStandby, 10U + round, i, ack);
+      if (i == 47) pipeline.process(nullptr, f.exposure_time_ns, out);  // a missed frame
+      if (i == 50) pipeline.command(ModeCommandKind::kResume, 20U + round, i, ack);
+    }
+  }
+  const std::uint64_t after = test::allocationCount();
+  EXPECT_EQ(after - before, 0U) << "malloc counted: " << test::countsMalloc();
+  EXPECT_EQ(modes_seen, 0xF);  // standby, far range, acquisition and near range all ran
+  HealthRecord health;
+  pipeline.fillHealth(health);
+  EXPECT_GT(health.mode_transitions, 10U);
+  EXPECT_EQ(health.last_command.command_id, 23U);
+  EXPECT_TRUE(health.last_command.accepted);
+  EXPECT_GT(health.fault_counts[7], 0U);  // kFaultNoFrame
+}
+
+TEST_F(PipelineTest, WrongImageSizeIsAnErrorNotACrash) {
+  NavigationPipeline pipeline;
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
+  std::vector<std::uint8_t> small(64U * 48U, 0U);
+  Frame f;
+  f.image = MonoImage::from8(ImageView8(small.data(), 64, 48));
+  NavSolution out;
+  EXPECT_EQ(pipeline.process(&f, 0, out), Status::kInvalidArgument);
+  EXPECT_NE(out.fault_bits & kFaultNoFrame, 0U);
+}
+
+}  // namespace
+}  // namespace visnav::nav
