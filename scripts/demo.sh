@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The README's first command: install what is missing, build the release preset, then run the main job as a
 # bounded live demo with no hardware: visnavd (the 5 Hz flight program) on its built-in default camera, the
-# synthetic renderer playing config/scenarios/approach.toml live (25 m -> 5 m), publishes DDS telemetry on the
-# loopback interface; visnav-monitor, a second process, shows the live pose, mode and health as they arrive.
-# It ends by itself after SECONDS (default 60) with both summaries; Ctrl-C ends it early, cleanly (both
-# processes stop and summarise).
+# synthetic renderer playing config/scenarios/full_approach_ci.toml live (the plate from 750 m to 5 m: far
+# range, acquisition, near range), publishes DDS telemetry on the loopback interface; visnav-monitor, a second
+# process, shows the live pose, mode and health as they arrive. It ends by itself at the end of the approach
+# (40 s) or after SECONDS (default 60) with both summaries; Ctrl-C ends it early, cleanly (both processes stop
+# and summarise).
 #
 #   scripts/demo.sh [live [SECONDS]]     the live demo (default)
 #   scripts/demo.sh accuracy [SCENARIO]  the paper's sec. IV-A experiment instead: render SCENARIO (default
@@ -39,19 +40,22 @@ seconds=${2:-60}
 out=out/demo/live
 mkdir -p "$out"
 export CYCLONEDDS_URI="file://$PWD/config/cyclonedds-loopback.xml"
-# visnavd waits (bounded) for the monitor's readers, so the recording starts at frame 0; its key=value event
-# lines go to a file (the monitor owns the terminal).
-"$bin/visnavd" --config config/visnavd.toml --wait-subscribers 1 --wait-timeout 30 2>"$out/visnavd.log" &
+# visnavd waits (bounded) for the monitor's readers, so the recording starts at frame 0. It stops by itself
+# at the end of the approach (198 frames, 40 s) or after SECONDS. Its key=value event lines go to a file,
+# because the monitor's live view owns the terminal.
+"$bin/visnavd" --config config/visnavd.toml --cycles $((seconds * 5)) --wait-subscribers 1 --wait-timeout 30 \
+  2>"$out/visnavd.log" &
 daemon=$!
-stop_daemon() { kill -TERM "$daemon" 2>/dev/null || true; }
-trap stop_daemon EXIT INT TERM
-monitor_status=0
-"$bin/visnav-monitor" --config config/visnavd.toml --duration "$seconds" --csv "$out/monitor.csv" ||
-  monitor_status=$?
-stop_daemon
+"$bin/visnav-monitor" --config config/visnavd.toml --duration $((seconds + 30)) --csv "$out/monitor.csv" &
+monitor=$!
+# Ctrl-C reaches both processes (each stops cleanly and prints its summary); TERM is passed on as well.
+trap 'kill -TERM "$daemon" "$monitor" 2>/dev/null || true' INT TERM EXIT
 daemon_status=0
-wait "$daemon" || daemon_status=$?
-trap - EXIT INT TERM
+while kill -0 "$daemon" 2>/dev/null; do wait "$daemon" || daemon_status=$?; done
+kill -INT "$monitor" 2>/dev/null || true  # the daemon is done: the monitor prints its summary and ends
+monitor_status=0
+while kill -0 "$monitor" 2>/dev/null; do wait "$monitor" || monitor_status=$?; done
+trap - INT TERM EXIT
 
 echo
 echo "visnavd events (all in $out/visnavd.log):"

@@ -170,7 +170,7 @@ TEST(ShippedConfigs, AreValidWithTheirFiles) {
   VisnavConfig daemon;
   ASSERT_TRUE(loadVisnavConfig(kSource + "/config/visnavd.toml", daemon).ok);
   EXPECT_EQ(daemon.camera.driverKind(), camera::CameraDriver::kSynthetic);
-  EXPECT_EQ(daemon.camera.device, kSource + "/config/scenarios/approach.toml");
+  EXPECT_EQ(daemon.camera.device, kSource + "/config/scenarios/full_approach_ci.toml");
   EXPECT_EQ(access(daemon.camera.device.c_str(), R_OK), 0);
 }
 
