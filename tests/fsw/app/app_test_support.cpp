@@ -20,7 +20,7 @@ TempDir::~TempDir() {
 }
 
 std::string TempDir::write(const std::string& name, const std::string& text) const {
-  const std::string path = m_path + "/" + name;
+  std::string path = m_path + "/" + name;
   std::ofstream(path) << text;
   return path;
 }
@@ -30,7 +30,8 @@ std::string renderedSequence(const std::string& scenario, int frames) {
   // renamed into place, so concurrent test processes never see half a sequence.
   const std::size_t slash = scenario.rfind('/');
   const std::string stem = scenario.substr(slash + 1, scenario.size() - slash - 1 - 5);  // without ".toml"
-  const std::string out = std::string(VISNAV_TEST_DATA_DIR) + "/" + stem + "_" + std::to_string(frames);
+  std::string out =
+      std::string(VISNAV_TEST_DATA_DIR) + "/" + stem + (frames > 0 ? "_" + std::to_string(frames) : "");
   if (access((out + "/sequence.toml").c_str(), R_OK) == 0) return out;
   std::system(("mkdir -p '" + std::string(VISNAV_TEST_DATA_DIR) + "'").c_str());
   const std::string staging = out + ".tmp-" + std::to_string(getpid());

@@ -170,7 +170,7 @@ TEST(Daemon, CommandsAreValidatedAndAcknowledgedInHealth) {
   ack = commandRoundTrip(78, 9);  // no such kind
   EXPECT_EQ(ack.command_id, 78U);
   EXPECT_FALSE(ack.accepted);
-  EXPECT_NE(std::string(ack.reason.data()).find("9"), std::string::npos) << ack.reason.data();
+  EXPECT_NE(std::string(ack.reason.data()).find('9'), std::string::npos) << ack.reason.data();
   EXPECT_EQ(daemon.pipeline().mode(), nav::NavMode::kStandby);
   ack = commandRoundTrip(79, 3);  // resume
   EXPECT_TRUE(ack.accepted) << ack.reason.data();

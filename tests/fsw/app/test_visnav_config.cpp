@@ -18,7 +18,7 @@ const std::string kSource = VISNAV_SOURCE_DIR;
 class ConfigFiles : public ::testing::Test {
  protected:
   std::string write(const std::string& text) {
-    const std::string path = m_dir + "/config" + std::to_string(m_count++) + ".toml";
+    std::string path = m_dir + "/config" + std::to_string(m_count++) + ".toml";
     std::ofstream(path) << text;
     return path;
   }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cstdarg>
 #include <cstddef>
 #include <cstdint>
 
@@ -26,6 +27,8 @@ class EventLog {
   /// One line: the `event` name, then `fields` (printf format producing "key=value ..." text).
   void event(LogLevel level, const char* event, const char* fields, ...)
       __attribute__((format(printf, 4, 5)));
+  void vevent(LogLevel level, const char* event, const char* fields, va_list args)
+      __attribute__((format(printf, 4, 0)));
 
   /// Seconds since the log was created on CLOCK_MONOTONIC (the t_s field).
   double elapsedS() const;
