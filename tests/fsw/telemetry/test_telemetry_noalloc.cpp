@@ -24,7 +24,9 @@ namespace {
 
 constexpr int kCycles = 1000;
 constexpr std::uint64_t kCycloneAllocationsPerCycle = 4;  // 2 per write of PoseEstimate and of Health
-constexpr std::uint64_t kBackgroundSlack = 20;            // Cyclone's own threads (heartbeats, acks, leases)
+constexpr std::uint64_t kBackgroundSlack = 100;  // Cyclone's own threads (heartbeats, acks, leases); 25 seen under
+                                                 // a loaded parallel ctest. One allocation per cycle of ours
+                                                 // would add 1000: the bound still catches it.
 
 struct Flight {
   Participant participant;
