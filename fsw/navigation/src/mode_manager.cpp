@@ -20,7 +20,7 @@ void ModeManager::reset() {
   m_last = ModeTransition{};
   m_last.from = m_mode;
   m_last.to = m_mode;
-  copyReason(m_last.reason, "start");
+  copyBounded("start", m_last.reason.data(), m_last.reason.size());
   m_transitions = 0;
 }
 
@@ -29,7 +29,7 @@ void ModeManager::transition(NavMode to, const char* reason, std::uint64_t frame
   m_last.from = m_mode;
   m_last.to = to;
   m_last.frame_number = frame_number;
-  copyReason(m_last.reason, reason);
+  copyBounded(reason, m_last.reason.data(), m_last.reason.size());
   ++m_transitions;
   m_mode = to;
   m_frames_in_mode = 0;
@@ -99,7 +99,7 @@ bool ModeManager::command(ModeCommandKind kind, std::uint32_t command_id, bool f
     default: rejection = "unknown command"; break;
   }
   ack.accepted = rejection == nullptr;
-  copyReason(ack.reason, ack.accepted ? "ok" : rejection);
+  copyBounded(ack.accepted ? "ok" : rejection, ack.reason.data(), ack.reason.size());
   return ack.accepted;
 }
 

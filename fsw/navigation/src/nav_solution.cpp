@@ -1,6 +1,18 @@
 #include "visnav/navigation/nav_solution.hpp"
 
+#include <cstring>
+
 namespace visnav::nav {
+
+void copyBounded(const char* text, char* out, std::size_t capacity) {
+  if (capacity == 0) return;
+  std::size_t n = 0;
+  while (text != nullptr && n + 1 < capacity && text[n] != '\0') {
+    out[n] = text[n];
+    ++n;
+  }
+  std::memset(out + n, 0, capacity - n);
+}
 
 const char* toString(NavMode mode) {
   switch (mode) {

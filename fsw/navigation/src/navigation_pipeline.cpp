@@ -18,7 +18,7 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (!e.ok) return e;
   m_fdir.init(params.navigation);
   m_last_command = CommandAck{};
-  copyReason(m_last_command.reason, "none");
+  copyBounded("none", m_last_command.reason.data(), m_last_command.reason.size());
   return LoadError::success();
 }
 
@@ -72,7 +72,8 @@ void NavigationPipeline::runFarRange(const MonoImage& image, NavSolution& out, M
   if (!m_filter.initialised()) {
     Vec3 t;
     Mat3 cov;
-    if (positionFromFarRange(out.far.direction_c, out.far.distance_m, m_params.filter.far_direction_sigma_deg * kRadPerDeg,
+    if (positionFromFarRange(out.far.direction_c, out.far.distance_m,
+                             m_params.filter.far_direction_sigma_deg * kRadPerDeg,
                              m_params.filter.far_distance_sigma_rel, t, cov))
       m_filter.initialisePosition(t, cov);
     return;

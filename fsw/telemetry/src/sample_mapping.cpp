@@ -51,16 +51,6 @@ const char* trackStatusName(std::uint8_t status) { return lookup(kTrackNames, st
 const char* modeName(std::uint8_t mode) { return lookup(kModeNames, mode); }
 const char* commandKindName(std::uint8_t kind) { return lookup(kCommandNames, kind); }
 
-void copyBounded(const char* text, char* out, std::size_t capacity) {
-  if (capacity == 0) return;
-  std::size_t n = 0;
-  while (n + 1 < capacity && text[n] != '\0') {
-    out[n] = text[n];
-    ++n;
-  }
-  std::memset(out + n, 0, capacity - n);  // deterministic bytes on the wire
-}
-
 void fillPoseEstimate(const nav::NavSolution& nav, std::uint64_t sample_number, std::int64_t publish_time_ns,
                       visnav_PoseEstimate& out) {
   out.sample_number = sample_number;

@@ -55,12 +55,4 @@ class ModeManager {
   std::uint64_t m_transitions = 0;
 };
 
-/// Copies a C string into a fixed NUL-terminated buffer, truncating.
-template <std::size_t N>
-void copyReason(std::array<char, N>& out, const char* text) {
-  std::size_t i = 0;
-  for (; text != nullptr && text[i] != '\0' && i + 1 < N; ++i) out[i] = text[i];
-  out[i] = '\0';
-}
-
 }  // namespace visnav::nav

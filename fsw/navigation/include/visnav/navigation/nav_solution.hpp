@@ -4,12 +4,18 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "visnav/core/types.hpp"
 #include "visnav/geometry/pose.hpp"
 
 namespace visnav::nav {
+
+/// Copies a NUL-terminated string into a bounded char array, truncating; always NUL-terminates and zeroes the
+/// rest (deterministic bytes in fixed-size records and on the wire). The one copy used by navigation and
+/// telemetry.
+void copyBounded(const char* text, char* out, std::size_t capacity);
 
 enum class NavMode : std::uint8_t { kStandby = 0, kFarRange = 1, kAcquisition = 2, kNearRange = 3 };
 const char* toString(NavMode mode);

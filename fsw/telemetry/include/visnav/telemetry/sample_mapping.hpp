@@ -45,7 +45,7 @@ struct ReceivedCommand {
 /// Rejects command_id 0 (reserved: "no command yet" in Health) and unknown kinds, with a reason.
 ReceivedCommand validateCommand(const visnav_ModeCommand& sample);
 
-/// Copies a NUL-terminated string into a bounded char array, truncating; always NUL-terminates.
-void copyBounded(const char* text, char* out, std::size_t capacity);
+/// The bounded string copy of navigation (nav_solution.hpp), so mapping and the health record agree.
+using nav::copyBounded;
 
 }  // namespace visnav::telemetry
