@@ -40,13 +40,15 @@ seconds=${2:-60}
 out=out/demo/live
 mkdir -p "$out"
 export CYCLONEDDS_URI="file://$PWD/config/cyclonedds-loopback.xml"
-# visnavd waits (bounded) for the monitor's readers, so the recording starts at frame 0. It stops by itself
+# visnavd waits (bounded) for the monitor's readers and their ready file, so the recording starts at frame 0. It stops by itself
 # at the end of the approach (198 frames, 40 s) or after SECONDS. Its key=value event lines go to a file,
 # because the monitor's live view owns the terminal.
+rm -f "$out/monitor.ready"
 "$bin/visnavd" --config config/visnavd.toml --cycles $((seconds * 5)) --wait-subscribers 1 --wait-timeout 30 \
-  2>"$out/visnavd.log" &
+  --wait-file "$out/monitor.ready" 2>"$out/visnavd.log" &
 daemon=$!
-"$bin/visnav-monitor" --config config/visnavd.toml --duration $((seconds + 30)) --csv "$out/monitor.csv" &
+"$bin/visnav-monitor" --config config/visnavd.toml --duration $((seconds + 30)) --csv "$out/monitor.csv" \
+  --ready-file "$out/monitor.ready" &
 monitor=$!
 # Ctrl-C reaches both processes (each stops cleanly and prints its summary); TERM is passed on as well.
 trap 'kill -TERM "$daemon" "$monitor" 2>/dev/null || true' INT TERM EXIT

@@ -25,7 +25,7 @@ void onStopSignal(int) {
 void usage() {
   std::fputs(
       "usage: visnavd --config FILE [--cycles N] [--simulated-clock] [--pace-ms X] [--wait-subscribers N]\n"
-      "               [--wait-timeout S] [--check]\n"
+      "               [--wait-timeout S] [--wait-file FILE] [--check]\n"
       "  --config FILE         run configuration (every table; reference: config/PARAMETERS.md)\n"
       "  --cycles N            stop after N cycles (default: run until SIGTERM/SIGINT)\n"
       "  --simulated-clock     simulated time from the first frame's timestamp; a replay or synthetic "
@@ -35,6 +35,8 @@ void usage() {
       "up)\n"
       "  --wait-subscribers N  before the first cycle, wait for N readers on each flight topic\n"
       "  --wait-timeout S      longest wait for them (default 10 s; exit code 4 when they do not come)\n"
+      "  --wait-file FILE      then wait (same bound) for FILE, a ground tool's --ready-file, instead of a\n"
+      "                        0.5 s pause: its readers have matched too, nothing is lost\n"
       "  --check               validate the config and its files, then exit (0 valid, 3 invalid)\n"
       "  exit codes: 0 ok, 2 usage, 3 config invalid, 4 camera/pipeline/DDS init failure, 5 realtime "
       "refused\n",
@@ -72,6 +74,8 @@ int main(int argc, char** argv) {
       options.wait_subscribers = static_cast<int>(number);
     } else if (arg == "--wait-timeout" && has_value && parseNumber(argv[++i], 0.0, 3600.0, number)) {
       options.wait_timeout_s = number;
+    } else if (arg == "--wait-file" && has_value) {
+      options.wait_file = argv[++i];
     } else if (arg == "--check") {
       check_only = true;
     } else if (arg == "--help" || arg == "-h") {

@@ -98,15 +98,16 @@ TEST(EndToEnd, MonitorReceivesEverySampleAndScoresLikeReplay) {
       << readText(dir.path() + "/replay.txt");
 
   const std::string monitor_csv = dir.path() + "/monitor.csv";
-  const pid_t monitor = spawnProcess({VISNAV_MONITOR, "--config", config, "--csv", monitor_csv, "--samples",
-                                      std::to_string(kFrames), "--duration", "90", "--no-view"},
-                                     dir.path() + "/monitor.txt");
+  const pid_t monitor = spawnProcess(
+      {VISNAV_MONITOR, "--config", config, "--csv", monitor_csv, "--samples", std::to_string(kFrames),
+       "--duration", "90", "--no-view", "--ready-file", dir.path() + "/monitor.ready"},
+      dir.path() + "/monitor.txt");
   ASSERT_GT(monitor, 0);
   const std::string daemon_log = dir.path() + "/visnavd.txt";
-  const pid_t daemon =
-      spawnProcess({"/bin/sh", "-c",
-                    std::string("exec ") + VISNAV_DAEMON + " --config " + config +
-                        " --simulated-clock --pace-ms 5 --wait-subscribers 1 2> " + daemon_log});
+  const pid_t daemon = spawnProcess({"/bin/sh", "-c",
+                                     std::string("exec ") + VISNAV_DAEMON + " --config " + config +
+                                         " --simulated-clock --pace-ms 5 --wait-subscribers 1 --wait-file " +
+                                         dir.path() + "/monitor.ready 2> " + daemon_log});
   ASSERT_GT(daemon, 0);
   EXPECT_EQ(waitProcess(daemon, 90.0), 0) << readText(daemon_log);
   EXPECT_EQ(waitProcess(monitor, 30.0), 0) << readText(dir.path() + "/monitor.txt");

@@ -16,10 +16,13 @@ void onSignal(int) { g_stop.store(true); }
 void usage() {
   std::fprintf(stderr,
                "usage: visnav-monitor %s [--csv FILE] [--samples N] [--duration S] [--no-view]\n"
+               "       [--ready-file FILE]\n"
                "  --csv FILE     record every sample: FILE (pose, visnav-eval columns), FILE's stem +\n"
                "                 _far_range.csv and _health.csv\n"
                "  --samples N    stop after N PoseEstimate samples\n"
                "  --duration S   stop after S seconds\n"
+               "  --ready-file FILE  create FILE once every reader has matched a writer (a publisher that\n"
+               "                 waits for it loses nothing: visnavd --wait-file)\n"
                "  exit code: 0 done, 1 --samples not reached, 2 usage or setup error\n",
                visnav::monitor::kLinkUsage);
 }
@@ -52,6 +55,8 @@ int main(int argc, char** argv) {
     } else if (arg == "--duration" && has_value && parseNumber(argv[i + 1], number)) {
       options.duration_s = number;
       ++i;
+    } else if (arg == "--ready-file" && has_value) {
+      options.ready_file = argv[++i];
     } else if (arg == "--no-view") {
       options.live_view = false;
     } else if (arg == "--help" || arg == "-h") {

@@ -132,9 +132,19 @@ int Daemon::initTelemetry() {
     }
   }
   // The writer sees the match first; the reader drops data from a writer it has not matched yet, and a
-  // keep-last-1 writer may no longer hold that sample for a retransmission. A short pause closes the gap.
-  const timespec settle{0, kDiscoverySettleNs};
-  nanosleep(&settle, nullptr);
+  // keep-last-1 writer may no longer hold that sample for a retransmission. The reader's ready file closes
+  // the gap exactly; without one, a short pause closes it in practice.
+  if (!m_options.wait_file.empty()) {
+    if (!telemetry::waitForFile(m_options.wait_file.c_str(), timeout_ns)) {
+      m_log.event(LogLevel::kError, "init_failed",
+                  "stage=telemetry message=\"no ready file %s within %.1f s\"", m_options.wait_file.c_str(),
+                  m_options.wait_timeout_s);
+      return kExitInit;
+    }
+  } else {
+    const timespec settle{0, kDiscoverySettleNs};
+    nanosleep(&settle, nullptr);
+  }
   m_log.event(LogLevel::kInfo, "subscribers_matched", "readers=%d", m_options.wait_subscribers);
   return kExitOk;
 }

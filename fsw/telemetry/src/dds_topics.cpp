@@ -1,6 +1,7 @@
 #include "visnav/telemetry/dds_topics.hpp"
 
 #include <time.h>
+#include <unistd.h>
 
 #include <cmath>
 
@@ -119,6 +120,15 @@ bool waitForWriters(dds_entity_t reader, std::uint32_t count, std::int64_t timeo
         return true;
       },
       count, timeout_ns);
+}
+
+bool waitForFile(const char* path, std::int64_t timeout_ns) {
+  return waitForMatch(
+      [path](std::uint32_t& current) {
+        current = access(path, F_OK) == 0 ? 1U : 0U;
+        return true;
+      },
+      1, timeout_ns);
 }
 
 }  // namespace visnav::telemetry

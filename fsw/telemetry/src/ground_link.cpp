@@ -36,6 +36,15 @@ bool GroundLink::waitForData(std::int64_t timeout_ns) {
   return dds_waitset_wait(m_waitset, nullptr, 0, static_cast<dds_duration_t>(timeout_ns)) > 0;
 }
 
+bool GroundLink::allReadersMatched() const {
+  for (Topic topic : {Topic::kPose, Topic::kFarRange, Topic::kHealth}) {
+    dds_subscription_matched_status_t status{};
+    if (dds_get_subscription_matched_status(reader(topic), &status) != DDS_RETCODE_OK) return false;
+    if (status.current_count == 0) return false;
+  }
+  return true;
+}
+
 int GroundLink::takeInto(Topic topic, void** buffers, dds_sample_info_t* infos, int count) {
   const dds_entity_t reader = this->reader(topic);
   if (reader <= 0 || count <= 0) return 0;

@@ -1,7 +1,9 @@
 // Second process for the telemetry tests and the latency measurement.
-//   telemetry_test_peer publish --partition P --count N --rate-hz R [--wait-readers K] [--live-exposure]
+//   telemetry_test_peer publish --partition P --count N --rate-hz R [--wait-readers K [--wait-file F]]
+//       [--live-exposure]
 //       publishes NavSolution/HealthRecord 1..N of telemetry_test_data at R Hz (absolute deadlines on
-//       CLOCK_MONOTONIC), after waiting (bounded) for K matched readers on each writer; waits for the
+//       CLOCK_MONOTONIC), after waiting (bounded) for K matched readers on each writer and then for the
+//       file F (visnav-monitor --ready-file: the readers matched this writer too); waits for the
 //       acknowledgments before exiting. --live-exposure stamps each frame's exposure 1 ms before publication
 //       (as a live camera would) instead of the synthetic timestamps.
 //   telemetry_test_peer stall-reader --partition P [--max-seconds S]
@@ -31,6 +33,7 @@ struct Args {
   long count = 10;
   double rate_hz = 5.0;
   long wait_readers = 0;
+  std::string wait_file;
   bool live_exposure = false;
   double max_seconds = 60.0;
 };
@@ -49,6 +52,8 @@ bool parse(int argc, char** argv, Args& a) {
       a.rate_hz = std::atof(argv[++i]);
     else if (arg == "--wait-readers" && v)
       a.wait_readers = std::atol(argv[++i]);
+    else if (arg == "--wait-file" && v)
+      a.wait_file = argv[++i];
     else if (arg == "--max-seconds" && v)
       a.max_seconds = std::atof(argv[++i]);
     else if (arg == "--live-exposure")
@@ -83,6 +88,10 @@ int publish(const Args& a) {
       std::fprintf(stderr, "telemetry_test_peer: no reader on %s within 10 s\n", topicName(t));
       return 3;
     }
+  }
+  if (!a.wait_file.empty() && !waitForFile(a.wait_file.c_str(), 10'000'000'000LL)) {
+    std::fprintf(stderr, "telemetry_test_peer: no ready file %s within 10 s\n", a.wait_file.c_str());
+    return 3;
   }
   std::int64_t next_ns = monotonicNowNs();
   for (long i = 1; i <= a.count && g_stop == 0; ++i) {
@@ -130,7 +139,7 @@ int main(int argc, char** argv) {
   if (!parse(argc, argv, args)) {
     std::fputs(
         "usage: telemetry_test_peer publish|stall-reader [--partition P] [--count N] [--rate-hz R]\n"
-        "       [--wait-readers K] [--live-exposure] [--max-seconds S]\n",
+        "       [--wait-readers K] [--wait-file F] [--live-exposure] [--max-seconds S]\n",
         stderr);
     return 2;
   }

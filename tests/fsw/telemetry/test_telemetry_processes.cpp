@@ -30,15 +30,17 @@ TEST(TelemetryProcesses, MonitorReceivesEverySampleFromAnotherProcess) {
   const std::string partition = params.partitionName();
   const std::string csv = test::tempPath("monitor") + ".csv";
   const std::string monitor_out = test::tempPath("monitor-out");
+  const std::string ready = test::tempPath("monitor-ready");
   const pid_t monitor =
       test::spawnProcess({VISNAV_MONITOR, "--partition", partition, "--samples", std::to_string(kCount),
-                          "--duration", "20", "--no-view", "--csv", csv},
+                          "--duration", "20", "--no-view", "--csv", csv, "--ready-file", ready},
                          monitor_out);
   ASSERT_GT(monitor, 0);
-  // 50 Hz keeps the test short; the publisher waits (bounded) until the monitor's readers are matched.
-  const pid_t publisher =
-      test::spawnProcess({VISNAV_TEST_PEER, "publish", "--partition", partition, "--count",
-                          std::to_string(kCount), "--rate-hz", "50", "--wait-readers", "1"});
+  // 50 Hz keeps the test short. The publisher waits (bounded) until its writers see the monitor's readers
+  // and then for the monitor's ready file (its readers see the writers): the first sample is not dropped.
+  const pid_t publisher = test::spawnProcess({VISNAV_TEST_PEER, "publish", "--partition", partition,
+                                              "--count", std::to_string(kCount), "--rate-hz", "50",
+                                              "--wait-readers", "1", "--wait-file", ready});
   ASSERT_GT(publisher, 0);
   EXPECT_EQ(test::waitProcess(publisher, 20.0), 0);
   ASSERT_EQ(test::waitProcess(monitor, 20.0), 0) << test::readText(monitor_out);

@@ -16,6 +16,7 @@ constexpr std::int64_t kWaitSliceNs = 100'000'000;  // stop requests are seen wi
 constexpr std::int64_t kRedrawPeriodNs = 250'000'000;
 constexpr std::int64_t kMaxLingerNs = 1'000'000'000;
 constexpr std::int64_t kMaxPlausibleLatencyNs = 60'000'000'000;
+constexpr std::int64_t kMatchPollNs = 10'000'000;  // until the ready file is written
 
 struct Buffers {
   std::array<visnav_PoseEstimate, telemetry::kMaxTakeBatch> pose{};
@@ -39,6 +40,14 @@ void drain(std::array<Sample, telemetry::kMaxTakeBatch>& samples,
   const int n = take(samples.data(), infos.data(), telemetry::kMaxTakeBatch);
   for (int i = 0; i < n; ++i)
     if (infos[i].valid_data) on_sample(samples[i], receptionNow(infos[i]));
+}
+
+LoadError writeReadyFile(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return LoadError::failure(path + ": cannot create the ready file");
+  const bool ok = std::fputs("ready\n", f) >= 0;
+  if (std::fclose(f) != 0 || !ok) return LoadError::failure(path + ": cannot write the ready file");
+  return LoadError::success();
 }
 
 std::string latencyText(const LatencySummary& s) {
@@ -91,8 +100,13 @@ LoadError runMonitor(const MonitorOptions& options, const std::atomic<bool>& sto
   std::int64_t next_draw_ns = start_ns;
   std::int64_t linger_end_ns = 0;
   auto& infos = buffers->infos;
+  bool ready_written = options.ready_file.empty();
   while (!stop.load()) {
-    const bool got_data = link.waitForData(kWaitSliceNs);
+    if (!ready_written && link.allReadersMatched()) {
+      if (LoadError e = writeReadyFile(options.ready_file); !e.ok) return e;
+      ready_written = true;
+    }
+    const bool got_data = link.waitForData(ready_written ? kWaitSliceNs : kMatchPollNs);
     drain(
         buffers->pose, infos,
         [&](visnav_PoseEstimate* out, dds_sample_info_t* si, int capacity) {

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <memory>
 
 #include "visnav/app/camera_factory.hpp"
@@ -39,6 +40,7 @@ struct DaemonOptions {
   double pace_ms = 0.0;      ///< simulated clock: real pause before each release (ground tools keep up)
   int wait_subscribers = 0;  ///< wait for this many readers on each flight topic before the first cycle
   double wait_timeout_s = 10.0;
+  std::string wait_file;  ///< with wait_subscribers: then wait for this file (a ground tool's --ready-file)
   bool apply_realtime = true;  ///< [executive] realtime settings on the run() thread
 };
 

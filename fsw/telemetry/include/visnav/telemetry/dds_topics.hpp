@@ -66,4 +66,10 @@ bool waitForReaders(dds_entity_t writer, std::uint32_t count, std::int64_t timeo
 /// Same for a reader and its matched writers.
 bool waitForWriters(dds_entity_t reader, std::uint32_t count, std::int64_t timeout_ns);
 
+/// Waits (bounded, polling every 10 ms) until the file `path` exists. False on timeout. The writer side's
+/// half of a start handshake: a writer sees a reader match before that reader has matched the writer, and a
+/// reader drops what arrives from a writer it has not matched; a ground tool's `--ready-file` appears once
+/// its readers have matched, so a publisher that waits for it loses nothing from its first sample on.
+bool waitForFile(const char* path, std::int64_t timeout_ns);
+
 }  // namespace visnav::telemetry

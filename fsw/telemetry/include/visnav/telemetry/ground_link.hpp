@@ -41,6 +41,10 @@ class GroundLink {
   /// Writes one ModeCommand (reliable). Returns the dds_write code.
   dds_return_t sendCommand(std::uint32_t command_id, std::uint8_t kind);
 
+  /// True once each flight-topic reader has matched at least one writer (from then on nothing a matched
+  /// writer sends is dropped for being from an unknown writer).
+  bool allReadersMatched() const;
+
   dds_entity_t reader(Topic topic) const { return m_readers[static_cast<int>(topic)]; }
   dds_entity_t commandWriter() const { return m_command_writer; }
 

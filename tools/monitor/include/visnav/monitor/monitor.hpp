@@ -19,6 +19,7 @@ struct MonitorOptions {
   std::uint64_t stop_after_pose_samples = 0;  ///< 0: no sample limit
   double duration_s = 0.0;                    ///< 0: no time limit
   bool live_view = true;                      ///< redraw the terminal view (only when stdout is a terminal)
+  std::string ready_file;  ///< created once every reader has matched a writer (start handshake); empty: none
   int reader_depth = 256;
 };
 
