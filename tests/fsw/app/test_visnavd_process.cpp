@@ -68,6 +68,20 @@ TEST(Visnavd, ExitCodes) {
   EXPECT_NE(readText(log).find("stage=telemetry message=\"fewer than 1 readers on visnav_pose"),
             std::string::npos)
       << readText(log);
+  // Readers matched (a monitor is running) but its ready file never appears: bounded, exit code 4.
+  const std::string monitor_out = dir.path() + "/monitor.txt";
+  const pid_t monitor =
+      spawnProcess({VISNAV_MONITOR, "--config", no_reader, "--duration", "20", "--no-view"}, monitor_out);
+  ASSERT_GT(monitor, 0);
+  EXPECT_EQ(runDaemon("--config " + no_reader + " --wait-subscribers 1 --wait-timeout 2 --wait-file " +
+                          dir.path() + "/never.ready",
+                      log),
+            4);
+  EXPECT_NE(readText(log).find("stage=telemetry message=\"no ready file " + dir.path() + "/never.ready"),
+            std::string::npos)
+      << readText(log);
+  kill(monitor, SIGTERM);
+  EXPECT_EQ(waitProcess(monitor, 10.0), 0);
 
   for (const char* shipped : {"visnavd.toml", "visnavd-testbed.toml"})
     EXPECT_EQ(
