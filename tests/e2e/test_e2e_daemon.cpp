@@ -116,7 +116,7 @@ TEST(EndToEnd, MonitorReceivesEverySampleAndScoresLikeReplay) {
                      " frames=" + std::to_string(kFrames)),
             std::string::npos)
       << log;
-  EXPECT_NE(log.find("write_failures=0"), std::string::npos) << log;
+  EXPECT_NE(log.find("write_failures=0 sample_pool_misses=0"), std::string::npos) << log;
   std::printf("%s\n", readText(dir.path() + "/monitor.txt").c_str());
 
   // Every sample of every topic arrived, in order, none lost.

@@ -7,8 +7,10 @@
 
 namespace visnav::test {
 
-/// Allocations counted since the process started.
+/// Allocations counted since the process started (every thread, Cyclone DDS's background threads included).
 std::uint64_t allocationCount();
+/// Allocations made by the calling thread since it started: the cycle's own, without other threads' noise.
+std::uint64_t threadAllocationCount();
 /// True when malloc-family calls are counted as well as operator new (not under ASan, which owns malloc).
 bool countsMalloc();
 

@@ -207,13 +207,15 @@ void Daemon::logStopSummary(exec::StopReason reason) {
               " slips=%" PRIu64 " releases_skipped=%" PRIu64 " worst_overrun_ms=%.3f task_failures=%" PRIu64
               " mode=%s transitions=%" PRIu64 " commands=%" PRIu64 " commands_accepted=%" PRIu64
               " fault_onsets=%" PRIu64 " samples_written=%" PRIu64 " write_failures=%" PRIu64
-              " watchdog_notifications=%" PRIu64 " log_suppressed=%" PRIu64 " elapsed_s=%.3f",
+              " sample_pool_misses=%" PRIu64 " watchdog_notifications=%" PRIu64 " log_suppressed=%" PRIu64
+              " elapsed_s=%.3f",
               stopReasonName(reason, m_counters.end_of_stream), c.cycles, m_counters.frames,
               m_counters.cycles_without_frame, cam.frames_dropped, cam.timeouts, cam.errors, c.slips,
               c.releases_skipped, static_cast<double>(c.worst_overrun_ns) * 1e-6, c.task_failures,
               nav::toString(m_pipeline.mode()), m_pipeline.modes().transitionCount(), m_counters.commands,
               m_counters.commands_accepted, m_counters.fault_onsets, w.samples_written, w.write_failures,
-              m_notifier.sent(), m_counters.log_suppressed + c.events_suppressed, m_log.elapsedS());
+              m_writer.samplePoolMisses(), m_notifier.sent(), m_counters.log_suppressed + c.events_suppressed,
+              m_log.elapsedS());
   const exec::DurationStats& jitter = m_executive.releaseJitter();
   const exec::DurationStats& busy = m_executive.cycleBusy();
   const exec::DurationStats& acquire = m_executive.taskStats(0).exec;

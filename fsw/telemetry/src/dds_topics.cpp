@@ -34,6 +34,7 @@ std::int64_t monotonicNowNs() {
 }
 
 const char* topicName(Topic topic) { return kTopicNames[static_cast<int>(topic)]; }
+const dds_topic_descriptor_t* topicDescriptor(Topic topic) { return kDescriptors[static_cast<int>(topic)]; }
 const char* topicLabel(Topic topic) { return kTopicLabels[static_cast<int>(topic)]; }
 
 dds_qos_t* makeWriterQos(Topic topic, const TelemetryParams& params, std::int64_t cycle_period_ns) {

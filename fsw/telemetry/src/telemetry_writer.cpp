@@ -6,10 +6,13 @@ namespace visnav::telemetry {
 namespace {
 
 dds_entity_t createWriter(const Participant& participant, Topic topic, const TelemetryParams& params,
-                          std::int64_t cycle_period_ns) {
+                          std::int64_t cycle_period_ns, const PooledSertype** sertype) {
+  const dds_entity_t pooled_topic =
+      createPooledTopic(participant.handle(), topicName(topic), topicDescriptor(topic),
+                        static_cast<std::uint32_t>(params.sample_pool_blocks), sertype);
+  if (pooled_topic < 0) return pooled_topic;
   dds_qos_t* qos = makeWriterQos(topic, params, cycle_period_ns);
-  const dds_entity_t writer =
-      dds_create_writer(participant.publisher(), participant.topic(topic), qos, nullptr);
+  const dds_entity_t writer = dds_create_writer(participant.publisher(), pooled_topic, qos, nullptr);
   dds_delete_qos(qos);
   return writer;
 }
@@ -19,11 +22,11 @@ dds_entity_t createWriter(const Participant& participant, Topic topic, const Tel
 LoadError TelemetryWriter::init(const Participant& participant, const TelemetryParams& params,
                                 std::int64_t cycle_period_ns) {
   if (!participant.isOpen()) return LoadError::failure("telemetry writer: participant not initialised");
-  m_pose_writer = createWriter(participant, Topic::kPose, params, cycle_period_ns);
+  m_pose_writer = createWriter(participant, Topic::kPose, params, cycle_period_ns, &m_sertypes[0]);
   if (m_pose_writer < 0) return ddsFailure("creating the pose writer", m_pose_writer);
-  m_far_writer = createWriter(participant, Topic::kFarRange, params, cycle_period_ns);
+  m_far_writer = createWriter(participant, Topic::kFarRange, params, cycle_period_ns, &m_sertypes[1]);
   if (m_far_writer < 0) return ddsFailure("creating the far-range writer", m_far_writer);
-  m_health_writer = createWriter(participant, Topic::kHealth, params, cycle_period_ns);
+  m_health_writer = createWriter(participant, Topic::kHealth, params, cycle_period_ns, &m_sertypes[2]);
   if (m_health_writer < 0) return ddsFailure("creating the health writer", m_health_writer);
   m_nav_samples = 0;
   m_health_samples = 0;
@@ -75,6 +78,17 @@ std::uint32_t TelemetryWriter::poseDeadlineMisses() const {
   dds_offered_deadline_missed_status_t status{};
   if (dds_get_offered_deadline_missed_status(m_pose_writer, &status) != DDS_RETCODE_OK) return 0;
   return status.total_count;
+}
+
+PooledSertypeStats TelemetryWriter::samplePool(Topic topic) const {
+  const int i = static_cast<int>(topic);
+  return i < 3 ? pooledSertypeStats(m_sertypes[i]) : PooledSertypeStats{};
+}
+
+std::uint64_t TelemetryWriter::samplePoolMisses() const {
+  std::uint64_t misses = 0;
+  for (const PooledSertype* s : m_sertypes) misses += pooledSertypeStats(s).pool_misses;
+  return misses;
 }
 
 }  // namespace visnav::telemetry

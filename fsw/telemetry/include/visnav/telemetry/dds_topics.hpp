@@ -17,6 +17,8 @@ constexpr int kTopicCount = 4;
 
 /// DDS topic name ("visnav_pose", ...).
 const char* topicName(Topic topic);
+/// The idlc-generated type descriptor of a topic.
+const dds_topic_descriptor_t* topicDescriptor(Topic topic);
 /// Short name for people ("pose", "far_range", "health", "mode_command").
 const char* topicLabel(Topic topic);
 

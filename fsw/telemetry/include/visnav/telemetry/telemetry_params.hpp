@@ -25,6 +25,7 @@ struct TelemetryParams {
   double deadline_periods = 1.5;
   double max_blocking_ms = 2.0;
   int command_depth = 8;
+  int sample_pool_blocks = 8;
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -45,6 +46,11 @@ struct TelemetryParams {
     v.integer({"telemetry", "command_depth", "count", 1, 64,
                "keep-last depth of the ModeCommand reader = most commands taken in one cycle"},
               command_depth);
+    v.integer(
+        {"telemetry", "sample_pool_blocks", "count", 2, 1024,
+         "serialized samples each flight writer holds without allocating (writer history, transmit "
+         "queue, retransmissions); beyond it a sample takes a heap block and is counted as a pool miss"},
+        sample_pool_blocks);
   }
 
   const char* crossCheck() const { return nullptr; }

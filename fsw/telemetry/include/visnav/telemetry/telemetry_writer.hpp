@@ -1,6 +1,7 @@
 // Flight side, once per cycle: NavSolution -> PoseEstimate + FarRangeEstimate, HealthRecord -> Health.
-// init() creates the writers; publishNav()/publishHealth() fill samples the writer owns in place and write
-// them: no allocation of ours, no wait on any reader (keep-last reliable writers, bounded max_blocking_time).
+// init() creates the writers on topics of a pooled sertype (pooled_sertype.hpp); publishNav()/publishHealth()
+// fill samples the writer owns in place and write them: no allocation (the serialized samples come from pools
+// sized at init), no wait on any reader (keep-last reliable writers, bounded max_blocking_time).
 // A failed write is counted and reported, never retried inside the cycle.
 #pragma once
 
@@ -8,6 +9,7 @@
 
 #include "visnav/navigation/nav_solution.hpp"
 #include "visnav/telemetry/dds_topics.hpp"
+#include "visnav/telemetry/pooled_sertype.hpp"
 
 namespace visnav::telemetry {
 
@@ -32,6 +34,13 @@ class TelemetryWriter {
   dds_entity_t writer(Topic topic) const;
   /// Offered-deadline misses of the pose writer so far (a cycle that published nothing in time).
   std::uint32_t poseDeadlineMisses() const;
+  /// Serialized-sample pool of one flight topic (zeros for kModeCommand or before init).
+  PooledSertypeStats samplePool(Topic topic) const;
+  const PooledSertype* sertype(Topic topic) const {
+    return static_cast<int>(topic) < 3 ? m_sertypes[static_cast<int>(topic)] : nullptr;
+  }
+  /// Samples that found their topic's pool empty and took a heap block, over the three topics.
+  std::uint64_t samplePoolMisses() const;
 
  private:
   bool write(dds_entity_t writer, const void* sample);
@@ -39,6 +48,7 @@ class TelemetryWriter {
   dds_entity_t m_pose_writer = 0;
   dds_entity_t m_far_writer = 0;
   dds_entity_t m_health_writer = 0;
+  const PooledSertype* m_sertypes[3] = {};  // pose, far range, health
   std::uint64_t m_nav_samples = 0;
   std::uint64_t m_health_samples = 0;
   WriterCounters m_counters;
