@@ -7,6 +7,8 @@
 #   lib/systemd/system/           every systemd unit under config/ (*.service, *.socket, *.timer)
 #   include/visnav/idl/           visnav.idl and the header idlc generates from it (ground tools)
 #   share/doc/visnav/             README.md
+#   /etc/visnav/                  the service's config (visnavd.toml: the synthetic approach, looping) and
+#                                 Cyclone DDS config (cyclonedds.xml: the loopback one), Debian conffiles
 # The libraries are static and linked into the executables: nothing else goes to lib/.
 set(VISNAV_UNIT_PATTERNS *.service *.socket *.timer)
 set(_visnav_unit_excludes)
@@ -26,6 +28,10 @@ if(TARGET visnav_telemetry)
   install(FILES ${CMAKE_BINARY_DIR}/fsw/telemetry/idl/visnav.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/visnav/idl)
 endif()
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# What config/visnavd.service reads. Absolute: /etc whatever the prefix (FHS), so only the package (or a
+# root install) writes it.
+install(FILES ${CMAKE_CURRENT_LIST_DIR}/deb/etc/visnavd.toml DESTINATION /etc/visnav)
+install(FILES ${PROJECT_SOURCE_DIR}/config/cyclonedds-loopback.xml DESTINATION /etc/visnav RENAME cyclonedds.xml)
 
 # Debian package "visnav" for the architecture being built (the cross build makes the arm64 one).
 if(CMAKE_SYSTEM_PROCESSOR MATCHES "^(aarch64|arm64)$")
@@ -53,7 +59,7 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 # binaries too because the arm64 libraries are installed as multiarch packages.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS OFF)
-set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_LIST_DIR}/deb/postinst)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_LIST_DIR}/deb/postinst ${CMAKE_CURRENT_LIST_DIR}/deb/conffiles)
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 include(CPack)
 

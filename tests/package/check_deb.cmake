@@ -1,7 +1,8 @@
 # ctest package_deb_contents: builds the Debian package of this build with cpack, unpacks it into a scratch
 # root with dpkg-deb -x (no root needed) and checks what an operator relies on: control fields, the
 # daemon/tools in usr/bin and runnable, the default config, every systemd unit under config/, the
-# ground-tool IDL and its header (self-contained C), nothing outside /usr.
+# ground-tool IDL and its header (self-contained C), the service's /etc/visnav config as conffiles (valid for
+# the packaged visnavd), nothing else outside /usr.
 # -DBUILD_DIR=... -DARCH=amd64 -DVERSION=x.y.z -DSOURCE_DIR=...
 set(work ${BUILD_DIR}/package_test)
 file(REMOVE_RECURSE ${work})
@@ -47,11 +48,12 @@ execute_process(COMMAND dpkg-deb -x ${deb} ${root} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "dpkg-deb -x failed")
 endif()
-set(expected usr/bin/visnav-replay usr/bin/visnav-synth usr/bin/visnav-eval usr/bin/visnav-params
+set(expected usr/bin/visnavd usr/bin/visnav-replay usr/bin/visnav-synth usr/bin/visnav-eval usr/bin/visnav-params
              usr/bin/visnav-monitor usr/bin/visnav-command usr/share/visnav/config/visnav.toml
              usr/share/visnav/config/PARAMETERS.md usr/share/visnav/config/cyclonedds-loopback.xml
              usr/share/visnav/config/scenarios/approach_ci.toml usr/include/visnav/idl/visnav.idl
-             usr/include/visnav/idl/visnav.h usr/share/doc/visnav/README.md)
+             usr/include/visnav/idl/visnav.h usr/share/doc/visnav/README.md etc/visnav/visnavd.toml
+             etc/visnav/cyclonedds.xml)
 file(GLOB units RELATIVE ${SOURCE_DIR}/config ${SOURCE_DIR}/config/*.service ${SOURCE_DIR}/config/*/*.service)
 foreach(unit IN LISTS units)
   get_filename_component(unit_name ${unit} NAME)
@@ -64,8 +66,8 @@ foreach(path IN LISTS expected)
 endforeach()
 file(GLOB_RECURSE all_files RELATIVE ${root} ${root}/*)
 foreach(path IN LISTS all_files)
-  if(NOT path MATCHES "^usr/")
-    string(APPEND errors "outside /usr: ${path}\n")
+  if(NOT path MATCHES "^usr/" AND NOT path MATCHES "^etc/visnav/")
+    string(APPEND errors "outside /usr and /etc/visnav: ${path}\n")
   endif()
   if(path MATCHES "^usr/share/visnav/config/.*\\.service$")
     string(APPEND errors "systemd unit installed as config: ${path}\n")
@@ -86,6 +88,31 @@ if(NOT rc EQUAL 0)
   string(APPEND errors "usr/include/visnav/idl/visnav.h does not compile on its own: ${out}\n")
 endif()
 
+# /etc/visnav files are conffiles (an operator's edits survive upgrades), and the service's config is valid
+# for the packaged daemon (its device path points into /usr/share/visnav, as installed).
+execute_process(COMMAND dpkg-deb -e ${deb} ${work}/control RESULT_VARIABLE rc)
+if(rc EQUAL 0 AND EXISTS ${work}/control/conffiles)
+  file(READ ${work}/control/conffiles conffiles)
+else()
+  set(conffiles "")
+endif()
+foreach(conffile /etc/visnav/visnavd.toml /etc/visnav/cyclonedds.xml)
+  if(NOT conffiles MATCHES "${conffile}")
+    string(APPEND errors "not a conffile: ${conffile}\n")
+  endif()
+endforeach()
+file(READ ${root}/etc/visnav/visnavd.toml service_config)
+if(NOT service_config MATCHES "device = \"/usr/share/visnav/config/scenarios/full_approach_ci.toml\"")
+  string(APPEND errors "etc/visnav/visnavd.toml does not fly the installed scenario\n")
+endif()
+if(NOT EXISTS ${root}/usr/share/visnav/config/scenarios/full_approach_ci.toml)
+  string(APPEND errors "missing usr/share/visnav/config/scenarios/full_approach_ci.toml\n")
+endif()
+execute_process(COMMAND ${root}/usr/bin/visnavd --config ${root}/etc/visnav/visnavd.toml --check
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT rc EQUAL 0)
+  string(APPEND errors "packaged visnavd --check on etc/visnav/visnavd.toml failed (${rc}): ${out}\n")
+endif()
 list(LENGTH all_files file_count)
 if(errors)
   message(FATAL_ERROR "visnav_${VERSION}_${ARCH}.deb (${file_count} files):\n${errors}")
