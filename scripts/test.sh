@@ -3,7 +3,9 @@
 #  1. debug preset (warnings as errors, ASan + UBSan): every unit and integration test;
 #  2. release preset (the flight flags): every test again, including the accuracy scenarios (synthetic
 #     sequences rendered, replayed and scored against the issue's bounds) and the allocation counts with
-#     malloc counted too (ASan owns malloc in the debug build).
+#     malloc counted too (ASan owns malloc in the debug build);
+#  3. the arm64 flight build (scripts/test-arm64.sh): cross build, unit tests under qemu-aarch64, and the
+#     arm64 replay of approach_ci against the x86 one within the stated tolerance.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -13,3 +15,4 @@ ctest --preset debug -LE accuracy
 cmake --preset release >/dev/null
 cmake --build --preset release
 ctest --preset release
+scripts/test-arm64.sh
