@@ -12,8 +12,8 @@
 
 #include <array>
 #include <cstdint>
-#include <string>
 #include <memory>
+#include <string>
 
 #include "visnav/app/camera_factory.hpp"
 #include "visnav/app/event_log.hpp"
