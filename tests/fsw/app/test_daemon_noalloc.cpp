@@ -26,7 +26,8 @@ constexpr std::uint64_t kCycles = 200;
 constexpr bool kSanitizerBuild = false;
 constexpr std::uint64_t kCycles = 1000;
 #endif
-constexpr std::uint64_t kBackgroundSlack = 50;  // Cyclone's own threads (heartbeats, leases); 1 per cycle = 1000
+constexpr std::uint64_t kBackgroundSlack =
+    50;  // Cyclone's own threads (heartbeats, leases); 1 per cycle = 1000
 
 struct Measured {
   std::uint64_t allocations = 0;         ///< whole process
