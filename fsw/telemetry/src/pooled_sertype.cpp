@@ -100,7 +100,6 @@ class PooledSertype {
   std::uint32_t free_count = 0;
   std::uint32_t in_use = 0;
   std::mutex mutex;  // from_sample runs on the cycle's thread, free on Cyclone's (acks, transmit)
-  std::atomic<std::uint64_t> serialized{0};
   std::atomic<std::uint64_t> misses{0};
 };
 
@@ -142,7 +141,6 @@ ddsi_serdata* fromSample(const ddsi_sertype* type, ddsi_serdata_kind kind, const
   std::memset(payload + os.m_index, 0, pad);
   payload[-1] = static_cast<unsigned char>(pad);
   b->size = kHeaderBytes + os.m_index + pad;
-  pool->serialized.fetch_add(1, std::memory_order_relaxed);
   return &b->c;
 }
 
@@ -305,8 +303,7 @@ PooledSertypeStats pooledSertypeStats(const PooledSertype* sertype) {
   auto* pool = const_cast<PooledSertype*>(sertype);
   const std::lock_guard<std::mutex> lock(pool->mutex);
   s.blocks = pool->blocks;
-  s.block_bytes = pool->payload_capacity;
-  s.serialized = pool->serialized.load(std::memory_order_relaxed);
+  s.payload_bytes = pool->payload_capacity;
   s.pool_misses = pool->misses.load(std::memory_order_relaxed);
   s.blocks_in_use = pool->in_use;
   return s;

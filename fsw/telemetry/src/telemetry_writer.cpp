@@ -80,11 +80,6 @@ std::uint32_t TelemetryWriter::poseDeadlineMisses() const {
   return status.total_count;
 }
 
-PooledSertypeStats TelemetryWriter::samplePool(Topic topic) const {
-  const int i = static_cast<int>(topic);
-  return i < 3 ? pooledSertypeStats(m_sertypes[i]) : PooledSertypeStats{};
-}
-
 std::uint64_t TelemetryWriter::samplePoolMisses() const {
   std::uint64_t misses = 0;
   for (const PooledSertype* s : m_sertypes) misses += pooledSertypeStats(s).pool_misses;

@@ -18,8 +18,7 @@ namespace visnav::telemetry {
 
 struct PooledSertypeStats {
   std::uint32_t blocks = 0;         ///< pool capacity (serialized samples held at once without allocating)
-  std::uint32_t block_bytes = 0;    ///< payload capacity of one block [bytes]
-  std::uint64_t serialized = 0;     ///< samples serialized into the pool
+  std::uint32_t payload_bytes = 0;  ///< payload capacity of one block [bytes]
   std::uint64_t pool_misses = 0;    ///< pool empty: that sample went to a heap block (counted, not hidden)
   std::uint32_t blocks_in_use = 0;  ///< now (Cyclone still holds them: writer history, transmit queue)
 };

@@ -34,8 +34,8 @@ class TelemetryWriter {
   dds_entity_t writer(Topic topic) const;
   /// Offered-deadline misses of the pose writer so far (a cycle that published nothing in time).
   std::uint32_t poseDeadlineMisses() const;
-  /// Serialized-sample pool of one flight topic (zeros for kModeCommand or before init).
-  PooledSertypeStats samplePool(Topic topic) const;
+  /// Serialized-sample pool of one flight topic, for pooledSertypeStats() (nullptr: kModeCommand, before
+  /// init).
   const PooledSertype* sertype(Topic topic) const {
     return static_cast<int>(topic) < 3 ? m_sertypes[static_cast<int>(topic)] : nullptr;
   }
