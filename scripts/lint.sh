@@ -1,24 +1,32 @@
 #!/usr/bin/env bash
 # Static checks: clang-format (every tracked C++ file must be formatted), cppcheck and clang-tidy (.clang-tidy)
-# over the project's own sources, using the release build's compile_commands.json.
-#   scripts/lint.sh            all three (clang-tidy takes minutes on 2 cores)
-#   scripts/lint.sh --format   clang-format only (seconds; what CI runs as the `format_check` test)
+# over the project's own sources (fsw/, drivers/, tools/), clang-tidy with the release build's
+# compile_commands.json.
+#   scripts/lint.sh              all three (clang-tidy takes minutes on 2 cores)
+#   scripts/lint.sh --format     clang-format only (seconds; CI runs it as the ctest `format_check`)
+#   scripts/lint.sh --cppcheck   cppcheck only (seconds; CI runs it as the ctest `cppcheck`)
 # Exit status is non-zero when any check reports something.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h')
+only=${1:-all}
+case $only in all | --format | --cppcheck) ;; *) echo "usage: scripts/lint.sh [--format | --cppcheck]" >&2; exit 2 ;; esac
 status=0
-echo "lint: clang-format over ${#files[@]} files"
-clang-format --dry-run --Werror "${files[@]}" || status=1
-[ "${1:-}" = "--format" ] && exit $status
-
-[ -f build/release/compile_commands.json ] || { cmake --preset release >/dev/null && cmake --build --preset release; }
+if [[ $only == all || $only == --format ]]; then
+  mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h')
+  echo "lint: clang-format over ${#files[@]} files"
+  clang-format --dry-run --Werror "${files[@]}" || status=1
+fi
 mapfile -t sources < <(git ls-files 'fsw/*.cpp' 'drivers/*.cpp' 'tools/*.cpp')
-echo "lint: cppcheck over ${#sources[@]} sources"
-cppcheck --quiet --error-exitcode=1 --enable=warning,performance,portability --inline-suppr \
-         --suppress=missingIncludeSystem --std=c++17 --language=c++ -j 2 \
-         $(printf -- '-I%s ' fsw/*/include drivers/*/include tools/*/include) "${sources[@]}" || status=1
-echo "lint: clang-tidy over ${#sources[@]} sources"
-run-clang-tidy -quiet -p build/release -j 2 "${sources[@]}" 2>&1 | grep -v "warnings generated" | \
-  grep -E "error:|warning:" && status=1
+if [[ $only == all || $only == --cppcheck ]]; then
+  echo "lint: cppcheck over ${#sources[@]} sources"
+  cppcheck --quiet --error-exitcode=1 --enable=warning,performance,portability --inline-suppr \
+           --suppress=missingIncludeSystem --std=c++17 --language=c++ -j 2 \
+           $(printf -- '-I%s ' fsw/*/include drivers/*/include tools/*/include) "${sources[@]}" || status=1
+fi
+if [[ $only == all ]]; then
+  [ -f build/release/compile_commands.json ] || { cmake --preset release >/dev/null && cmake --build --preset release; }
+  echo "lint: clang-tidy over ${#sources[@]} sources"
+  run-clang-tidy -quiet -p build/release -j 2 "${sources[@]}" 2>&1 | grep -v "warnings generated" | \
+    grep -E "error:|warning:" && status=1
+fi
 exit $status

@@ -1,5 +1,5 @@
-// CPU cost of the telemetry work inside a cycle: filling the samples, and publishing (mapping + dds_write) with
-// no reader and with a reliable reader in this process. Run:
+// CPU cost of the telemetry work inside a cycle: filling the samples, and publishing (mapping + dds_write)
+// with no reader and with a reliable reader in this process. Run:
 //   CYCLONEDDS_URI=file://$PWD/config/cyclonedds-loopback.xml build/release/bin/bench_telemetry
 //     --benchmark_repetitions=10 --benchmark_report_aggregates_only=true ; read the *_median rows.
 // The end-to-end latency at 5 Hz is measured with visnav-monitor instead (fsw/telemetry/README.md).

@@ -20,7 +20,8 @@ constexpr int kExitFail = 1;
 constexpr int kExitBadInput = 2;
 
 const char* const kUsage =
-    "usage: visnav-eval --sequence DIR --replay replay.csv [--plot errors.png] [--csv per_frame_errors.csv]\n"
+    "usage: visnav-eval --sequence DIR --replay replay.csv [--far-range FILE] [--plot errors.png]\n"
+    "                   [--csv per_frame_errors.csv]\n"
     "                   [--json summary.json] [--envelope-px 1.0,0.25] [--envelope-stride N]\n"
     "                   [--require-tracked-all] [--min-inside-fraction F [--inside-envelope-px D]]\n"
     "                   [--symmetry x180|y180|z180 ...]  (model rotations that look the same)\n"
@@ -28,7 +29,7 @@ const char* const kUsage =
     "                   [--max-far-distance-median-pct X] [--require-final-mode MODE]\n";
 
 struct Args {
-  std::string sequence, replay, plot, timeline, csv, json;
+  std::string sequence, replay, far_range, plot, timeline, csv, json;
   visnav::eval::EvaluationOptions eval;
   visnav::eval::Requirements req;
   bool inside_px_given = false;
@@ -61,6 +62,8 @@ std::string parseArgs(int argc, char** argv, Args& a) {
       a.sequence = v;
     } else if (opt == "--replay") {
       a.replay = v;
+    } else if (opt == "--far-range") {
+      a.far_range = v;
     } else if (opt == "--plot") {
       a.plot = v;
     } else if (opt == "--timeline") {
@@ -157,6 +160,15 @@ int main(int argc, char** argv) {
   if (!err.ok) {
     std::cerr << "visnav-eval: " << err.message << '\n';
     return kExitBadInput;
+  }
+  if (!args.far_range.empty()) {
+    int unmatched = 0;
+    err = eval::joinFarRangeCsv(args.far_range, rows, unmatched);
+    if (!err.ok) {
+      std::cerr << "visnav-eval: " << err.message << '\n';
+      return kExitBadInput;
+    }
+    if (unmatched > 0) std::cout << "far-range rows without a replay row (ignored): " << unmatched << '\n';
   }
   std::vector<eval::TruthPose> truth;
   truth.reserve(seq.truth.size());

@@ -142,7 +142,8 @@ int main(int argc, char** argv) {
   }
 
   visnav::exec::MonotonicClock clock;
-  visnav::exec::Executive executive;
+  // Static: the signal handler reaches it through g_executive, so it must outlive every path out of main.
+  static visnav::exec::Executive executive;
   BusyTask task;
   task.busy_ns = static_cast<std::int64_t>(busy_us * 1e3);
   visnav::LoadError e = executive.init(params, clock);

@@ -1,5 +1,7 @@
 // visnav-replay: the flight pipeline over a sequence directory, as fast as possible. See README.md.
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -15,6 +17,16 @@ void usage() {
       "                     [--overlay-every N] [--max-frames N] [--residual vertex|point_to_line]\n"
       "                     [--no-timing] [--no-progress]\n",
       stderr);
+}
+
+// Whole-argument positive integer: "10x", "0" and "-3" are errors, not silently 0 or negative.
+bool parsePositiveInt(const char* text, int& out) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || errno == ERANGE || v < 1 || v > 1000000000L) return false;
+  out = static_cast<int>(v);
+  return true;
 }
 
 }  // namespace
@@ -38,10 +50,13 @@ int main(int argc, char** argv) {
       options.model_path = value();
     } else if (arg == "--overlay-dir" && has_value) {
       options.overlay_dir = value();
-    } else if (arg == "--overlay-every" && has_value) {
-      options.overlay_every = std::atoi(argv[++i]);
-    } else if (arg == "--max-frames" && has_value) {
-      options.max_frames = std::atoi(argv[++i]);
+    } else if ((arg == "--overlay-every" || arg == "--max-frames") && has_value) {
+      int n = 0;
+      if (!parsePositiveInt(argv[++i], n)) {
+        std::fprintf(stderr, "visnav-replay: %s wants a positive integer, got '%s'\n", arg.c_str(), argv[i]);
+        return 2;
+      }
+      (arg == "--overlay-every" ? options.overlay_every : options.max_frames) = n;
     } else if (arg == "--initial-pose" && has_value) {
       if (!visnav::replay_tool::parsePoseArgument(value(), options.initial_pose)) {
         std::fputs("visnav-replay: --initial-pose wants x,y,z,yaw_deg,pitch_deg,roll_deg\n", stderr);
@@ -83,9 +98,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf(
-      "visnav-replay: %d frames: far range %d, acquisition %d, near range: tracking %d, degraded %d, lost %d; "
+      "visnav-replay: %d frames: far range %d, acquisition %d, near range: tracking %d, degraded %d, lost "
+      "%d; "
       "%d mode transitions; step time median %.1f us, p95 %.1f us\n",
-      summary.frames, summary.far_range, summary.acquisition, summary.tracking, summary.degraded, summary.lost,
-      summary.transitions, summary.median_total_us, summary.p95_total_us);
+      summary.frames, summary.far_range, summary.acquisition, summary.tracking, summary.degraded,
+      summary.lost, summary.transitions, summary.median_total_us, summary.p95_total_us);
   return 0;
 }

@@ -25,8 +25,8 @@ int Trajectory::frameCount() const {
 
 Pose Trajectory::pose(int frame) const {
   const double dir = d_end_m >= d_start_m ? 1.0 : -1.0;
-  const double distance = step_rel > 0.0 ? d_start_m * std::pow(1.0 + dir * step_rel, frame)
-                                          : d_start_m + dir * step_m * frame;
+  const double distance =
+      step_rel > 0.0 ? d_start_m * std::pow(1.0 + dir * step_rel, frame) : d_start_m + dir * step_m * frame;
   const YawPitchRoll ypr{(base_yaw_deg + wave(yaw_amp_deg, yaw_period_frames, frame)) * kRadPerDeg,
                          (base_pitch_deg + wave(pitch_amp_deg, pitch_period_frames, frame)) * kRadPerDeg,
                          (base_roll_deg + wave(roll_amp_deg, roll_period_frames, frame)) * kRadPerDeg};

@@ -7,14 +7,10 @@ int bytesPerPixel(PixelFormat format) { return format == PixelFormat::kGrey8 ? 1
 std::uint16_t maxCode(PixelFormat format) {
   switch (format) {
     case PixelFormat::kGrey8:
-    case PixelFormat::kYuyv:
-      return 255;
-    case PixelFormat::kY10:
-      return 1023;
-    case PixelFormat::kY12:
-      return 4095;
-    case PixelFormat::kY16:
-      return 65535;
+    case PixelFormat::kYuyv: return 255;
+    case PixelFormat::kY10: return 1023;
+    case PixelFormat::kY12: return 4095;
+    case PixelFormat::kY16: return 65535;
   }
   return 255;
 }

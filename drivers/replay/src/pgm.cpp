@@ -64,7 +64,7 @@ class FdReader {
   }
 
   int m_fd;
-  std::uint8_t m_buffer[256];
+  std::uint8_t m_buffer[256] = {};
   std::size_t m_pos = 0;
   std::size_t m_len = 0;
 };

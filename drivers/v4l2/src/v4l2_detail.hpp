@@ -13,16 +13,11 @@ namespace visnav::camera::v4l2detail {
 
 inline std::uint32_t fourccOf(PixelFormat format) {
   switch (format) {
-    case PixelFormat::kGrey8:
-      return V4L2_PIX_FMT_GREY;
-    case PixelFormat::kY10:
-      return V4L2_PIX_FMT_Y10;
-    case PixelFormat::kY12:
-      return V4L2_PIX_FMT_Y12;
-    case PixelFormat::kY16:
-      return V4L2_PIX_FMT_Y16;
-    case PixelFormat::kYuyv:
-      return V4L2_PIX_FMT_YUYV;
+    case PixelFormat::kGrey8: return V4L2_PIX_FMT_GREY;
+    case PixelFormat::kY10: return V4L2_PIX_FMT_Y10;
+    case PixelFormat::kY12: return V4L2_PIX_FMT_Y12;
+    case PixelFormat::kY16: return V4L2_PIX_FMT_Y16;
+    case PixelFormat::kYuyv: return V4L2_PIX_FMT_YUYV;
   }
   return 0;
 }

@@ -122,7 +122,7 @@ void WorkingImage::spreadChannels(int radius, BoundedBuffer<float>* out) {
   // result still peaks on the edge, so the refinement has a slope to climb.
   const int w = m_width;
   const int h = m_height;
-  float tent[2 * kMaxSpread + 1];
+  float tent[2 * kMaxSpread + 1] = {};
   const int r = std::min(radius, kMaxSpread);
   for (int d = -r; d <= r; ++d)
     tent[d + r] = 1.0F - static_cast<float>(std::abs(d)) / static_cast<float>(r + 1);

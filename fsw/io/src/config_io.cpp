@@ -1,10 +1,11 @@
 #include "visnav/io/config_io.hpp"
 
+#include <toml++/toml.h>
+
 #include <cmath>
 #include <cstring>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 #include <utility>
 
 namespace visnav::io {
@@ -103,7 +104,8 @@ class TomlReader final : public ParamVisitor {
   }
   void fail(const toml::node& node, const ParamInfo& info, const std::string& problem) {
     if (!m_error.ok) return;
-    m_error = LoadError::failure(where(m_path, node) + ": [" + info.section + "] " + info.key + " " + problem);
+    m_error =
+        LoadError::failure(where(m_path, node) + ": [" + info.section + "] " + info.key + " " + problem);
   }
   void failRange(const toml::node& node, const ParamInfo& info, double v) {
     std::ostringstream msg;
@@ -133,7 +135,8 @@ LoadError ConfigFile::checkNoUnknownKeys() const {
     for (const auto& [key, node] : *table) {
       if (node.is_table()) continue;
       if (m_impl->claimed.count(section + "." + std::string(key.str())) == 0U)
-        return LoadError::failure(where(m_path, node) + ": unknown key [" + section + "] " + std::string(key.str()));
+        return LoadError::failure(where(m_path, node) + ": unknown key [" + section + "] " +
+                                  std::string(key.str()));
     }
   }
   return LoadError::success();

@@ -19,7 +19,8 @@ TEST(PolygonModel, BoxHasTwelveSharedEdges) {
   ASSERT_EQ(box.surfaces().size(), 6U);
   ASSERT_EQ(box.edges().size(), 12U);
   for (const ModelEdge& e : box.edges()) EXPECT_GE(e.surface_right, 0);
-  for (const ModelSurface& s : box.surfaces()) EXPECT_NEAR(s.normal_m.dot(s.centroid_m.normalized()), 1.0, 1e-12);
+  for (const ModelSurface& s : box.surfaces())
+    EXPECT_NEAR(s.normal_m.dot(s.centroid_m.normalized()), 1.0, 1e-12);
 }
 
 TEST(PolygonModel, ComputesNormalFromCounterClockwiseOrder) {

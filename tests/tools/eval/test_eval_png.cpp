@@ -183,6 +183,21 @@ TEST(Plot, ModeTimelineLanes) {
   EXPECT_TRUE(is(c.pixel(lost_x, 163), Rgb{120, 120, 120}));  // frame 6 lost: grey tick on the bottom axis
 }
 
+TEST(Plot, PosePanelsLeaveOutFarRangeFramesWithoutAPose) {
+  Evaluation ev = modeTimelineFixture();
+  // Acquisition and near range (frames 4..7, 70 m down to 40 m), nearest first; frame 6 is lost but shown.
+  EXPECT_EQ(posePanelFrames(ev), (std::vector<std::size_t>{7, 6, 5, 4}));
+  ev.frames[2].scored = true;  // a far-range frame that carries a pose is scored, so shown
+  EXPECT_EQ(posePanelFrames(ev), (std::vector<std::size_t>{7, 6, 5, 4, 2}));
+  for (FrameRecord& f : ev.frames) f.mode = ReplayMode::kUnknown;  // no mode column: every frame
+  EXPECT_EQ(posePanelFrames(ev), (std::vector<std::size_t>{7, 6, 5, 4, 3, 2, 1, 0}));
+  for (FrameRecord& f : ev.frames) {
+    f.mode = ReplayMode::kFarRange;  // never left far range: every frame rather than none
+    f.scored = false;
+  }
+  EXPECT_EQ(posePanelFrames(ev).size(), 8U);
+}
+
 TEST(Plot, FarRangeAndTimelineRowsOnlyWhenPresent) {
   Evaluation ev = modeTimelineFixture();
   const PlotOptions o;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <numeric>
 
 #include "plot_parts.hpp"
@@ -49,11 +50,17 @@ constexpr Rgb kEnvelope[] = {{220, 30, 30}, {240, 150, 0}, {0, 150, 60}, {140, 6
 
 Rgb envelopeColour(std::size_t d) { return kEnvelope[d % (sizeof(kEnvelope) / sizeof(kEnvelope[0]))]; }
 
+// Shown in the pose panels (posePanelFrames): 750 m of far-range envelope would flatten a 25 m track.
+bool inPosePanels(const FrameRecord& f) {
+  return f.scored || (f.mode != ReplayMode::kFarRange && f.mode != ReplayMode::kStandby);
+}
+
 // Symmetric y half-range: envelopes and the bulk (p99) of the errors, so one outlier cannot flatten the rest.
-double yHalfRange(const Evaluation& ev, int axis) {
+double yHalfRange(const Evaluation& ev, int axis, const std::vector<std::size_t>& shown) {
   double env = 0.0;
   std::vector<double> errs;
-  for (const FrameRecord& f : ev.frames) {
+  for (std::size_t i : shown) {
+    const FrameRecord& f = ev.frames[i];
     for (const FrameEnvelope& e : f.envelopes)
       if (e.valid) env = std::max(env, e.max_abs[axis]);
     if (f.scored) errs.push_back(std::fabs(f.error[axis]));
@@ -66,7 +73,7 @@ double yHalfRange(const Evaluation& ev, int axis) {
 
 void drawPanel(Canvas& c, const Evaluation& ev, int axis, int x0, int y0, int w, int h, double x_lo,
                double x_hi, const std::vector<std::size_t>& by_distance) {
-  const double half = yHalfRange(ev, axis);
+  const double half = yHalfRange(ev, axis, by_distance);
   const PlotArea f{x0 + 100, y0 + 34, x0 + w - 32, y0 + h - 52, x_lo, x_hi, -half, half};
   drawAxes(c, f, std::string(axisName(axis)) + " error [" + axisUnit(axis) + "]", y0 + 10, "distance [m]");
 
@@ -125,6 +132,18 @@ std::vector<double> niceTicks(double lo, double hi, int target, int& decimals) {
   return ticks;
 }
 
+std::vector<std::size_t> posePanelFrames(const Evaluation& ev) {
+  std::vector<std::size_t> by_distance(ev.frames.size());
+  std::iota(by_distance.begin(), by_distance.end(), std::size_t{0});
+  std::stable_sort(by_distance.begin(), by_distance.end(), [&ev](std::size_t a, std::size_t b) {
+    return ev.frames[a].distance_m < ev.frames[b].distance_m;
+  });
+  std::vector<std::size_t> shown;
+  std::copy_if(by_distance.begin(), by_distance.end(), std::back_inserter(shown),
+               [&ev](std::size_t i) { return inPosePanels(ev.frames[i]); });
+  return shown.empty() ? by_distance : shown;
+}
+
 Canvas renderErrorPlot(const Evaluation& ev, const PlotOptions& options) {
   const int w = options.panel_width_px;
   const int h = options.panel_height_px;
@@ -153,13 +172,9 @@ Canvas renderErrorPlot(const Evaluation& ev, const PlotOptions& options) {
   swatch(kClipped, "clipped");
   swatch(kLost, "lost");
 
-  std::vector<std::size_t> by_distance(ev.frames.size());
-  std::iota(by_distance.begin(), by_distance.end(), std::size_t{0});
-  std::stable_sort(by_distance.begin(), by_distance.end(), [&ev](std::size_t a, std::size_t b) {
-    return ev.frames[a].distance_m < ev.frames[b].distance_m;
-  });
+  const std::vector<std::size_t> by_distance = posePanelFrames(ev);
   double x_lo = 0.0, x_hi = 1.0;
-  if (!ev.frames.empty()) {
+  if (!by_distance.empty()) {
     x_lo = ev.frames[by_distance.front()].distance_m;
     x_hi = ev.frames[by_distance.back()].distance_m;
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace visnav::eval {
@@ -75,7 +76,8 @@ bool parseTrackStatus(const std::string& text, TrackStatus& out) {
 
 const char* toString(ReplayMode mode) {
   const auto i = static_cast<std::size_t>(mode);
-  return i < kModeNames.size() ? kModeNames[i] : "?";
+  const char* const name = i < kModeNames.size() ? kModeNames[i] : "?";
+  return name;
 }
 
 bool parseReplayMode(const std::string& text, ReplayMode& out) {
@@ -213,6 +215,76 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
   }
   out = std::move(rows);
   return LoadError::success();
+}
+
+LoadError parseFarRangeCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& rows,
+                           int& unmatched) {
+  std::string line;
+  int line_no = 0;
+  std::vector<std::string> header;
+  while (header.empty() && std::getline(in, line)) {
+    ++line_no;
+    if (!trim(line).empty()) header = splitCsvLine(line);
+  }
+  if (header.empty()) return LoadError::failure(name + ": empty file, expected a header row");
+  constexpr std::array<const char*, 5> kColumns = {"frame", "valid", "azimuth_deg", "elevation_deg",
+                                                   "distance_m"};
+  std::array<int, kColumns.size()> col{};
+  for (std::size_t k = 0; k < kColumns.size(); ++k) {
+    col[k] = -1;
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == kColumns[k]) col[k] = static_cast<int>(i);
+    if (col[k] < 0)
+      return LoadError::failure(where(name, line_no) + "missing column '" + kColumns[k] + "' in the header");
+  }
+  std::unordered_map<std::int64_t, std::size_t> row_of_frame;
+  for (std::size_t i = 0; i < rows.size(); ++i) row_of_frame[rows[i].frame] = i;
+  std::vector<ReplayRow> joined = rows;  // the caller's rows change only when the whole file is good
+  std::unordered_set<std::int64_t> seen;
+  int missing = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty()) continue;
+    const std::vector<std::string> f = splitCsvLine(line);
+    if (f.size() < header.size()) {
+      return LoadError::failure(where(name, line_no) + "expected " + std::to_string(header.size()) +
+                                " fields, found " + std::to_string(f.size()));
+    }
+    std::int64_t frame = 0;
+    if (!parseInt64(f[col[0]], frame))
+      return LoadError::failure(where(name, line_no) + "column 'frame': bad integer '" + f[col[0]] + "'");
+    if (!seen.insert(frame).second)
+      return LoadError::failure(where(name, line_no) + "duplicate frame " + std::to_string(frame));
+    const std::string& flag = f[col[1]];
+    if (flag != "0" && flag != "1")
+      return LoadError::failure(where(name, line_no) + "column 'valid': expected 0 or 1, got '" + flag + "'");
+    std::array<double, 3> values{};
+    for (std::size_t k = 0; flag == "1" && k < values.size(); ++k) {
+      const std::string& text = f[col[k + 2]];
+      if (!parseDouble(text, values[k]) || !std::isfinite(values[k]))
+        return LoadError::failure(where(name, line_no) + "column '" + kColumns[k + 2] + "': bad number '" +
+                                  text + "' in a valid row");
+    }
+    const auto it = row_of_frame.find(frame);
+    if (it == row_of_frame.end()) {
+      ++missing;
+      continue;
+    }
+    ReplayRow& row = joined[it->second];
+    row.far_valid = flag == "1";
+    row.far_azimuth_deg = values[0];
+    row.far_elevation_deg = values[1];
+    row.far_distance_m = values[2];
+  }
+  rows = std::move(joined);
+  unmatched = missing;
+  return LoadError::success();
+}
+
+LoadError joinFarRangeCsv(const std::string& path, std::vector<ReplayRow>& rows, int& unmatched) {
+  std::ifstream in(path);
+  if (!in) return LoadError::failure(path + ": cannot open for reading");
+  return parseFarRangeCsv(in, path, rows, unmatched);
 }
 
 LoadError loadReplayCsv(const std::string& path, std::vector<ReplayRow>& out) {

@@ -51,15 +51,16 @@ void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const
               const NearRangeResult& near_in) {
   // Near-range details only for frames the tracker ran on.
   const NearRangeResult near = sol.mode == nav::NavMode::kNearRange ? near_in : NearRangeResult{};
-  std::fprintf(f, "%lld,%lld,%s,%u,%s,%.6f", static_cast<long long>(frame), static_cast<long long>(timestamp_ns),
-               statusText(sol, near), near.flags, nav::toString(sol.mode), sol.quality);
+  std::fprintf(f, "%lld,%lld,%s,%u,%s,%.6f", static_cast<long long>(frame),
+               static_cast<long long>(timestamp_ns), statusText(sol, near), near.flags,
+               nav::toString(sol.mode), sol.quality);
   if (sol.pose_valid) {
     Eigen::Quaterniond q = sol.pose.quaternion();
     if (q.w() < 0.0) q.coeffs() *= -1.0;  // CONVENTIONS.md: w >= 0
     const YawPitchRoll ypr = sol.pose.ypr();
     const Vec3& t = sol.pose.t_c_m;
-    std::fprintf(f, ",%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", t.x(), t.y(), t.z(), q.w(),
-                 q.x(), q.y(), q.z(), ypr.yaw_rad * kDegPerRad, ypr.pitch_rad * kDegPerRad,
+    std::fprintf(f, ",%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", t.x(), t.y(), t.z(),
+                 q.w(), q.x(), q.y(), q.z(), ypr.yaw_rad * kDegPerRad, ypr.pitch_rad * kDegPerRad,
                  ypr.roll_rad * kDegPerRad);
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.6g", sol.covariance(i, j));
@@ -73,8 +74,8 @@ void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const
                near.timing.pose_us, sol.timing.process_us);
   const nav::FarRangeSolution& far = sol.far;
   std::fprintf(f, ",%u,%d,%.9g,%.9g,%.9g,%d,%.6f,%d\n", sol.fault_bits, far.valid ? 1 : 0,
-               far.azimuth_rad * kDegPerRad, far.elevation_rad * kDegPerRad, far.distance_m, far.cluster_pixels,
-               far.circularity, far.cluster_count);
+               far.azimuth_rad * kDegPerRad, far.elevation_rad * kDegPerRad, far.distance_m,
+               far.cluster_pixels, far.circularity, far.cluster_count);
 }
 
 void drawProgress(int done, int total, const ReplaySummary& s) {
@@ -166,10 +167,10 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
       break;
     }
     Frame frame;
-    frame.image = maxval > 255
-                      ? MonoImage::from16(ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.get()), w, h),
-                                          static_cast<std::uint16_t>(maxval))
-                      : MonoImage::from8(ImageView8(buffer.get(), w, h));
+    frame.image = maxval > 255 ? MonoImage::from16(
+                                     ImageView16(reinterpret_cast<const std::uint16_t*>(buffer.get()), w, h),
+                                     static_cast<std::uint16_t>(maxval))
+                               : MonoImage::from8(ImageView8(buffer.get(), w, h));
     frame.exposure_time_ns = entry.timestamp_ns;
     frame.sequence = static_cast<std::uint64_t>(entry.frame);
     const std::uint64_t transitions_before = pipeline.modes().transitionCount();
@@ -182,8 +183,9 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
       const nav::ModeTransition& t = pipeline.modes().lastTransition();
       ++summary.transitions;
       if (options.progress) {
-        std::fprintf(stderr, "%sframe %lld: %s -> %s (%s)\n", tty ? "\r" : "", static_cast<long long>(entry.frame),
-                     nav::toString(t.from), nav::toString(t.to), t.reason.data());
+        std::fprintf(stderr, "%sframe %lld: %s -> %s (%s)\n", tty ? "\r" : "",
+                     static_cast<long long>(entry.frame), nav::toString(t.from), nav::toString(t.to),
+                     t.reason.data());
       }
     }
     ++summary.frames;
@@ -197,7 +199,8 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
     if (near && !options.overlay_dir.empty() && options.overlay_every > 0 && i % options.overlay_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "/overlay_%06lld.png", static_cast<long long>(entry.frame));
-      if (LoadError e = writeOverlayPng(options.overlay_dir + name, frame.image, pipeline.nearRange(), result);
+      if (LoadError e =
+              writeOverlayPng(options.overlay_dir + name, frame.image, pipeline.nearRange(), result);
           !e.ok) {
         failure = e;
         break;

@@ -16,17 +16,17 @@
 namespace visnav::camera {
 
 enum class AcquireResult : std::uint8_t {
-  kFrame = 0,       ///< a frame was delivered
-  kTimeout = 1,     ///< nothing within the timeout
-  kEndOfStream = 2, ///< replay finished (never for live cameras)
-  kDeviceLost = 3,  ///< the device went away; recover() may bring it back
-  kError = 4,       ///< any other failure (counted; see lastError())
+  kFrame = 0,        ///< a frame was delivered
+  kTimeout = 1,      ///< nothing within the timeout
+  kEndOfStream = 2,  ///< replay finished (never for live cameras)
+  kDeviceLost = 3,   ///< the device went away; recover() may bring it back
+  kError = 4,        ///< any other failure (counted; see lastError())
 };
 const char* toString(AcquireResult result);
 
 struct CameraCounters {
   std::uint64_t frames_delivered = 0;
-  std::uint64_t frames_dropped = 0;   ///< from sequence-number gaps
+  std::uint64_t frames_dropped = 0;  ///< from sequence-number gaps
   std::uint64_t timeouts = 0;
   std::uint64_t errors = 0;
   std::uint64_t device_losses = 0;  ///< times acquire()/release() found the device gone

@@ -43,7 +43,7 @@ struct Sequence {
   CameraIntrinsics camera;
   PolygonModel model;
   std::vector<FrameEntry> frames;
-  std::vector<TruthRow> truth;   ///< empty when the sequence has no truth
+  std::vector<TruthRow> truth;  ///< empty when the sequence has no truth
 };
 
 /// Loads sequence.toml, camera, model, frames.csv and truth.csv (if named). Errors name file, line, problem.

@@ -37,7 +37,8 @@ class ConfigFile {
  private:
   template <typename F>
   LoadError applyVisitor(F&& visit_all) {
-    return applyErased(+[](void* f, ParamVisitor& v) { (*static_cast<F*>(f))(v); }, &visit_all);
+    return applyErased(
+        +[](void* f, ParamVisitor& v) { (*static_cast<F*>(f))(v); }, &visit_all);
   }
   LoadError applyErased(void (*call)(void*, ParamVisitor&), void* fn);
 

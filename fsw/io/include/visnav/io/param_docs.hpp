@@ -12,7 +12,9 @@ namespace visnav::io {
 class MarkdownParamWriter final : public ParamVisitor {
  public:
   void real(const ParamInfo& info, double& value) override { row(info, "real", number(value), ""); }
-  void integer(const ParamInfo& info, int& value) override { row(info, "integer", std::to_string(value), ""); }
+  void integer(const ParamInfo& info, int& value) override {
+    row(info, "integer", std::to_string(value), "");
+  }
   void boolean(const ParamInfo& info, bool& value) override {
     row(info, "bool", value ? "true" : "false", "");
   }

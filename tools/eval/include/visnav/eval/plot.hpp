@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "visnav/core/status.hpp"
 #include "visnav/eval/canvas.hpp"
@@ -19,6 +20,11 @@ struct PlotOptions {
 
 /// Height of the mode timeline strip [px].
 constexpr int kTimelineHeightPx = 240;
+
+/// The frames the pose panels show, nearest first: every frame that has a pose or was not in far range or
+/// standby (a far-range frame without a pose would only stretch the distance axis). Replays without a mode
+/// column, and replays that never left far range, show every frame.
+std::vector<std::size_t> posePanelFrames(const Evaluation& evaluation);
 
 /// Renders into a new canvas: a legend strip, 3 x 2 pose panels, then (only when the replay has them) a row
 /// of two far-range panels of panel height and the mode timeline strip, each 3 panels wide.

@@ -49,6 +49,16 @@ struct ReplayRow {
 LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& out);
 LoadError loadReplayCsv(const std::string& path, std::vector<ReplayRow>& out);
 
+/// Joins a far-range recording into `rows` by frame: the `_far_range.csv` that visnav-monitor writes next to
+/// its pose CSV (columns found by name: frame, valid, azimuth_deg, elevation_deg, distance_m; others
+/// ignored). Each far-range row sets far_valid and the three values of the replay row with the same frame,
+/// replacing what that row had. Far-range rows without a replay row are counted in `unmatched` (a pose sample
+/// lost on the way) and otherwise ignored. Errors (name:line: problem): missing column, bad number in a valid
+/// row, a valid other than 0/1, a duplicate frame. `rows` is unchanged on error.
+LoadError parseFarRangeCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& rows,
+                           int& unmatched);
+LoadError joinFarRangeCsv(const std::string& path, std::vector<ReplayRow>& rows, int& unmatched);
+
 /// Splits one CSV line on commas (no quoting: the replay CSV never quotes) and trims blanks and a trailing
 /// CR.
 std::vector<std::string> splitCsvLine(const std::string& line);
