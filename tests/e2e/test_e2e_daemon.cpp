@@ -65,11 +65,13 @@ std::string writeCsv(const std::string& path, const Table& table) {
 }
 
 /// visnav-eval's JSON summary without the lines naming the input files (those differ by design).
+// The summary without the input paths and the filter's NIS (a replay column the telemetry does not carry).
 std::string summaryWithoutPaths(const std::string& path) {
   std::istringstream in(readText(path));
   std::string out;
   for (std::string line; std::getline(in, line);)
-    if (line.find("\"replay\"") == std::string::npos && line.find("\"sequence\"") == std::string::npos)
+    if (line.find("\"replay\"") == std::string::npos && line.find("\"sequence\"") == std::string::npos &&
+        line.find("\"filter_nis\"") == std::string::npos)
       out += line + "\n";
   return out;
 }

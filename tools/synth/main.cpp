@@ -58,12 +58,13 @@ int main(int argc, char** argv) {
       scenario_path = argv[++i];
     } else if (arg == "--out" && has_value) {
       out_dir = argv[++i];
-    } else if (arg == "--frames" && has_value && parseCount(argv[i + 1], max_frames)) {
-      ++i;
-    } else if (arg == "--stride" && has_value && parseCount(argv[i + 1], stride) && stride > 0) {
-      ++i;
-    } else if (arg == "--seed" && has_value && parseCount(argv[i + 1], seed)) {
-      ++i;
+    } else if ((arg == "--frames" || arg == "--stride" || arg == "--seed") && has_value) {
+      long long& target = arg == "--frames" ? max_frames : (arg == "--stride" ? stride : seed);
+      if (!parseCount(argv[++i], target) || (arg == "--stride" && stride < 1)) {
+        std::fprintf(stderr, "visnav-synth: bad value '%s' for %s\n", argv[i], arg.c_str());
+        usage();
+        return 2;
+      }
     } else if (arg == "--dry-run") {
       dry_run = true;
     } else {

@@ -142,7 +142,9 @@ void WorkingImage::spreadChannels(int radius, BoundedBuffer<float>* out) {
       for (int x = 0; x < w; ++x) {
         float best = 0.0F;
         for (int d = std::max(-r, -y); d <= std::min(r, h - 1 - y); ++d)
-          best = std::max(best, m_tmp[static_cast<std::size_t>((y + d) * w + x)] * tent[d + r]);
+          best = std::max(best, m_tmp[static_cast<std::size_t>(y + d) * static_cast<std::size_t>(w) +
+                                      static_cast<std::size_t>(x)] *
+                                    tent[d + r]);
         dst[y * w + x] = best;
       }
     }
@@ -187,7 +189,8 @@ void WorkingImage::computeStats() {
   std::size_t seen = 0;
   for (int y = 0; y < m_height; ++y) {
     for (int x = 0; x < m_width; ++x) {
-      const auto i = static_cast<std::size_t>(y * m_width + x);
+      const std::size_t i =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x);
       const double excess = m_magnitude[i] - strong;
       if (excess <= 0.0) continue;
       weight += excess;
@@ -214,7 +217,8 @@ double WorkingImage::evidence(double px, double py, const ChannelBlend& blend, E
   const int y = static_cast<int>(std::floor(py));
   if (x < 0 || y < 0 || x >= m_width || y >= m_height) return 0.0;
   const BoundedBuffer<float>* channels = m_channel[static_cast<int>(level)];
-  const auto i = static_cast<std::size_t>(y * m_width + x);
+  const std::size_t i =
+      static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x);
   return (1.0F - blend.f) * channels[blend.k0][i] + blend.f * channels[blend.k1][i];
 }
 

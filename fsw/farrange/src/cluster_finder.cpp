@@ -106,7 +106,7 @@ void ClusterFinder::grow(const ResponseImage& response, int seed_x, int seed_y, 
   c.pixel_count = static_cast<int>(m_pixels.size()) - c.first_pixel;
   measure(c, roi);
   for (int i = 0; i < c.pixel_count; ++i) {
-    const std::uint32_t p = m_pixels[static_cast<std::size_t>(c.first_pixel + i)];
+    const std::uint32_t p = m_pixels[static_cast<std::size_t>(c.first_pixel) + static_cast<std::size_t>(i)];
     c.peak_response = std::max(c.peak_response, static_cast<int>(response.atImage(pixelX(p), pixelY(p))));
   }
   m_clusters.push(c);
@@ -159,7 +159,7 @@ void ClusterFinder::fillHoles(Cluster& c) {
   std::uint8_t* box = m_fill.data();
   std::fill(box, box + area, static_cast<std::uint8_t>(0));
   for (int i = 0; i < c.pixel_count; ++i) {
-    const std::uint32_t p = m_pixels[static_cast<std::size_t>(c.first_pixel + i)];
+    const std::uint32_t p = m_pixels[static_cast<std::size_t>(c.first_pixel) + static_cast<std::size_t>(i)];
     box[static_cast<std::size_t>(pixelY(p) - c.y_min + 1) * bw +
         static_cast<std::size_t>(pixelX(p) - c.x_min + 1)] = 1;
   }

@@ -176,7 +176,8 @@ class YamlReader {
         if (!has_cols) return false;
       } else if (field == "dt" && !has_dt) {
         if (value != "d" && value != "f")
-          return fail(l.number, name + " dt '" + value + "' not supported (only d or f)");
+          return fail(l.number, std::string(name).append(" dt '").append(value).append(
+                                    "' not supported (only d or f)"));
         has_dt = true;
       } else if (field == "data" && !has_data) {
         if (value.empty() || value[0] != '[') return fail(l.number, name + " data must be a list '[ ... ]'");
@@ -212,8 +213,12 @@ class YamlReader {
       char* end = nullptr;
       const double v = std::strtod(token.c_str(), &end);
       if (token.empty() || *end != '\0')
-        return fail(line,
-                    name + " data[" + std::to_string(m.data.size()) + "] is not a number: '" + token + "'");
+        return fail(line, std::string(name)
+                              .append(" data[")
+                              .append(std::to_string(m.data.size()))
+                              .append("] is not a number: '")
+                              .append(token)
+                              .append("'"));
       if (!std::isfinite(v))
         return fail(line, name + " data[" + std::to_string(m.data.size()) + "] is not finite");
       m.data.push_back(v);

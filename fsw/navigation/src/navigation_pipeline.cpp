@@ -122,6 +122,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     check.centre_in_image = centreInImage(r.pose);
     if (predicted_by_filter) {
       const FilterUpdate u = m_filter.update(r.pose, r.covariance);
+      m_last_pose_update = u;
       check.innovation_checked = true;
       check.innovation_accepted = u.accepted;
       // A clean track the filter keeps rejecting means the filter diverged (e.g. a poor first velocity).
@@ -164,6 +165,7 @@ void NavigationPipeline::enterMode(NavMode mode, std::uint64_t frame_number) {
 
 Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavSolution& out) {
   out = NavSolution{};
+  m_last_pose_update = FilterUpdate{};
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.frame_number = m_frames_processed + m_frames_missing;
   const NavMode mode_before = m_modes.mode();

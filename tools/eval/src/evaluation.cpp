@@ -39,6 +39,15 @@ void summariseModesAndFarRange(const std::vector<ReplayRow>& replay, const std::
     if (last == nullptr || r.frame > last->frame) last = &r;
   }
   if (last != nullptr) s.final_mode = last->mode;
+  std::vector<double> nis;
+  for (const ReplayRow& r : replay) {
+    if (!r.has_nis) continue;
+    nis.push_back(r.nis);
+    s.nis_mean += r.nis;
+    s.nis_above_gate += r.nis > kNisGate6Dof ? 1 : 0;
+  }
+  s.nis = absStats(nis);
+  s.nis_mean = nis.empty() ? 0.0 : s.nis_mean / static_cast<double>(nis.size());
 }
 
 }  // namespace

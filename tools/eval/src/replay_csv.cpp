@@ -132,6 +132,7 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
       return LoadError::failure(where(name, header_line) + "missing column '" + required + "' in the header");
   }
   const int mode_col = column("mode");
+  const int nis_col = column("nis");
   const int far_valid_col = column("far_valid");
   std::array<int, 3> far_cols{};
   for (std::size_t k = 0; k < kFarColumns.size(); ++k) {
@@ -167,6 +168,12 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
     if (mode_col >= 0 && !parseReplayMode(f[mode_col], row.mode)) {
       return LoadError::failure(where(name, line_no) + "column 'mode': unknown mode '" + f[mode_col] +
                                 "' (expected standby, far_range, acquisition or near_range)");
+    }
+    if (nis_col >= 0 && !f[nis_col].empty()) {
+      if (!parseDouble(f[nis_col], row.nis) || !std::isfinite(row.nis) || row.nis < 0.0)
+        return LoadError::failure(where(name, line_no) + "column 'nis': expected a number >= 0, got '" +
+                                  f[nis_col] + "'");
+      row.has_nis = true;
     }
     if (far_valid_col >= 0) {
       const std::string& flag = f[far_valid_col];

@@ -171,7 +171,13 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
   out << (s.envelopes.empty() ? "],\n" : "\n  ],\n") << "  \"far_range\": {\n";
   stats("direction_deg", s.far_direction_deg, false);
   stats("distance_pct", s.far_distance_pct, true);
-  out << "  },\n  \"modes\": {\"frames\": {";
+  out << "  },\n";
+  if (s.nis.count > 0) {
+    out << "  \"filter_nis\": {\"count\": " << s.nis.count << ", \"mean\": " << jnum(s.nis_mean)
+        << ", \"median\": " << jnum(s.nis.median) << ", \"p95\": " << jnum(s.nis.p95)
+        << ", \"max\": " << jnum(s.nis.max) << ", \"above_gate\": " << s.nis_above_gate << "},\n";
+  }
+  out << "  \"modes\": {\"frames\": {";
   for (int m = 0; m < kReplayModeCount; ++m)
     out << (m ? ", " : "") << jstr(toString(static_cast<ReplayMode>(m))) << ": " << s.mode_frames[m];
   out << "}, \"final\": " << (s.has_modes ? jstr(toString(s.final_mode)) : "null") << ", \"transitions\": [";
@@ -243,6 +249,14 @@ std::string summaryText(const Evaluation& ev) {
       std::snprintf(buf, sizeof(buf), "%-12s %10.6g %12.6g %12.6g\n", label, e.median, e.p95, e.max);
       o << buf;
     }
+  }
+  if (s.nis.count > 0) {
+    std::snprintf(
+        buf, sizeof(buf),
+        "filter NIS (%d 6-DOF updates): mean %.3g (6 if consistent), median %.3g, p95 %.3g, max %.3g; "
+        "above %.2f (99.9 %%): %d\n",
+        s.nis.count, s.nis_mean, s.nis.median, s.nis.p95, s.nis.max, kNisGate6Dof, s.nis_above_gate);
+    o << buf;
   }
   if (s.has_modes) {
     o << "frames per mode:";

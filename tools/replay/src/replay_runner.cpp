@@ -36,7 +36,7 @@ void writeHeader(std::FILE* f) {
       ",tracked_surfaces,surface_mask,lines_total,lines_used,edge_points,inlier_points,texture_points,"
       "vertices,rms_px,lm_iterations,t_project_us,t_scan_us,t_ransac_us,t_pose_us,t_total_us,"
       "fault_bits,far_valid,far_azimuth_deg,far_elevation_deg,far_distance_m,far_cluster_px,far_circularity,"
-      "far_clusters\n",
+      "far_clusters,nis\n",
       f);
 }
 
@@ -48,7 +48,7 @@ const char* statusText(const nav::NavSolution& sol, const NearRangeResult& near)
 }
 
 void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const nav::NavSolution& sol,
-              const NearRangeResult& near_in) {
+              const NearRangeResult& near_in, const nav::FilterUpdate& pose_update) {
   // Near-range details only for frames the tracker ran on.
   const NearRangeResult near = sol.mode == nav::NavMode::kNearRange ? near_in : NearRangeResult{};
   std::fprintf(f, "%lld,%lld,%s,%u,%s,%.6f", static_cast<long long>(frame),
@@ -73,9 +73,12 @@ void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const
                near.lm_iterations, near.timing.project_us, near.timing.scan_us, near.timing.ransac_us,
                near.timing.pose_us, sol.timing.process_us);
   const nav::FarRangeSolution& far = sol.far;
-  std::fprintf(f, ",%u,%d,%.9g,%.9g,%.9g,%d,%.6f,%d\n", sol.fault_bits, far.valid ? 1 : 0,
+  std::fprintf(f, ",%u,%d,%.9g,%.9g,%.9g,%d,%.6f,%d,", sol.fault_bits, far.valid ? 1 : 0,
                far.azimuth_rad * kDegPerRad, far.elevation_rad * kDegPerRad, far.distance_m,
                far.cluster_pixels, far.circularity, far.cluster_count);
+  // The filter's NIS for this frame's 6-DOF update (empty when there was none): what its gate judged.
+  if (pose_update.status == Status::kOk && pose_update.dof == 6) std::fprintf(f, "%.6g", pose_update.nis);
+  std::fputc('\n', f);
 }
 
 void drawProgress(int done, int total, const ReplaySummary& s) {
@@ -178,7 +181,7 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
     // Simulated clock: the frame is processed at its exposure time.
     pipeline.process(&frame, entry.timestamp_ns, solution);
     const NearRangeResult& result = pipeline.lastNearRange();
-    writeRow(csv, entry.frame, entry.timestamp_ns, solution, result);
+    writeRow(csv, entry.frame, entry.timestamp_ns, solution, result, pipeline.lastPoseUpdate());
     if (pipeline.modes().transitionCount() != transitions_before) {
       const nav::ModeTransition& t = pipeline.modes().lastTransition();
       ++summary.transitions;

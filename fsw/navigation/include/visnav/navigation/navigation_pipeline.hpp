@@ -50,6 +50,9 @@ class NavigationPipeline {
   const far::FarRangeEstimator& farRange() const { return m_far; }
   const far::FarRangeResult& lastFarRange() const { return m_far_result; }
   const PoseFilter& filter() const { return m_filter; }
+  /// This frame's 6-DOF measurement update of the filter (near range): `dof` 0 when there was none (no pose,
+  /// or the filter was (re)started from it). Its `nis` is what the innovation gate judged.
+  const FilterUpdate& lastPoseUpdate() const { return m_last_pose_update; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -70,6 +73,7 @@ class NavigationPipeline {
   acq::Acquisition m_acquisition;
 
   NearRangeResult m_near_result;
+  FilterUpdate m_last_pose_update;
   far::FarRangeResult m_far_result;
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
   Pose m_last_pose;                 ///< last trusted 6-DOF pose

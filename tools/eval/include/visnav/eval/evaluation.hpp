@@ -67,7 +67,16 @@ struct EvaluationSummary {
   std::array<int, kReplayModeCount> mode_frames{};  ///< truth frames per mode (ReplayMode order)
   std::vector<ModeChange> transitions;              ///< in frame order
   ReplayMode final_mode = ReplayMode::kUnknown;     ///< mode of the replay row with the highest frame number
+  /// The filter's NIS over the replay rows that have one (6 dof: mean 6 when the filter and the tracker's
+  /// covariance are consistent; `nis.count` 0 when the replay has no nis column).
+  ErrorStats nis{};
+  double nis_mean = 0.0;
+  int nis_above_gate = 0;  ///< above kNisGate6Dof
 };
+
+/// Chi-square, 6 dof, 99.9 %: the filter's default gate (`[filter] pose_gate_chi2`); 0.1 % of a consistent
+/// filter's updates exceed it.
+constexpr double kNisGate6Dof = 22.46;
 
 struct EvaluationOptions {
   std::vector<double> envelope_px{1.0, 0.25};

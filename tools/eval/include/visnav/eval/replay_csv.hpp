@@ -40,12 +40,15 @@ struct ReplayRow {
   double far_azimuth_deg = 0.0;
   double far_elevation_deg = 0.0;
   double far_distance_m = 0.0;  ///< eq. 16, along the boresight
+  bool has_nis = false;         ///< the optional `nis` column holds a number on this row
+  double nis = 0.0;             ///< the Kalman filter's NIS of this frame's 6-DOF update (chi-square, 6 dof)
 };
 
 /// Parses a replay CSV. Required columns: frame, status, x_m, y_m, z_m, qw, qx, qy, qz. Optional:
-/// timestamp_ns, mode, and far_valid (0/1, empty = 0) which then needs far_azimuth_deg, far_elevation_deg,
-/// far_distance_m, finite on far_valid = 1 rows. `name` is used in messages ("name:line: problem"). Tracked
-/// rows must hold finite numbers; lost/init rows may leave the pose empty. Duplicate frames are an error.
+/// timestamp_ns, mode, nis (empty or a finite number >= 0), and far_valid (0/1, empty = 0) which then needs
+/// far_azimuth_deg, far_elevation_deg, far_distance_m, finite on far_valid = 1 rows. `name` is used in
+/// messages ("name:line: problem"). Tracked rows must hold finite numbers; lost/init rows may leave the pose
+/// empty. Duplicate frames are an error.
 LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& out);
 LoadError loadReplayCsv(const std::string& path, std::vector<ReplayRow>& out);
 

@@ -1,9 +1,12 @@
-// visnav-eval --far-range: a monitor recording's far-range file joined into the pose rows by frame.
+// visnav-eval's optional inputs: --far-range (a monitor recording's far-range file joined into the pose rows
+// by frame) and the replay's `nis` column (the filter's consistency, summarised).
 #include <gtest/gtest.h>
 
 #include <sstream>
 
+#include "visnav/eval/evaluation.hpp"
 #include "visnav/eval/replay_csv.hpp"
+#include "visnav/eval/report.hpp"
 
 namespace visnav::eval {
 namespace {
@@ -68,6 +71,50 @@ TEST(FarRangeJoin, BadFilesNameLineAndProblemAndChangeNothing) {
   const LoadError err = joinFarRangeCsv("/nonexistent/far.csv", rows, unmatched);
   ASSERT_FALSE(err.ok);
   EXPECT_NE(err.message.find("/nonexistent/far.csv"), std::string::npos) << err.message;
+}
+
+TEST(NisColumn, ParsedWhenPresentAndSummarised) {
+  std::istringstream in(
+      "frame,status,x_m,y_m,z_m,qw,qx,qy,qz,nis\n"
+      "0,init,,,,,,,,\n"
+      "1,tracking,0,0,5,1,0,0,0,2.5\n"
+      "2,tracking,0,0,5,1,0,0,0,30\n"
+      "3,tracking,0,0,5,1,0,0,0,4.5\n");
+  std::vector<ReplayRow> rows;
+  const LoadError err = parseReplayCsv(in, "r.csv", rows);
+  ASSERT_TRUE(err.ok) << err.message;
+  EXPECT_FALSE(rows[0].has_nis);
+  ASSERT_TRUE(rows[2].has_nis);
+  EXPECT_DOUBLE_EQ(rows[2].nis, 30.0);
+
+  const PinholeCamera camera(CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320, 240));
+  const PolygonModel plate = makeRectanglePlate(1.0, 1.0);
+  std::vector<TruthPose> truth;
+  for (int i = 0; i < 4; ++i) truth.push_back({i, 0, Pose::fromYpr({0, 0, kPi}, Vec3(0, 0, 5))});
+  EvaluationOptions options;
+  options.envelope_px.clear();
+  const Evaluation ev = evaluate(camera, plate, truth, rows, options);
+  const EvaluationSummary& s = ev.summary;
+  EXPECT_EQ(s.nis.count, 3);
+  EXPECT_DOUBLE_EQ(s.nis_mean, 37.0 / 3.0);
+  EXPECT_DOUBLE_EQ(s.nis.median, 4.5);
+  EXPECT_DOUBLE_EQ(s.nis.max, 30.0);
+  EXPECT_EQ(s.nis_above_gate, 1);
+  EXPECT_NE(summaryText(ev).find("filter NIS (3 6-DOF updates)"), std::string::npos) << summaryText(ev);
+}
+
+TEST(NisColumn, AbsentOrBadValues) {
+  std::istringstream old_replay("frame,status,x_m,y_m,z_m,qw,qx,qy,qz\n1,tracking,0,0,5,1,0,0,0\n");
+  std::vector<ReplayRow> rows;
+  ASSERT_TRUE(parseReplayCsv(old_replay, "r.csv", rows).ok);
+  EXPECT_FALSE(rows[0].has_nis);
+  for (const char* bad : {"-1", "x", "nan", "inf"}) {
+    std::istringstream in(std::string("frame,status,x_m,y_m,z_m,qw,qx,qy,qz,nis\n1,tracking,0,0,5,1,0,0,0,") +
+                          bad + "\n");
+    const LoadError err = parseReplayCsv(in, "r.csv", rows);
+    ASSERT_FALSE(err.ok) << bad;
+    EXPECT_NE(err.message.find("r.csv:2: column 'nis'"), std::string::npos) << err.message;
+  }
 }
 
 }  // namespace
