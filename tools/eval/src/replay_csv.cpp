@@ -46,6 +46,63 @@ constexpr std::array<const char*, 3> kFarColumns = {"far_azimuth_deg", "far_elev
 constexpr std::array<const char*, kReplayModeCount + 1> kModeNames = {"standby", "far_range", "acquisition",
                                                                       "near_range", "unknown"};
 
+// A headed CSV read line by line: header lookup, rows with enough fields, and unique frame numbers, with
+// every problem named "name:line: ". Shared by the replay CSV and the far-range recording.
+class HeadedCsv {
+ public:
+  HeadedCsv(std::istream& in, const std::string& name) : m_in(in), m_name(name) {}
+
+  /// The first non-empty line is the header; an empty file is an error.
+  LoadError readHeader() {
+    std::string line;
+    while (m_header.empty() && std::getline(m_in, line)) {
+      ++m_line;
+      if (!trim(line).empty()) m_header = splitCsvLine(line);
+    }
+    if (m_header.empty()) return LoadError::failure(m_name + ": empty file, expected a header row");
+    return LoadError::success();
+  }
+  /// Index of a header name, -1 when absent.
+  int column(const char* col) const {
+    for (std::size_t i = 0; i < m_header.size(); ++i)
+      if (m_header[i] == col) return static_cast<int>(i);
+    return -1;
+  }
+  /// The next non-empty row into `fields` (false at the end of the file); a row shorter than the header sets
+  /// `error` and returns false.
+  bool next(std::vector<std::string>& fields, LoadError& error) {
+    std::string line;
+    while (std::getline(m_in, line)) {
+      ++m_line;
+      if (trim(line).empty()) continue;
+      fields = splitCsvLine(line);
+      if (fields.size() >= m_header.size()) return true;
+      error = failure("expected " + std::to_string(m_header.size()) + " fields, found " +
+                      std::to_string(fields.size()));
+      return false;
+    }
+    return false;
+  }
+  /// The frame number in column `col` of this row; not an integer, or seen before: an error.
+  LoadError frame(const std::vector<std::string>& fields, int col, std::int64_t& out) {
+    if (!parseInt64(fields[static_cast<std::size_t>(col)], out))
+      return failure("column 'frame': bad integer '" + fields[static_cast<std::size_t>(col)] + "'");
+    if (!m_frames.insert(out).second) return failure("duplicate frame " + std::to_string(out));
+    return LoadError::success();
+  }
+  /// A failure at the current line.
+  LoadError failure(const std::string& problem) const {
+    return LoadError::failure(where(m_name, m_line) + problem);
+  }
+
+ private:
+  std::istream& m_in;
+  const std::string& m_name;
+  std::vector<std::string> m_header;
+  std::unordered_set<std::int64_t> m_frames;
+  int m_line = 0;
+};
+
 }  // namespace
 
 const char* toString(TrackStatus status) {
@@ -104,89 +161,60 @@ std::vector<std::string> splitCsvLine(const std::string& line) {
 }
 
 LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& out) {
-  std::string line;
-  int line_no = 0;
-  // Header: first non-empty line.
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!trim(line).empty()) {
-      header = splitCsvLine(line);
-      break;
-    }
-  }
-  if (header.empty()) return LoadError::failure(name + ": empty file, expected a header row");
-  const int header_line = line_no;
-  auto column = [&header](const char* col) {
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == col) return static_cast<int>(i);
-    return -1;
-  };
-  const int frame_col = column("frame");
-  const int status_col = column("status");
-  const int time_col = column("timestamp_ns");
+  HeadedCsv csv(in, name);
+  if (LoadError e = csv.readHeader(); !e.ok) return e;
+  const int frame_col = csv.column("frame");
+  const int status_col = csv.column("status");
+  const int time_col = csv.column("timestamp_ns");
   std::array<int, 7> pose_cols{};
-  for (std::size_t k = 0; k < kPoseColumns.size(); ++k) pose_cols[k] = column(kPoseColumns[k]);
+  for (std::size_t k = 0; k < kPoseColumns.size(); ++k) pose_cols[k] = csv.column(kPoseColumns[k]);
   for (const char* required : {"frame", "status", "x_m", "y_m", "z_m", "qw", "qx", "qy", "qz"}) {
-    if (column(required) < 0)
-      return LoadError::failure(where(name, header_line) + "missing column '" + required + "' in the header");
+    if (csv.column(required) < 0)
+      return csv.failure(std::string("missing column '") + required + "' in the header");
   }
-  const int mode_col = column("mode");
-  const int nis_col = column("nis");
-  const int far_valid_col = column("far_valid");
+  const int mode_col = csv.column("mode");
+  const int nis_col = csv.column("nis");
+  const int far_valid_col = csv.column("far_valid");
   std::array<int, 3> far_cols{};
   for (std::size_t k = 0; k < kFarColumns.size(); ++k) {
-    far_cols[k] = column(kFarColumns[k]);
-    if (far_valid_col >= 0 && far_cols[k] < 0) {
-      return LoadError::failure(where(name, header_line) + "column 'far_valid' needs column '" +
-                                kFarColumns[k] + "' in the header");
-    }
+    far_cols[k] = csv.column(kFarColumns[k]);
+    if (far_valid_col >= 0 && far_cols[k] < 0)
+      return csv.failure(std::string("column 'far_valid' needs column '") + kFarColumns[k] +
+                         "' in the header");
   }
 
   std::vector<ReplayRow> rows;
-  std::unordered_set<std::int64_t> seen;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::vector<std::string> f = splitCsvLine(line);
-    if (f.size() < header.size()) {
-      return LoadError::failure(where(name, line_no) + "expected " + std::to_string(header.size()) +
-                                " fields, found " + std::to_string(f.size()));
-    }
+  std::vector<std::string> f;
+  LoadError row_error = LoadError::success();
+  while (csv.next(f, row_error)) {
     ReplayRow row;
-    if (!parseInt64(f[frame_col], row.frame))
-      return LoadError::failure(where(name, line_no) + "column 'frame': bad integer '" + f[frame_col] + "'");
-    if (!seen.insert(row.frame).second)
-      return LoadError::failure(where(name, line_no) + "duplicate frame " + std::to_string(row.frame));
+    if (LoadError e = csv.frame(f, frame_col, row.frame); !e.ok) return e;
     if (time_col >= 0 && !parseInt64(f[time_col], row.timestamp_ns))
-      return LoadError::failure(where(name, line_no) + "column 'timestamp_ns': bad integer '" + f[time_col] +
-                                "'");
+      return csv.failure("column 'timestamp_ns': bad integer '" + f[time_col] + "'");
     if (!parseTrackStatus(f[status_col], row.status)) {
-      return LoadError::failure(where(name, line_no) + "column 'status': unknown status '" + f[status_col] +
-                                "' (expected tracking, degraded, lost or init)");
+      return csv.failure("column 'status': unknown status '" + f[status_col] +
+                         "' (expected tracking, degraded, lost or init)");
     }
     if (mode_col >= 0 && !parseReplayMode(f[mode_col], row.mode)) {
-      return LoadError::failure(where(name, line_no) + "column 'mode': unknown mode '" + f[mode_col] +
-                                "' (expected standby, far_range, acquisition or near_range)");
+      return csv.failure("column 'mode': unknown mode '" + f[mode_col] +
+                         "' (expected standby, far_range, acquisition or near_range)");
     }
     if (nis_col >= 0 && !f[nis_col].empty()) {
       if (!parseDouble(f[nis_col], row.nis) || !std::isfinite(row.nis) || row.nis < 0.0)
-        return LoadError::failure(where(name, line_no) + "column 'nis': expected a number >= 0, got '" +
-                                  f[nis_col] + "'");
+        return csv.failure("column 'nis': expected a number >= 0, got '" + f[nis_col] + "'");
       row.has_nis = true;
     }
     if (far_valid_col >= 0) {
       const std::string& flag = f[far_valid_col];
       if (flag != "" && flag != "0" && flag != "1")
-        return LoadError::failure(where(name, line_no) + "column 'far_valid': expected 0 or 1, got '" + flag +
-                                  "'");
+        return csv.failure("column 'far_valid': expected 0 or 1, got '" + flag + "'");
       row.far_valid = flag == "1";
       std::array<double*, 3> far_values = {&row.far_azimuth_deg, &row.far_elevation_deg, &row.far_distance_m};
       for (std::size_t k = 0; row.far_valid && k < kFarColumns.size(); ++k) {
         const std::string& text = f[far_cols[k]];
         if (!parseDouble(text, *far_values[k]) || !std::isfinite(*far_values[k])) {
-          return LoadError::failure(where(name, line_no) + "column '" + kFarColumns[k] + "': bad number '" +
-                                    text + "' in a far_valid row");
+          return csv.failure(std::string("column '") + kFarColumns[k] + "': bad number '" + text +
+                             "' in a far_valid row");
         }
       }
     }
@@ -200,8 +228,7 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
         continue;
       }
       if (!parseDouble(text, v[k])) {
-        return LoadError::failure(where(name, line_no) + "column '" + kPoseColumns[k] + "': bad number '" +
-                                  text + "'");
+        return csv.failure(std::string("column '") + kPoseColumns[k] + "': bad number '" + text + "'");
       }
       if (!std::isfinite(v[k])) all_finite = false;
     }
@@ -209,68 +236,48 @@ LoadError parseReplayCsv(std::istream& in, const std::string& name, std::vector<
       Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
       const double norm = q.norm();
       // A grossly non-unit quaternion means a column mix-up, not rounding.
-      if (norm < 0.5 || norm > 1.5)
-        return LoadError::failure(where(name, line_no) + "quaternion (qw, qx, qy, qz) is not unit length");
+      if (norm < 0.5 || norm > 1.5) return csv.failure("quaternion (qw, qx, qy, qz) is not unit length");
       q.coeffs() /= norm;
       row.pose = Pose::fromQuaternion(q, Vec3(v[0], v[1], v[2]));
       row.has_pose = true;
     } else if (isTracked(row.status)) {
-      return LoadError::failure(where(name, line_no) + "non-finite pose in a '" + toString(row.status) +
-                                "' row");
+      return csv.failure(std::string("non-finite pose in a '") + toString(row.status) + "' row");
     }
     rows.push_back(row);
   }
+  if (!row_error.ok) return row_error;
   out = std::move(rows);
   return LoadError::success();
 }
 
 LoadError parseFarRangeCsv(std::istream& in, const std::string& name, std::vector<ReplayRow>& rows,
                            int& unmatched) {
-  std::string line;
-  int line_no = 0;
-  std::vector<std::string> header;
-  while (header.empty() && std::getline(in, line)) {
-    ++line_no;
-    if (!trim(line).empty()) header = splitCsvLine(line);
-  }
-  if (header.empty()) return LoadError::failure(name + ": empty file, expected a header row");
+  HeadedCsv csv(in, name);
+  if (LoadError e = csv.readHeader(); !e.ok) return e;
   constexpr std::array<const char*, 5> kColumns = {"frame", "valid", "azimuth_deg", "elevation_deg",
                                                    "distance_m"};
   std::array<int, kColumns.size()> col{};
   for (std::size_t k = 0; k < kColumns.size(); ++k) {
-    col[k] = -1;
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == kColumns[k]) col[k] = static_cast<int>(i);
-    if (col[k] < 0)
-      return LoadError::failure(where(name, line_no) + "missing column '" + kColumns[k] + "' in the header");
+    col[k] = csv.column(kColumns[k]);
+    if (col[k] < 0) return csv.failure(std::string("missing column '") + kColumns[k] + "' in the header");
   }
   std::unordered_map<std::int64_t, std::size_t> row_of_frame;
   for (std::size_t i = 0; i < rows.size(); ++i) row_of_frame[rows[i].frame] = i;
   std::vector<ReplayRow> joined = rows;  // the caller's rows change only when the whole file is good
-  std::unordered_set<std::int64_t> seen;
   int missing = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    const std::vector<std::string> f = splitCsvLine(line);
-    if (f.size() < header.size()) {
-      return LoadError::failure(where(name, line_no) + "expected " + std::to_string(header.size()) +
-                                " fields, found " + std::to_string(f.size()));
-    }
+  std::vector<std::string> f;
+  LoadError row_error = LoadError::success();
+  while (csv.next(f, row_error)) {
     std::int64_t frame = 0;
-    if (!parseInt64(f[col[0]], frame))
-      return LoadError::failure(where(name, line_no) + "column 'frame': bad integer '" + f[col[0]] + "'");
-    if (!seen.insert(frame).second)
-      return LoadError::failure(where(name, line_no) + "duplicate frame " + std::to_string(frame));
+    if (LoadError e = csv.frame(f, col[0], frame); !e.ok) return e;
     const std::string& flag = f[col[1]];
-    if (flag != "0" && flag != "1")
-      return LoadError::failure(where(name, line_no) + "column 'valid': expected 0 or 1, got '" + flag + "'");
+    if (flag != "0" && flag != "1") return csv.failure("column 'valid': expected 0 or 1, got '" + flag + "'");
     std::array<double, 3> values{};
     for (std::size_t k = 0; flag == "1" && k < values.size(); ++k) {
       const std::string& text = f[col[k + 2]];
       if (!parseDouble(text, values[k]) || !std::isfinite(values[k]))
-        return LoadError::failure(where(name, line_no) + "column '" + kColumns[k + 2] + "': bad number '" +
-                                  text + "' in a valid row");
+        return csv.failure(std::string("column '") + kColumns[k + 2] + "': bad number '" + text +
+                           "' in a valid row");
     }
     const auto it = row_of_frame.find(frame);
     if (it == row_of_frame.end()) {
@@ -283,6 +290,7 @@ LoadError parseFarRangeCsv(std::istream& in, const std::string& name, std::vecto
     row.far_elevation_deg = values[1];
     row.far_distance_m = values[2];
   }
+  if (!row_error.ok) return row_error;
   rows = std::move(joined);
   unmatched = missing;
   return LoadError::success();
