@@ -161,24 +161,31 @@ FilterUpdate PoseFilter::update(const Pose& measured, const Mat6& covariance) {
     m_attitude_known = true;
     return result;
   }
-  const Vec6 y = m_pose.boxMinus(measured);  // H = [I6 0]
-  const Mat6 s = m_covariance.topLeftCorner<6, 6>() + r;
-  Eigen::LDLT<Mat6> s_factor;
-  if (!factorPositive<6>(s, s_factor)) {
+  return correct<6>(kAttitude, m_pose.boxMinus(measured), r, m_params.pose_gate_chi2, result);
+}
+
+template <int M>
+FilterUpdate PoseFilter::correct(int first, const Eigen::Matrix<double, M, 1>& y,
+                                 const Eigen::Matrix<double, M, M>& r, double gate, FilterUpdate result) {
+  const Eigen::Matrix<double, M, M> s = m_covariance.template block<M, M>(first, first) + r;
+  Eigen::LDLT<Eigen::Matrix<double, M, M>> s_factor;
+  if (!factorPositive<M>(s, s_factor)) {
     result.status = Status::kInvalidArgument;
     return result;
   }
   result.nis = y.dot(s_factor.solve(y));
-  result = gateResult(result, m_params.pose_gate_chi2);
+  result = gateResult(result, gate);
   if (!result.accepted) return result;
-  const Eigen::Matrix<double, 12, 6> gain =
-      s_factor.solve(m_covariance.leftCols<6>().transpose()).transpose();
+  const Eigen::Matrix<double, 12, M> gain =
+      s_factor.solve(m_covariance.template middleCols<M>(first).transpose()).transpose();
   Mat12 i_kh = Mat12::Identity();
-  i_kh.leftCols<6>() -= gain;
+  i_kh.template middleCols<M>(first) -= gain;
   // Joseph form: stays symmetric positive semi-definite whatever the rounding of the gain.
   m_covariance = i_kh * m_covariance * i_kh.transpose() + gain * r * gain.transpose();
   symmetrize();
-  inject(gain * y);
+  Vec12 dx = gain * y;
+  if (!m_attitude_known) dx.template segment<3>(kAttitude).setZero();  // nothing to correct yet
+  inject(dx);
   return result;
 }
 
@@ -191,26 +198,7 @@ FilterUpdate PoseFilter::updatePosition(const Vec3& t_c_m, const Mat3& covarianc
     result.status = Status::kInvalidArgument;
     return result;
   }
-  const Vec3 y = t_c_m - m_pose.t_c_m;  // H = [0 I3 0 0]
-  const Mat3 s = m_covariance.block<3, 3>(kPosition, kPosition) + r;
-  Eigen::LDLT<Mat3> s_factor;
-  if (!factorPositive<3>(s, s_factor)) {
-    result.status = Status::kInvalidArgument;
-    return result;
-  }
-  result.nis = y.dot(s_factor.solve(y));
-  result = gateResult(result, m_params.position_gate_chi2);
-  if (!result.accepted) return result;
-  const Eigen::Matrix<double, 12, 3> gain =
-      s_factor.solve(m_covariance.middleCols<3>(kPosition).transpose()).transpose();
-  Mat12 i_kh = Mat12::Identity();
-  i_kh.middleCols<3>(kPosition) -= gain;
-  m_covariance = i_kh * m_covariance * i_kh.transpose() + gain * r * gain.transpose();
-  symmetrize();
-  Vec12 dx = gain * y;
-  if (!m_attitude_known) dx.segment<3>(kAttitude).setZero();  // nothing to correct yet
-  inject(dx);
-  return result;
+  return correct<3>(kPosition, Vec3(t_c_m - m_pose.t_c_m), r, m_params.position_gate_chi2, result);
 }
 
 FilterUpdate PoseFilter::updateFarRange(const Vec3& direction_c, double distance_m) {

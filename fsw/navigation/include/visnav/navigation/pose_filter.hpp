@@ -79,6 +79,11 @@ class PoseFilter {
   void inject(const Vec12& dx);
   void symmetrize();
   FilterUpdate gateResult(FilterUpdate result, double gate);
+  /// The Kalman correction for a measurement of M consecutive error-state entries from `first` (H = [0 I 0]):
+  /// innovation y, its covariance R; NIS gate, Joseph-form covariance update, state injection.
+  template <int M>
+  FilterUpdate correct(int first, const Eigen::Matrix<double, M, 1>& y, const Eigen::Matrix<double, M, M>& r,
+                       double gate, FilterUpdate result);
 
   PoseFilterParams m_params;
   bool m_initialised = false;
