@@ -2,8 +2,23 @@
 
 namespace visnav::nav {
 
-void FdirMonitor::init(const NavigationParams& params) {
+bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params) {
+  if (r.status == TrackStatus::kLost || r.lines_used <= 0 || r.edge_points <= 0 || r.scanlines <= 0)
+    return false;
+  const bool lines = r.lines_used >= params.min_usable_lines &&
+                     r.lines_used >= params.evidence_min_line_fraction * r.lines_total;
+  const bool inliers = r.inlier_points >= params.evidence_min_inlier_ratio * r.edge_points;
+  const bool residual = r.rms_px <= params.evidence_max_rms_px;
+  const bool support = r.inlier_points >= params.evidence_min_edge_support * r.scanlines;
+  return lines && inliers && residual && support;
+}
+
+void FdirMonitor::init(const NavigationParams& params, double bounding_radius_m, double focal_px) {
   m_params = params;
+  // The camera cannot be inside the target's bounding sphere; beyond the depth where the target spans 4 px
+  // no 6-DOF fit is possible. Both scale with the model and the camera, so no default fits one scene only.
+  m_min_depth_m = params.min_depth_m > 0.0 ? params.min_depth_m : bounding_radius_m;
+  m_max_depth_m = params.max_depth_m > 0.0 ? params.max_depth_m : focal_px * 2.0 * bounding_radius_m / 4.0;
   m_pending = 0;
   m_active = 0;
   m_consecutive = 0;
@@ -26,12 +41,12 @@ std::uint32_t FdirMonitor::checkNearRange(const NearRangeCheck& check) {
   if (check.innovation_checked && !check.innovation_accepted) bits |= kFaultInnovation;
   if (r.status != TrackStatus::kLost) {
     const double z = r.pose.t_c_m.z();
-    if (!(z >= m_params.min_range_m && z <= m_params.max_range_m) || !check.centre_in_image)
-      bits |= kFaultImplausible;
+    if (!(z >= m_min_depth_m && z <= m_max_depth_m) || !check.centre_in_image) bits |= kFaultImplausible;
   }
   if ((r.flags & kFlagOutOfImage) != 0U) bits |= kFaultImplausible;
   raise(bits);
-  m_consecutive = bits != 0U ? m_consecutive + 1 : 0;
+  const std::uint32_t persisting = check.evidence_good ? (bits & ~kFaultInnovation) : bits;
+  m_consecutive = persisting != 0U ? m_consecutive + 1 : 0;
   return bits;
 }
 

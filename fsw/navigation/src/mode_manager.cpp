@@ -57,9 +57,11 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
       }
       break;
     case NavMode::kNearRange:
-      m_far_count = in.range_known && in.range_m > m_params.far_range_above_m ? m_far_count + 1 : 0;
+      m_far_count = in.depth_known && in.depth_m > m_params.far_range_above_m ? m_far_count + 1 : 0;
       if (in.near_fault_persisted) {
         transition(NavMode::kFarRange, "near range: persistent fault", frame_number);
+      } else if (in.reacquisition_timed_out) {
+        transition(NavMode::kFarRange, "near range: reacquisition timed out", frame_number);
       } else if (m_far_count >= m_params.enter_frames) {
         transition(NavMode::kFarRange, "near range: target beyond far_range_above_m", frame_number);
       }

@@ -15,8 +15,9 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (e.ok) e = m_near.init(camera, model, params.nearrange);
   if (e.ok) e = m_far.init(camera, params.farrange);
   if (e.ok) e = m_acquisition.init(camera, model, params.acquisition, params.nearrange);
+  if (e.ok) e = m_reacquisition.init(camera, model, params.navigation, params.nearrange);
   if (!e.ok) return e;
-  m_fdir.init(params.navigation);
+  m_fdir.init(params.navigation, model.boundingRadius(), camera.intrinsics().fx_px);
   m_last_command = CommandAck{};
   copyBounded("none", m_last_command.reason.data(), m_last_command.reason.size());
   return LoadError::success();
@@ -34,6 +35,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_coasted = 0;
   m_filter.reset();
   m_near.reset();
+  m_reacquisition.stop();
   m_modes.transition(NavMode::kNearRange, "start: initial pose given", frame_number);
   m_fdir.resetPersistence();
 }
@@ -45,11 +47,12 @@ bool NavigationPipeline::centreInImage(const Pose& pose) const {
 }
 
 void NavigationPipeline::coast(NavSolution& out) {
-  // Sec. II-H: no usable surface this frame; the filter's prediction stands in for a few frames.
+  // Sec. II-H: no usable measurement this frame. The filter keeps propagating and its prediction fills the
+  // pose fields for a few frames, but it is not delivered as valid: after a slew or a wrong motion model the
+  // prediction can be far off, and a wrong pose reported as valid is the worst failure.
   if (!m_filter.initialised() || !m_filter.attitudeKnown() || m_coasted >= m_params.navigation.coast_frames)
     return;
   ++m_coasted;
-  out.pose_valid = true;
   out.pose = m_filter.pose();
   out.covariance = m_filter.poseCovariance();
   out.quality = 0.0;
@@ -81,7 +84,7 @@ void NavigationPipeline::runFarRange(const MonoImage& image, NavSolution& out, M
   // updateFarRange scales the uncertainty with the predicted range (the measured one would trust short
   // readings more and bias the range low).
   if (!m_filter.updateFarRange(out.far.direction_c, out.far.distance_m).accepted &&
-      m_filter.consecutiveRejections() >= 3)
+      m_filter.consecutiveRejections() >= static_cast<std::uint32_t>(m_params.navigation.far_filter_reset_rejections))
     m_filter.reset();  // the filter lost the target: the next fix restarts it
 }
 
@@ -105,11 +108,86 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
   out.quality = result.quality;
 }
 
+Pose NavigationPipeline::predictedPose() const {
+  return m_filter.initialised() && m_filter.attitudeKnown() ? m_filter.pose() : m_last_pose;
+}
+
+bool NavigationPipeline::closeRange() const {
+  // Below the far-range hand-over the target is too large for far range to find again: a loss there is
+  // recovered locally (close-range reacquisition), never by falling back.
+  return m_last_pose.t_c_m.z() <= m_params.navigation.far_range_above_m;
+}
+
+void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out) {
+  m_coasted = 0;
+  m_last_pose = pose;
+  m_have_pose = true;
+  out.pose_valid = true;
+  out.pose = pose;
+  out.covariance = covariance;
+  out.quality = quality;
+}
+
+bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck& check) {
+  // The filter judges the measurement (NIS gate), but an innovation fault alone never throws away a
+  // measurement whose image evidence is good: the image wins and the filter restarts from it.
+  if (!(m_filter.initialised() && m_filter.attitudeKnown())) {
+    m_filter.initialise(r.pose, r.covariance);
+    return true;
+  }
+  const FilterUpdate u = m_filter.update(r.pose, r.covariance);
+  m_last_pose_update = u;
+  check.innovation_checked = true;
+  check.innovation_accepted = u.accepted;
+  if (u.accepted) return true;
+  const bool diverged = r.status == TrackStatus::kTracking &&
+                        m_filter.consecutiveRejections() >=
+                            static_cast<std::uint32_t>(m_params.navigation.filter_diverged_rejections);
+  if (check.evidence_good || diverged) {
+    m_filter.initialise(r.pose, r.covariance);
+    ++m_filter_restarts;
+    return true;
+  }
+  return false;  // weak evidence the filter also disputes: not delivered
+}
+
+void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_t frame_number,
+                                            NavSolution& out, ModeInputs& in) {
+  m_near_result.status = TrackStatus::kLost;
+  m_reacquisition.start();
+  ++m_reacquisitions_started;
+  m_fdir.resetPersistence();
+  runReacquisition(image, frame_number, out, in);
+}
+
+void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
+                                          ModeInputs& in) {
+  ReacquisitionStep step;
+  m_reacquisition.step(image, predictedPose(), frame_number, step);
+  m_last_reacquisition = step;
+  if (step.found) {
+    ++m_reacquisitions_found;
+    m_near.reset();
+    m_filter.initialise(step.pose, step.covariance);
+    m_fdir.resetPersistence();
+    deliver(step.pose, step.covariance, step.quality, out);
+  } else {
+    coast(out);
+    in.reacquisition_timed_out =
+        m_reacquisition.framesSearching() >= m_params.navigation.reacquire_timeout_frames;
+  }
+}
+
 void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                                       ModeInputs& in) {
-  const bool predicted_by_filter = m_filter.initialised() && m_filter.attitudeKnown();
-  const Pose predicted = predicted_by_filter ? m_filter.pose() : m_last_pose;
-  m_near.track(image, predicted, frame_number, m_near_result);
+  in.depth_known = m_have_pose;
+  if (m_reacquisition.active()) {
+    m_near_result = NearRangeResult{};
+    runReacquisition(image, frame_number, out, in);
+    in.depth_m = m_last_pose.t_c_m.z();
+    return;
+  }
+  m_near.track(image, predictedPose(), frame_number, m_near_result);
   const NearRangeResult& r = m_near_result;
   out.tracked_surfaces = r.tracked_surfaces;
   out.lines_used = r.lines_used;
@@ -118,38 +196,25 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   NearRangeCheck check;
   check.near = &r;
   const bool measured = r.status != TrackStatus::kLost;
+  check.evidence_good = measured && imageEvidenceGood(r, m_params.navigation);
+  bool accepted = false;
   if (measured) {
     check.centre_in_image = centreInImage(r.pose);
-    if (predicted_by_filter) {
-      const FilterUpdate u = m_filter.update(r.pose, r.covariance);
-      m_last_pose_update = u;
-      check.innovation_checked = true;
-      check.innovation_accepted = u.accepted;
-      // A clean track the filter keeps rejecting means the filter diverged (e.g. a poor first velocity).
-      if (!u.accepted && r.status == TrackStatus::kTracking && m_filter.consecutiveRejections() >= 2)
-        m_filter.initialise(r.pose, r.covariance);
-    } else {
-      m_filter.initialise(r.pose, r.covariance);
-    }
+    accepted = fuseNearRange(r, check);
   }
   const std::uint32_t faults = m_fdir.checkNearRange(check);
-  if (measured) {
-    // The tracker's pose is reported whenever it has one: a fault (e.g. the filter's innovation gate) is
-    // flagged in fault_bits and halves the quality, it does not silently swap the measurement for the
-    // prediction. Persistent faults make the mode manager fall back.
-    m_coasted = 0;
-    m_last_pose = r.pose;
-    m_have_pose = true;
-    out.pose_valid = true;
-    out.pose = r.pose;
-    out.covariance = r.covariance;
-    out.quality = faults == 0U ? r.quality : 0.5 * r.quality;
+  const bool dropped = !measured || m_fdir.faultPersisted();
+  if (!dropped && accepted) {
+    // A fault (e.g. the innovation gate on a measurement the image supports) is flagged in fault_bits and
+    // halves the quality; it does not swap the measurement for the prediction.
+    deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out);
+  } else if (dropped && closeRange()) {
+    startReacquisition(image, frame_number, out, in);
   } else {
     coast(out);
+    in.near_fault_persisted = m_fdir.faultPersisted();
   }
-  in.near_fault_persisted = m_fdir.faultPersisted();
-  in.range_known = m_have_pose;
-  in.range_m = out.pose_valid ? out.pose.t_c_m.z() : m_last_pose.t_c_m.z();
+  in.depth_m = out.pose_valid ? out.pose.t_c_m.z() : m_last_pose.t_c_m.z();
 }
 
 void NavigationPipeline::enterMode(NavMode mode, std::uint64_t frame_number) {
@@ -157,9 +222,15 @@ void NavigationPipeline::enterMode(NavMode mode, std::uint64_t frame_number) {
   m_coasted = 0;
   switch (mode) {
     case NavMode::kStandby: break;
-    case NavMode::kFarRange: m_far.reset(); break;
+    case NavMode::kFarRange:
+      m_far.reset();
+      m_reacquisition.stop();
+      break;
     case NavMode::kAcquisition: m_acquisition.start(m_last_far_fix, frame_number); break;
-    case NavMode::kNearRange: m_near.reset(); break;
+    case NavMode::kNearRange:
+      m_near.reset();
+      m_reacquisition.stop();
+      break;
   }
 }
 

@@ -1,6 +1,7 @@
 #include "visnav/navigation/pose_filter.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 
 namespace visnav::nav {
@@ -29,6 +30,36 @@ void addWhiteAcceleration(Mat12& p, int value, int rate, double q, double dt) {
   }
 }
 
+/// The symmetric part 0.5 (m + m^T): what every covariance handed to the filter is taken as.
+template <int N>
+Eigen::Matrix<double, N, N> symmetricPart(const Eigen::Matrix<double, N, N>& m) {
+  return 0.5 * (m + m.transpose());
+}
+
+Mat3 isotropic(double sigma) { return Mat3::Identity() * sigma * sigma; }
+
+/// Prior of the angular velocity at a (re)start: zero with the configured sigma per axis.
+Mat3 angularVelocityPrior(const PoseFilterParams& params) {
+  return isotropic(params.initial_angular_velocity_sigma_deg_s * kRadPerDeg);
+}
+
+/// Covariance of a (re)start: `pose_block` over (omega, dt), both velocities at their configured prior,
+/// nothing correlated with them.
+Mat12 startCovariance(const Mat6& pose_block, const PoseFilterParams& params) {
+  Mat12 p = Mat12::Zero();
+  p.topLeftCorner<6, 6>() = pose_block;
+  p.block<3, 3>(PoseFilter::kVelocity, PoseFilter::kVelocity) = isotropic(params.initial_velocity_sigma_m_s);
+  p.block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kAngularVelocity) = angularVelocityPrior(params);
+  return p;
+}
+
+/// Gives the three error-state entries from `first` the covariance `block`, uncorrelated with all others.
+void setUncorrelatedBlock(Mat12& p, int first, const Mat3& block) {
+  p.middleRows<3>(first).setZero();
+  p.middleCols<3>(first).setZero();
+  p.block<3, 3>(first, first) = block;
+}
+
 }  // namespace
 
 Mat3 leftJacobianSo3(const Vec3& phi) {
@@ -55,22 +86,19 @@ void PoseFilter::reset() {
   m_angular_velocity.setZero();
   m_covariance.setIdentity();
   m_consecutive_rejections = 0;
+  m_noise_scale = 1.0;
+  m_nis_average = 1.0;
 }
 
 Status PoseFilter::initialise(const Pose& pose, const Mat6& pose_covariance) {
+  const Mat6 p = symmetricPart<6>(pose_covariance);
   Eigen::LDLT<Mat6> ldlt;
-  if (!pose.R_c_m.allFinite() || !allFinite(pose.t_c_m) ||
-      !factorPositive<6>(0.5 * (pose_covariance + pose_covariance.transpose()), ldlt))
+  if (!pose.R_c_m.allFinite() || !allFinite(pose.t_c_m) || !factorPositive<6>(p, ldlt))
     return Status::kInvalidArgument;
   m_pose = pose;
   m_velocity.setZero();
   m_angular_velocity.setZero();
-  m_covariance.setZero();
-  m_covariance.topLeftCorner<6, 6>() = 0.5 * (pose_covariance + pose_covariance.transpose());
-  const double sv = m_params.initial_velocity_sigma_m_s;
-  const double sw = m_params.initial_angular_velocity_sigma_deg_s * kRadPerDeg;
-  m_covariance.block<3, 3>(kVelocity, kVelocity) = Mat3::Identity() * sv * sv;
-  m_covariance.block<3, 3>(kAngularVelocity, kAngularVelocity) = Mat3::Identity() * sw * sw;
+  m_covariance = startCovariance(p, m_params);
   m_initialised = true;
   m_attitude_known = true;
   m_consecutive_rejections = 0;
@@ -78,23 +106,18 @@ Status PoseFilter::initialise(const Pose& pose, const Mat6& pose_covariance) {
 }
 
 Status PoseFilter::initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance) {
+  const Mat3 p = symmetricPart<3>(position_covariance);
   Eigen::LDLT<Mat3> ldlt;
-  if (!allFinite(t_c_m) ||
-      !factorPositive<3>(0.5 * (position_covariance + position_covariance.transpose()), ldlt))
-    return Status::kInvalidArgument;
+  if (!allFinite(t_c_m) || !factorPositive<3>(p, ldlt)) return Status::kInvalidArgument;
   m_pose = Pose{};
   m_pose.t_c_m = t_c_m;
   m_velocity.setZero();
   m_angular_velocity.setZero();
-  m_covariance.setZero();
   // Attitude unknown: a nominal +-pi per axis keeps the matrix well defined; nothing couples it to position.
-  m_covariance.block<3, 3>(kAttitude, kAttitude) = Mat3::Identity() * kPi * kPi;
-  m_covariance.block<3, 3>(kPosition, kPosition) =
-      0.5 * (position_covariance + position_covariance.transpose());
-  const double sv = m_params.initial_velocity_sigma_m_s;
-  const double sw = m_params.initial_angular_velocity_sigma_deg_s * kRadPerDeg;
-  m_covariance.block<3, 3>(kVelocity, kVelocity) = Mat3::Identity() * sv * sv;
-  m_covariance.block<3, 3>(kAngularVelocity, kAngularVelocity) = Mat3::Identity() * sw * sw;
+  Mat6 pose_block = Mat6::Zero();
+  pose_block.topLeftCorner<3, 3>() = isotropic(kPi);
+  pose_block.bottomRightCorner<3, 3>() = p;
+  m_covariance = startCovariance(pose_block, m_params);
   m_initialised = true;
   m_attitude_known = false;
   m_consecutive_rejections = 0;
@@ -114,9 +137,9 @@ Status PoseFilter::predict(double dt_s) {
   f.block<3, 3>(kPosition, kVelocity) = Mat3::Identity() * dt_s;
   m_covariance = f * m_covariance * f.transpose();
   const double qa = m_params.angular_accel_noise_deg * kRadPerDeg;
-  addWhiteAcceleration(m_covariance, kAttitude, kAngularVelocity, qa * qa, dt_s);
+  addWhiteAcceleration(m_covariance, kAttitude, kAngularVelocity, m_noise_scale * qa * qa, dt_s);
   addWhiteAcceleration(m_covariance, kPosition, kVelocity,
-                       m_params.linear_accel_noise * m_params.linear_accel_noise, dt_s);
+                       m_noise_scale * m_params.linear_accel_noise * m_params.linear_accel_noise, dt_s);
   symmetrize();
   m_pose.R_c_m = step * m_pose.R_c_m;
   m_pose.t_c_m += m_velocity * dt_s;
@@ -138,7 +161,7 @@ FilterUpdate PoseFilter::gateResult(FilterUpdate result, double gate) {
 FilterUpdate PoseFilter::update(const Pose& measured, const Mat6& covariance) {
   FilterUpdate result;
   result.dof = 6;
-  const Mat6 r = 0.5 * (covariance + covariance.transpose());
+  const Mat6 r = symmetricPart<6>(covariance);
   Eigen::LDLT<Mat6> r_factor;
   if (!m_initialised || !measured.R_c_m.allFinite() || !allFinite(measured.t_c_m) ||
       !factorPositive<6>(r, r_factor)) {
@@ -150,18 +173,27 @@ FilterUpdate PoseFilter::update(const Pose& measured, const Mat6& covariance) {
     result = updatePosition(measured.t_c_m, r.bottomRightCorner<3, 3>());
     if (!result.accepted) return result;
     m_pose.R_c_m = measured.R_c_m;
-    m_covariance.middleRows<3>(kAttitude).setZero();
-    m_covariance.middleCols<3>(kAttitude).setZero();
-    m_covariance.middleRows<3>(kAngularVelocity).setZero();
-    m_covariance.middleCols<3>(kAngularVelocity).setZero();
-    m_covariance.block<3, 3>(kAttitude, kAttitude) = r.topLeftCorner<3, 3>();
-    const double sw = m_params.initial_angular_velocity_sigma_deg_s * kRadPerDeg;
-    m_covariance.block<3, 3>(kAngularVelocity, kAngularVelocity) = Mat3::Identity() * sw * sw;
+    setUncorrelatedBlock(m_covariance, kAttitude, r.topLeftCorner<3, 3>());
+    setUncorrelatedBlock(m_covariance, kAngularVelocity, angularVelocityPrior(m_params));
     m_angular_velocity.setZero();
     m_attitude_known = true;
     return result;
   }
-  return correct<6>(kAttitude, m_pose.boxMinus(measured), r, m_params.pose_gate_chi2, result);
+  result = correct<6>(kAttitude, m_pose.boxMinus(measured), r, m_params.pose_gate_chi2, result);
+  adaptProcessNoise(result);
+  return result;
+}
+
+void PoseFilter::adaptProcessNoise(const FilterUpdate& result) {
+  // Covariance matching: innovations well above their expected value (E[NIS] = dof) say the motion model
+  // is too confident (the target tumbles faster, or accelerates): raise the process noise quickly; let it
+  // fall back slowly while the innovations are consistent. Bounded by adaptive_noise_max_scale.
+  if (result.status != Status::kOk || result.dof <= 0) return;
+  m_nis_average += kAdaptAverageWeight * (result.nis / result.dof - m_nis_average);
+  if (m_nis_average > kAdaptRaiseNisPerDof)
+    m_noise_scale = std::min(m_params.adaptive_noise_max_scale, m_noise_scale * kAdaptRaiseFactor);
+  else
+    m_noise_scale = std::max(1.0, m_noise_scale * kAdaptDecayFactor);
 }
 
 template <int M>
@@ -192,7 +224,7 @@ FilterUpdate PoseFilter::correct(int first, const Eigen::Matrix<double, M, 1>& y
 FilterUpdate PoseFilter::updatePosition(const Vec3& t_c_m, const Mat3& covariance) {
   FilterUpdate result;
   result.dof = 3;
-  const Mat3 r = 0.5 * (covariance + covariance.transpose());
+  const Mat3 r = symmetricPart<3>(covariance);
   Eigen::LDLT<Mat3> r_factor;
   if (!m_initialised || !allFinite(t_c_m) || !factorPositive<3>(r, r_factor)) {
     result.status = Status::kInvalidArgument;

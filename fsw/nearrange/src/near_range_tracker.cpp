@@ -1,5 +1,6 @@
 #include "visnav/nearrange/near_range_tracker.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace visnav {
@@ -39,7 +40,6 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_edge_selected.reserve(edges);
   m_polarity.reserve(edges * kPolarityBins);
   m_polarity_next.reserve(edges * kPolarityBins);
-  m_edge_slot.reserve(edges);
   m_edges.reserve(edges);
   m_scan_points.reserve(points);
   m_points_ideal.reserve(points);
@@ -59,7 +59,6 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   }
   for (std::size_t i = 0; i < edges; ++i) {
     m_edge_selected.push(0);
-    m_edge_slot.push(-1);
   }
   for (std::size_t i = 0; i < edges * kPolarityBins; ++i) {
     m_polarity.push(0);
@@ -95,69 +94,75 @@ void NearRangeTracker::updateSurfaces(const Pose& predicted) {
   m_first_frame = false;
 }
 
+bool NearRangeTracker::outwardReference(const ModelEdge& edge, const Pose& predicted,
+                                        Vec2& centroid_px) const {
+  // Outward side: away from the projected centroid of a tracked (else front-facing) surface owning the edge.
+  const auto owns = [&](int s, const BoundedBuffer<std::uint8_t>& flag) { return s >= 0 && flag[s] != 0U; };
+  int owner = owns(edge.surface_left, m_surface_tracked) ? edge.surface_left : -1;
+  if (owner < 0) owner = owns(edge.surface_right, m_surface_tracked) ? edge.surface_right : -1;
+  if (owner < 0) owner = owns(edge.surface_left, m_surface_front) ? edge.surface_left : edge.surface_right;
+  return owner >= 0 && m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px);
+}
+
+bool NearRangeTracker::measureScanline(const MonoImage& image, int model_edge, const Vec3& a_c, const Vec3& b_c,
+                                       double t, int index, const Vec2& centroid_px, ScanPoint& sp) {
+  const Vec3 p_c = a_c + t * (b_c - a_c);
+  const Vec3 q_c = p_c + 1e-3 * (b_c - a_c);
+  Vec2 ahead;
+  if (!m_camera.project(p_c, sp.scan_centre_px) || !m_camera.project(q_c, ahead)) return false;
+  const Vec2 tangent = ahead - sp.scan_centre_px;
+  if (tangent.squaredNorm() < 1e-18) return false;
+  sp.scan_normal = Vec2(-tangent.y(), tangent.x()).normalized();
+  if (sp.scan_normal.dot(sp.scan_centre_px - centroid_px) < 0.0) sp.scan_normal = -sp.scan_normal;
+  // Dither each scanline's sample phase by a low-discrepancy offset in [-0.5, 0.5) px: a pixel-level
+  // hit (texture split, n + 0.5) is then quantised differently on every scanline and the line fit
+  // averages the quantisation out instead of inheriting one shared bias of up to 0.5 px.
+  const double golden = 0.6180339887498949 * (index + 1);
+  sp.scan_centre_px += (golden - std::floor(golden) - 0.5) * sp.scan_normal;
+  const int bin = std::min(static_cast<int>(t * kPolarityBins), kPolarityBins - 1);
+  sp.polarity_bin = static_cast<std::uint8_t>(bin);
+  const int expected = m_params.polarity_mode == static_cast<int>(EdgePolarityMode::kLearned)
+                           ? m_polarity[model_edge * kPolarityBins + bin]
+                           : 0;
+  const int half = m_params.scanline_half_length_px;
+  double samples[kMaxScanlineSamples];
+  if (!sampleScanline(image, sp.scan_centre_px, sp.scan_normal, half, samples)) return false;
+  const EdgeHit hit = findEdge(samples, 2 * half + 1, m_edge_params, expected);
+  if (hit.method == EdgeMethod::kNone) return false;
+  sp.method = hit.method;
+  sp.polarity = static_cast<std::int8_t>(hit.polarity);
+  sp.edge_px = sp.scan_centre_px + hit.offset_px * sp.scan_normal;
+  return true;
+}
+
 void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted, int e,
                                    NearRangeResult& out) {
+  // Sec. II-D: scanlines spread evenly over the projected edge between the vertex margins.
   const ModelEdge& edge = m_model.edges()[e];
   const Vec3 a_c = predicted.transform(m_model.vertices()[edge.v0]);
   const Vec3 b_c = predicted.transform(m_model.vertices()[edge.v1]);
-  EdgeDebug slot;
+  EdgeMeasurement slot;
   slot.model_edge = e;
   slot.first_point = static_cast<int>(m_scan_points.size());
   if (!m_camera.project(a_c, slot.predicted_a_px) || !m_camera.project(b_c, slot.predicted_b_px)) {
     out.flags |= kFlagOutOfImage;
     return;
   }
-  // Outward side: away from the projected centroid of a tracked (else front-facing) surface owning the edge.
-  const auto owns = [&](int s, const BoundedBuffer<std::uint8_t>& flag) { return s >= 0 && flag[s] != 0U; };
-  int owner = owns(edge.surface_left, m_surface_tracked) ? edge.surface_left : -1;
-  if (owner < 0) owner = owns(edge.surface_right, m_surface_tracked) ? edge.surface_right : -1;
-  if (owner < 0) owner = owns(edge.surface_left, m_surface_front) ? edge.surface_left : edge.surface_right;
   Vec2 centroid_px;
-  if (owner < 0 || !m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px))
-    return;
-
+  if (!outwardReference(edge, predicted, centroid_px)) return;
   const double length_px = (slot.predicted_b_px - slot.predicted_a_px).norm();
-  m_edge_slot[e] = static_cast<int>(m_edges.size());
   if (length_px >= m_params.min_edge_length_px) {
     const double usable_px = length_px - 2.0 * m_params.vertex_margin_px;
-    int count = usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0;
-    if (count > m_params.max_scanlines_per_edge) count = m_params.max_scanlines_per_edge;
-    const int half = m_params.scanline_half_length_px;
-    double samples[kMaxScanlineSamples];
+    const int count = std::min(usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0,
+                               m_params.max_scanlines_per_edge);
+    out.scanlines += count;
     for (int i = 0; i < count; ++i) {
-      // Scanlines spread evenly over the edge between the vertex margins.
       const double along_px =
           count == 1 ? 0.5 * length_px
                      : m_params.vertex_margin_px + usable_px * i / static_cast<double>(count - 1);
-      const double t = along_px / length_px;
-      const Vec3 p_c = a_c + t * (b_c - a_c);
-      const Vec3 q_c = p_c + 1e-3 * (b_c - a_c);
-      ScanPointDebug sp;
-      Vec2 ahead;
-      if (!m_camera.project(p_c, sp.scan_centre_px) || !m_camera.project(q_c, ahead)) continue;
-      const Vec2 tangent = ahead - sp.scan_centre_px;
-      if (tangent.squaredNorm() < 1e-18) continue;
-      sp.scan_normal = Vec2(-tangent.y(), tangent.x()).normalized();
-      if (sp.scan_normal.dot(sp.scan_centre_px - centroid_px) < 0.0) sp.scan_normal = -sp.scan_normal;
-      // Dither each scanline's sample phase by a low-discrepancy offset in [-0.5, 0.5) px: a pixel-level
-      // hit (texture split, n + 0.5) is then quantised differently on every scanline and the line fit
-      // averages the quantisation out instead of inheriting one shared bias of up to 0.5 px.
-      const double golden = 0.6180339887498949 * (i + 1);
-      sp.scan_centre_px += (golden - std::floor(golden) - 0.5) * sp.scan_normal;
-      const int bin = static_cast<int>(t * kPolarityBins) < kPolarityBins
-                          ? static_cast<int>(t * kPolarityBins)
-                          : kPolarityBins - 1;
-      sp.polarity_bin = static_cast<std::uint8_t>(bin);
-      const int expected = m_params.polarity_mode == static_cast<int>(EdgePolarityMode::kLearned)
-                               ? m_polarity[e * kPolarityBins + bin]
-                               : 0;
-      if (!sampleScanline(image, sp.scan_centre_px, sp.scan_normal, half, samples)) continue;
-      const EdgeHit hit = findEdge(samples, 2 * half + 1, m_edge_params, expected);
-      if (hit.method == EdgeMethod::kNone) continue;
-      sp.method = hit.method;
-      sp.polarity = static_cast<std::int8_t>(hit.polarity);
-      sp.edge_px = sp.scan_centre_px + hit.offset_px * sp.scan_normal;
-      if (hit.method == EdgeMethod::kTexture) ++out.texture_points;
+      ScanPoint sp;
+      if (!measureScanline(image, e, a_c, b_c, along_px / length_px, i, centroid_px, sp)) continue;
+      if (sp.method == EdgeMethod::kTexture) ++out.texture_points;
       if (!m_scan_points.push(sp)) break;
       m_points_ideal.push(m_camera.undistortPixel(sp.edge_px));
     }
@@ -170,7 +175,7 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
 void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out) {
   const RansacParams ransac{m_params.ransac_threshold_px, m_params.ransac_iterations};
   double ratio_sum = 0.0;
-  for (EdgeDebug& slot : m_edges) {
+  for (EdgeMeasurement& slot : m_edges) {
     ++out.lines_total;
     if (slot.point_count < m_params.min_points_per_line) {
       out.flags |= kFlagLineRejected;
@@ -195,7 +200,7 @@ void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out)
     // Remember each inlier's polarity at its place on the edge for the next frame.
     int votes[kPolarityBins] = {};
     for (int i = 0; i < slot.point_count; ++i) {
-      ScanPointDebug& sp = m_scan_points[slot.first_point + i];
+      ScanPoint& sp = m_scan_points[slot.first_point + i];
       sp.inlier = m_inlier[i] != 0U;
       if (sp.inlier) votes[sp.polarity_bin] += sp.polarity;
     }
@@ -230,7 +235,7 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
       const double sin_angle = std::fabs(std::sin(a.theta_rad - b.theta_rad));
       Vec2 px;
       // Nearly parallel neighbours give no vertex.
-      if (sin_angle <= m_vertex_best_sin[shared] || !intersect(a, b, px, 0.05)) continue;
+      if (sin_angle <= m_vertex_best_sin[shared] || !intersect(a, b, px, kMinVertexSinAngle)) continue;
       m_vertex_best_sin[shared] = sin_angle;
       m_vertex_best_px[shared] = px;
     }
@@ -248,7 +253,7 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
 int NearRangeTracker::collectEdgePoints(int excluded_slot) {
   m_edge_obs.clear();
   for (int k = 0; k < static_cast<int>(m_edges.size()); ++k) {
-    const EdgeDebug& slot = m_edges[k];
+    const EdgeMeasurement& slot = m_edges[k];
     if (!slot.line_ok || k == excluded_slot) continue;
     for (int i = 0; i < slot.point_count; ++i) {
       if (!m_scan_points[slot.first_point + i].inlier) continue;
@@ -265,14 +270,14 @@ bool NearRangeTracker::solvePose(const Pose& predicted, int excluded_slot, int l
   const LmOptions lm{m_params.lm_max_iterations};
   vertices = collectVertices(excluded_slot);
   const bool vertex_mode = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex);
-  if (vertex_mode && lines_used >= 4 && vertices >= 4)
+  if (vertex_mode && lines_used >= kMinLinesForVertexPose && vertices >= kMinLinesForVertexPose)
     return fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), vertices, lm, m_params.pixel_sigma_px,
                              pose, fit);
   // Point-to-line needs no complete corner: three non-parallel lines with many points still fix 6 DOF.
   // When the vertex residual lacks corners this is the fallback, and the frame is marked degraded.
   const int n = collectEdgePoints(excluded_slot);
-  const int min_lines = vertex_mode ? 3 : 4;
-  if (lines_used < min_lines || n < 12) {
+  const int min_lines = vertex_mode ? kMinLinesForPointToLine : kMinLinesForVertexPose;
+  if (lines_used < min_lines || n < kMinEdgePointsForPose) {
     flags |= kFlagTooFewLines;
     return false;
   }
@@ -285,7 +290,7 @@ bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose&
   // One wrong line (e.g. locked onto the parallel neighbour edge of a face seen at a grazing angle) spoils
   // every vertex it touches. Refit without each used line in turn (bounded: one LM per line) and keep the
   // best, if it explains the rest clearly better; the frame is then degraded (kFlagLineRejected).
-  if (out.lines_used < 5) return solved;
+  if (out.lines_used < kMinLinesForLineRejection) return solved;
   int best_slot = -1;
   Pose best_pose = pose;
   PoseFitResult best_fit = fit;
@@ -298,7 +303,8 @@ bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose&
     std::uint32_t trial_flags = 0;
     if (!solvePose(predicted, k, out.lines_used - 1, trial_pose, trial_fit, trial_vertices, trial_flags))
       continue;
-    const bool better = best_slot < 0 && !solved ? true : trial_fit.rms_px < 0.5 * best_fit.rms_px;
+    const bool better =
+        best_slot < 0 && !solved ? true : trial_fit.rms_px < m_params.reject_line_rms_gain * best_fit.rms_px;
     if (better) {
       best_slot = k;
       best_pose = trial_pose;
@@ -310,7 +316,7 @@ bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose&
     out.vertices = collectVertices(-1);  // leave the buffers as the kept solution saw them
     return solved;
   }
-  EdgeDebug& rejected = m_edges[best_slot];
+  EdgeMeasurement& rejected = m_edges[best_slot];
   rejected.line_ok = false;
   for (int b = 0; b < kPolarityBins; ++b) m_polarity_next[rejected.model_edge * kPolarityBins + b] = 0;
   --out.lines_used;
@@ -328,29 +334,16 @@ void NearRangeTracker::finishLost(const Pose& predicted, NearRangeResult& out) c
   out.quality = 0.0;
 }
 
-Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, std::uint64_t frame_index,
-                               NearRangeResult& out) {
-  out = NearRangeResult{};
-  std::int64_t start = m_clock != nullptr ? m_clock() : 0;
-  std::int64_t stamp = start;
-  if (image.empty() || image.width() != m_camera.width() || image.height() != m_camera.height()) {
-    finishLost(predicted, out);
-    return Status::kInvalidArgument;
-  }
-
-  updateSurfaces(predicted);
-  m_edges.clear();
-  m_scan_points.clear();
-  m_points_ideal.clear();
+void NearRangeTracker::selectEdges(NearRangeResult& out) {
+  // Every edge of a tracked surface (sec. II-H), plus the outline when enabled: exactly one side
+  // front-facing (an open boundary counts as a back side).
   const auto& edges = m_model.edges();
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const ModelEdge& edge = edges[e];
     const bool left = edge.surface_left >= 0 && m_surface_tracked[edge.surface_left] != 0U;
     const bool right = edge.surface_right >= 0 && m_surface_tracked[edge.surface_right] != 0U;
-    m_edge_slot[e] = -1;
     m_edge_selected[e] = (left || right) ? 1U : 0U;
     if (m_edge_selected[e] != 0U || !m_params.silhouette_edges) continue;
-    // Outline: exactly one side front-facing (an open boundary counts as a back side).
     const bool front_left = edge.surface_left >= 0 && m_surface_front[edge.surface_left] != 0U;
     const bool front_right = edge.surface_right >= 0 && m_surface_front[edge.surface_right] != 0U;
     if (front_left != front_right) {
@@ -363,54 +356,94 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
     ++out.tracked_surfaces;
     if (s < 64) out.tracked_surface_mask |= 1ULL << s;
   }
-  out.timing.project_us = elapsedUs(stamp);
   if (out.tracked_surfaces == 0 && out.silhouette_lines > 0) out.flags |= kFlagSilhouetteOnly;
-  if (out.tracked_surfaces == 0 && out.silhouette_lines == 0) {
-    out.flags |= kFlagNoSurface;
-    finishLost(predicted, out);
-    out.timing.total_us = elapsedUs(start);
-    return Status::kOk;
-  }
+  if (out.tracked_surfaces == 0 && out.silhouette_lines == 0) out.flags |= kFlagNoSurface;
+}
 
-  for (std::size_t e = 0; e < edges.size(); ++e)
+void NearRangeTracker::measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out) {
+  m_edges.clear();
+  m_scan_points.clear();
+  m_points_ideal.clear();
+  for (std::size_t e = 0; e < m_model.edges().size(); ++e)
     if (m_edge_selected[e] != 0U) measureEdge(image, predicted, static_cast<int>(e), out);
   if (out.texture_points > 0) out.flags |= kFlagTextureFallback;
-  out.timing.scan_us = elapsedUs(stamp);
+}
 
-  for (std::size_t i = 0; i < m_polarity_next.size(); ++i) m_polarity_next[i] = 0;
-  fitLines(frame_index, out);
-  out.timing.ransac_us = elapsedUs(stamp);
-
-  Pose pose = predicted;
-  PoseFitResult fit;
+bool NearRangeTracker::fitPose(const Pose& predicted, Pose& pose, PoseFitResult& fit, NearRangeResult& out) {
+  // Sec. II-G, then one wrong line may be dropped (rejectWorstLine) when the fit fails or stays high.
   bool solved = solvePose(predicted, -1, out.lines_used, pose, fit, out.vertices, out.flags);
   const bool solver_failed = !solved && (out.flags & kFlagTooFewLines) == 0U;
   if (solver_failed || (solved && fit.rms_px > m_params.degraded_rms_px))
     solved = rejectWorstLine(predicted, solved, pose, fit, out);
-  out.timing.pose_us = elapsedUs(stamp);
   out.rms_px = fit.rms_px;
   out.lm_iterations = fit.lm.iterations;
-
   if ((out.flags & kFlagTooFewLines) == 0U && !solved) out.flags |= kFlagSolverFailed;
   if (solved && fit.rms_px > m_params.max_rms_px) out.flags |= kFlagResidualTooHigh;
   if (solved && fit.rms_px > m_params.degraded_rms_px) out.flags |= kFlagResidualHigh;
   if (solved && !(pose.t_c_m.z() > 0.0)) out.flags |= kFlagOutOfImage;
+  return solved;
+}
 
+namespace {
+
+double residualVarianceFactor(const PoseFitResult& fit, double pixel_sigma_px) {
+  // The configured edge-point sigma is a floor: when the fit's own residuals say the measurements scatter
+  // more (blur, noise, a grazing face), the covariance grows with the a-posteriori variance factor
+  // s^2 / sigma^2, s^2 = cost / (m - 6), so it stays honest at every range and in every scene.
+  const int dof = fit.lm.residual_count - 6;
+  if (dof <= 0 || !(pixel_sigma_px > 0.0)) return 1.0;
+  const double s2 = fit.lm.final_cost / dof;
+  return std::max(1.0, s2 / (pixel_sigma_px * pixel_sigma_px));
+}
+
+}  // namespace
+
+void NearRangeTracker::finishMeasured(const Pose& predicted, const Pose& pose, const PoseFitResult& fit,
+                                      NearRangeResult& out) {
   constexpr std::uint32_t kLostFlags =
       kFlagTooFewLines | kFlagSolverFailed | kFlagResidualTooHigh | kFlagOutOfImage;
   if ((out.flags & kLostFlags) != 0U) {
     finishLost(predicted, out);
-  } else {
-    out.pose = pose;
-    out.covariance = fit.covariance;
-    const double r = fit.rms_px / m_params.degraded_rms_px;
-    out.quality *= 1.0 / (1.0 + r * r);
-    out.status = (out.flags & (kFlagLineRejected | kFlagResidualHigh | kFlagResidualFallback)) != 0U
-                     ? TrackStatus::kDegraded
-                     : TrackStatus::kTracking;
-    // Only a trusted frame teaches the polarity of the next one.
-    for (std::size_t i = 0; i < m_polarity.size(); ++i) m_polarity[i] = m_polarity_next[i];
+    return;
   }
+  out.pose = pose;
+  out.covariance = fit.covariance * residualVarianceFactor(fit, m_params.pixel_sigma_px);
+  const double r = fit.rms_px / m_params.degraded_rms_px;
+  out.quality *= 1.0 / (1.0 + r * r);
+  out.status = (out.flags & (kFlagLineRejected | kFlagResidualHigh | kFlagResidualFallback)) != 0U
+                   ? TrackStatus::kDegraded
+                   : TrackStatus::kTracking;
+  // Only a trusted frame teaches the polarity of the next one.
+  for (std::size_t i = 0; i < m_polarity.size(); ++i) m_polarity[i] = m_polarity_next[i];
+}
+
+Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, std::uint64_t frame_index,
+                               NearRangeResult& out) {
+  out = NearRangeResult{};
+  std::int64_t start = m_clock != nullptr ? m_clock() : 0;
+  std::int64_t stamp = start;
+  if (image.empty() || image.width() != m_camera.width() || image.height() != m_camera.height()) {
+    finishLost(predicted, out);
+    return Status::kInvalidArgument;
+  }
+  updateSurfaces(predicted);  // 1 surfaces (sec. II-H)
+  selectEdges(out);
+  out.timing.project_us = elapsedUs(stamp);
+  if ((out.flags & kFlagNoSurface) != 0U) {
+    finishLost(predicted, out);
+    out.timing.total_us = elapsedUs(start);
+    return Status::kOk;
+  }
+  measureEdges(image, predicted, out);  // 2-4 scanlines, edge points (eq. 4/5), undistortion
+  out.timing.scan_us = elapsedUs(stamp);
+  for (std::size_t i = 0; i < m_polarity_next.size(); ++i) m_polarity_next[i] = 0;
+  fitLines(frame_index, out);  // 5 RANSAC lines (sec. II-E)
+  out.timing.ransac_us = elapsedUs(stamp);
+  Pose pose = predicted;
+  PoseFitResult fit;
+  fitPose(predicted, pose, fit, out);  // 6-7 vertices (eq. 6) and LM (eq. 7)
+  out.timing.pose_us = elapsedUs(stamp);
+  finishMeasured(predicted, pose, fit, out);  // 8 verdict
   out.timing.total_us = elapsedUs(start);
   return Status::kOk;
 }

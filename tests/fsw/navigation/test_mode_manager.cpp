@@ -18,8 +18,8 @@ ModeInputs farAt(double d) {
 }
 ModeInputs nearAt(double d) {
   ModeInputs in;
-  in.range_known = true;
-  in.range_m = d;
+  in.depth_known = true;
+  in.depth_m = d;
   return in;
 }
 
@@ -121,6 +121,7 @@ NearRangeResult goodNear() {
   r.status = TrackStatus::kTracking;
   r.lines_total = 4;
   r.lines_used = 4;
+  r.scanlines = 110;
   r.edge_points = 100;
   r.inlier_points = 95;
   r.rms_px = 0.1;
@@ -130,7 +131,7 @@ NearRangeResult goodNear() {
 
 TEST(Fdir, EachCheckRaisesItsBit) {
   FdirMonitor f;
-  f.init(NavigationParams{});
+  f.init(NavigationParams{}, 1.5, 1000.0);  // depth band derived: 1.5 m .. 750 m
   NearRangeResult r = goodNear();
   NearRangeCheck c;
   c.near = &r;
@@ -167,7 +168,7 @@ TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
   FdirMonitor f;
   NavigationParams p;
   p.fault_persistence_frames = 3;
-  f.init(p);
+  f.init(p, 1.5, 1000.0);
   NearRangeResult bad = goodNear();
   bad.lines_used = 0;
   NearRangeResult good = goodNear();
@@ -184,6 +185,63 @@ TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
   EXPECT_TRUE(f.faultPersisted());
   EXPECT_EQ(f.endFrame(), kFaultTooFewLines);
   EXPECT_EQ(f.endFrame(), 0U);  // the active set is per frame
+}
+
+TEST(Fdir, DepthBandIsDerivedFromModelAndCameraUnlessSet) {
+  FdirMonitor f;
+  f.init(NavigationParams{}, 0.25, 800.0);  // a 0.5 m lab object, f = 800 px
+  EXPECT_DOUBLE_EQ(f.minDepthM(), 0.25);     // inside the bounding sphere: impossible
+  EXPECT_DOUBLE_EQ(f.maxDepthM(), 100.0);    // 0.5 m spans 4 px at 100 m
+  NearRangeResult r = goodNear();
+  r.pose.t_c_m.z() = 0.6;  // the lab sequence's depth: plausible, where a fixed 1 m band flagged it
+  NearRangeCheck c;
+  c.near = &r;
+  EXPECT_EQ(f.checkNearRange(c), 0U);
+  NavigationParams p;
+  p.min_depth_m = 2.0;
+  p.max_depth_m = 50.0;
+  f.init(p, 0.25, 800.0);
+  EXPECT_DOUBLE_EQ(f.minDepthM(), 2.0);
+  EXPECT_DOUBLE_EQ(f.maxDepthM(), 50.0);
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+}
+
+TEST(Fdir, EvidenceNeedsLinesInliersResidualAndSupport) {
+  const NavigationParams p;
+  NearRangeResult r = goodNear();
+  EXPECT_TRUE(imageEvidenceGood(r, p));
+  r.lines_used = 2;  // half the measured lines
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.inlier_points = 60;
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.rms_px = 0.9;
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.scanlines = 400;  // most scanlines found nothing where the model has an edge
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.status = TrackStatus::kLost;
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+}
+
+TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
+  FdirMonitor f;
+  NavigationParams p;
+  p.fault_persistence_frames = 3;
+  f.init(p, 1.5, 1000.0);
+  NearRangeResult r = goodNear();
+  NearRangeCheck c;
+  c.near = &r;
+  c.innovation_checked = true;
+  c.innovation_accepted = false;
+  c.evidence_good = true;
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(f.checkNearRange(c), kFaultInnovation);  // flagged every frame...
+  EXPECT_FALSE(f.faultPersisted());                                                // ...never persisting
+  c.evidence_good = false;  // the same innovation on weak evidence counts
+  for (int i = 0; i < 3; ++i) f.checkNearRange(c);
+  EXPECT_TRUE(f.faultPersisted());
 }
 
 }  // namespace

@@ -33,11 +33,11 @@ LoadError writeOverlayPng(const std::string& path, const MonoImage& image, const
     }
   const PinholeCamera& camera = tracker.camera();
   const int half = tracker.params().scanline_half_length_px;
-  for (const EdgeDebug& edge : tracker.lastEdges()) {
+  for (const EdgeMeasurement& edge : tracker.lastEdges()) {
     canvas.line(edge.predicted_a_px.x(), edge.predicted_a_px.y(), edge.predicted_b_px.x(),
                 edge.predicted_b_px.y(), kBlue);
     for (int i = 0; i < edge.point_count; ++i) {
-      const ScanPointDebug& sp = tracker.lastScanPoints()[edge.first_point + i];
+      const ScanPoint& sp = tracker.lastScanPoints()[edge.first_point + i];
       const Vec2 a = sp.scan_centre_px - half * sp.scan_normal;
       const Vec2 b = sp.scan_centre_px + half * sp.scan_normal;
       canvas.line(a.x(), a.y(), b.x(), b.y(), kYellow);
@@ -58,7 +58,7 @@ LoadError writeOverlayPng(const std::string& path, const MonoImage& image, const
       }
     }
     for (int i = 0; i < edge.point_count; ++i) {
-      const ScanPointDebug& sp = tracker.lastScanPoints()[edge.first_point + i];
+      const ScanPoint& sp = tracker.lastScanPoints()[edge.first_point + i];
       const eval::Rgb c = sp.method == EdgeMethod::kTexture ? kMagenta : (sp.inlier ? kGreen : kRed);
       canvas.dot(sp.edge_px.x(), sp.edge_px.y(), 1, c);
     }

@@ -1,7 +1,9 @@
 // FDIR monitor (issue 3): per-frame checks of the near-range measurement (edge-point inlier ratio, usable
 // lines, LM residual and convergence, innovation against the Kalman prediction, range and image bounds)
 // and of the frame itself (age). Faults are counted per bit; a near-range fault held for
-// fault_persistence_frames consecutive frames asks the mode manager to fall back to far range. Pure logic.
+// fault_persistence_frames consecutive frames asks the pipeline to drop the track. An innovation fault on a
+// measurement with good image evidence is flagged but does not count towards that persistence: the filter,
+// not the image, is then wrong. Pure logic.
 #pragma once
 
 #include <array>
@@ -18,11 +20,19 @@ struct NearRangeCheck {
   bool innovation_checked = false;        ///< a filter prediction existed to compare with
   bool innovation_accepted = true;        ///< the filter's NIS gate
   bool centre_in_image = true;            ///< the estimated target centre projects inside the image
+  bool evidence_good = false;             ///< the image supports the measurement (imageEvidenceGood)
 };
+
+/// Lines, inliers, residual and edge support of a near-range measurement all say the image holds the
+/// model where the tracker put it. Such a measurement wins over a filter that rejects it.
+bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params);
 
 class FdirMonitor {
  public:
-  void init(const NavigationParams& params);
+  /// `bounding_radius_m` and `focal_px` derive the plausible depth band where the parameters leave it 0.
+  void init(const NavigationParams& params, double bounding_radius_m, double focal_px);
+  double minDepthM() const { return m_min_depth_m; }
+  double maxDepthM() const { return m_max_depth_m; }
   /// Clears the consecutive-fault count (after a mode change); cumulative counters stay.
   void resetPersistence() { m_consecutive = 0; }
 
@@ -42,6 +52,8 @@ class FdirMonitor {
 
  private:
   NavigationParams m_params;
+  double m_min_depth_m = 0.0;
+  double m_max_depth_m = 0.0;
   std::uint32_t m_pending = 0;
   std::uint32_t m_active = 0;
   int m_consecutive = 0;

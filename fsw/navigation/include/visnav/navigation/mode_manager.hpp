@@ -21,8 +21,9 @@ struct ModeInputs {
   bool acquisition_succeeded = false;
   bool acquisition_failed = false;    ///< acquisition gave up on its own
   bool near_fault_persisted = false;  ///< FDIR: a near-range fault held fault_persistence_frames
-  bool range_known = false;           ///< a distance estimate exists (filter or near range)
-  double range_m = 0.0;
+  bool depth_known = false;           ///< a depth estimate exists (filter or near range)
+  double depth_m = 0.0;  ///< t_c_m.z (CONVENTIONS.md): what far range's distance and the thresholds measure
+  bool reacquisition_timed_out = false;  ///< close-range reacquisition searched too long
 };
 
 class ModeManager {

@@ -19,9 +19,25 @@ struct NavigationParams {
   double min_inlier_ratio = 0.5;  ///< edge-point inliers / points over the used lines, below: fault
   int min_usable_lines = 3;       ///< fewer used lines: fault
   double max_rms_px = 1.0;        ///< LM residual above: fault
-  double min_range_m = 1.0;       ///< plausible distance band (t_c_m.z)
-  double max_range_m = 1000.0;
+  double min_depth_m = 0.0;  ///< plausible depth band (t_c_m.z); 0: derived from the model and camera
+  double max_depth_m = 0.0;
   double max_frame_age_ms = 150.0;  ///< frame older than this when processed: fault
+  // Image evidence that makes a near-range measurement win over the filter's prediction.
+  double evidence_min_line_fraction = 0.75;  ///< used lines / measured lines
+  double evidence_min_inlier_ratio = 0.7;    ///< inlier points / edge points of the used lines
+  double evidence_max_rms_px = 0.8;          ///< pose-fit residual
+  double evidence_min_edge_support = 0.5;    ///< inlier points / scanlines cast
+  int filter_diverged_rejections = 2;        ///< consecutive rejections of a clean track: restart the filter
+  int far_filter_reset_rejections = 3;       ///< consecutive far-range rejections: restart the filter
+  // Close-range reacquisition (local_reacquisition.hpp).
+  int reacquire_hypotheses_per_frame = 12;
+  int reacquire_scanline_half_length_px = 24;
+  double reacquire_step_rel = 0.8;             ///< lateral grid step / the wide tracker's capture range
+  double reacquire_growth_px_per_frame = 40.0;  ///< the searched radius widens this much per frame
+  int reacquire_confirm_frames = 1;
+  double reacquire_max_motion_rel = 0.05;  ///< confirmation: position change / range per frame
+  double reacquire_max_rotation_deg = 5.0;  ///< confirmation: attitude change per frame
+  int reacquire_timeout_frames = 300;       ///< searching longer: hand over to far range
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -54,19 +70,69 @@ struct NavigationParams {
               min_usable_lines);
     v.real({"navigation", "max_rms_px", "px", 0.001, 100.0, "FDIR: pose-fit residual above this is a fault"},
            max_rms_px);
-    v.real({"navigation", "min_range_m", "m", 0.0, 100000.0, "FDIR: plausible range band, lower end"},
-           min_range_m);
-    v.real({"navigation", "max_range_m", "m", 0.0, 100000.0, "FDIR: plausible range band, upper end"},
-           max_range_m);
+    v.real({"navigation", "min_depth_m", "m", 0.0, 100000.0,
+            "FDIR: plausible depth band, lower end; 0 derives it from the model: the camera cannot be inside "
+            "the target's bounding sphere"},
+           min_depth_m);
+    v.real({"navigation", "max_depth_m", "m", 0.0, 100000.0,
+            "FDIR: plausible depth band, upper end; 0 derives it from the model and camera: the depth at "
+            "which the target spans 4 px (no 6-DOF fit is possible beyond)"},
+           max_depth_m);
     v.real({"navigation", "max_frame_age_ms", "ms", 0.0, 100000.0,
             "FDIR: a frame older than this when processed is a fault (0 disables the check)"},
            max_frame_age_ms);
+    v.real({"navigation", "evidence_min_line_fraction", "-", 0.0, 1.0,
+            "good image evidence: at least this share of the measured lines used (with the three below, "
+            "the measurement wins over a filter that rejects it, and the filter restarts from it)"},
+           evidence_min_line_fraction);
+    v.real({"navigation", "evidence_min_inlier_ratio", "-", 0.0, 1.0,
+            "good image evidence: edge-point inlier ratio over the used lines at least this"},
+           evidence_min_inlier_ratio);
+    v.real({"navigation", "evidence_max_rms_px", "px", 0.001, 100.0,
+            "good image evidence: pose-fit residual at most this"},
+           evidence_max_rms_px);
+    v.real({"navigation", "evidence_min_edge_support", "-", 0.0, 1.0,
+            "good image evidence: inlier edge points per scanline cast at least this (the model's edges are "
+            "where the image has them)"},
+           evidence_min_edge_support);
+    v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
+               "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
+               "filter from it"},
+              filter_diverged_rejections);
+    v.integer({"navigation", "far_filter_reset_rejections", "count", 1, 1000,
+               "far range: the filter restarts from the next fix after this many rejected fixes in a row"},
+              far_filter_reset_rejections);
+    v.integer({"navigation", "reacquire_hypotheses_per_frame", "count", 1, 1000,
+               "close-range reacquisition: tracker starts tried per frame (bounds the frame's cost)"},
+              reacquire_hypotheses_per_frame);
+    v.integer({"navigation", "reacquire_scanline_half_length_px", "px", 2, 64,
+               "close-range reacquisition: scanline half length of its wide tracker (its capture range)"},
+              reacquire_scanline_half_length_px);
+    v.real({"navigation", "reacquire_step_rel", "-", 0.1, 2.0,
+            "close-range reacquisition: spacing of the lateral search grid as a share of the capture range"},
+           reacquire_step_rel);
+    v.real({"navigation", "reacquire_growth_px_per_frame", "px", 1.0, 10000.0,
+            "close-range reacquisition: the searched radius around the prediction grows this much per frame"},
+           reacquire_growth_px_per_frame);
+    v.integer({"navigation", "reacquire_confirm_frames", "count", 1, 100,
+               "close-range reacquisition: frames a found pose must keep tracking before it is delivered"},
+              reacquire_confirm_frames);
+    v.real({"navigation", "reacquire_max_motion_rel", "-", 0.001, 1.0,
+            "close-range reacquisition: largest position change per frame (share of the range) that counts "
+            "as consistent motion while confirming"},
+           reacquire_max_motion_rel);
+    v.real({"navigation", "reacquire_max_rotation_deg", "deg", 0.01, 180.0,
+            "close-range reacquisition: largest attitude change per frame while confirming"},
+           reacquire_max_rotation_deg);
+    v.integer({"navigation", "reacquire_timeout_frames", "count", 1, 100000,
+               "close-range reacquisition searching longer than this hands over to far range"},
+              reacquire_timeout_frames);
   }
 
   const char* crossCheck() const {
     if (!(far_range_above_m > acquire_below_m))
       return "far_range_above_m must exceed acquire_below_m (hysteresis)";
-    if (!(max_range_m > min_range_m)) return "max_range_m must exceed min_range_m";
+    if (max_depth_m > 0.0 && !(max_depth_m > min_depth_m)) return "max_depth_m must exceed min_depth_m";
     return nullptr;
   }
 };

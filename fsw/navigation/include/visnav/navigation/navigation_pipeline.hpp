@@ -10,6 +10,7 @@
 #include "visnav/core/frame.hpp"
 #include "visnav/farrange/far_range_estimator.hpp"
 #include "visnav/navigation/fdir_monitor.hpp"
+#include "visnav/navigation/local_reacquisition.hpp"
 #include "visnav/navigation/mode_manager.hpp"
 #include "visnav/navigation/nav_solution.hpp"
 #include "visnav/navigation/navigation_params.hpp"
@@ -53,12 +54,27 @@ class NavigationPipeline {
   /// This frame's 6-DOF measurement update of the filter (near range): `dof` 0 when there was none (no pose,
   /// or the filter was (re)started from it). Its `nis` is what the innovation gate judged.
   const FilterUpdate& lastPoseUpdate() const { return m_last_pose_update; }
+  /// Close-range reacquisition: whether it is searching, and what it did on the last frame.
+  const LocalReacquisition& reacquisition() const { return m_reacquisition; }
+  const ReacquisitionStep& lastReacquisition() const { return m_last_reacquisition; }
+  /// Counters since init: filter restarts from a measurement the image supported, reacquisitions.
+  std::uint64_t filterRestarts() const { return m_filter_restarts; }
+  std::uint64_t reacquisitionsStarted() const { return m_reacquisitions_started; }
+  std::uint64_t reacquisitionsFound() const { return m_reacquisitions_found; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
   void runAcquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void coast(NavSolution& out);
+  Pose predictedPose() const;
+  bool closeRange() const;
+  void deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out);
+  bool fuseNearRange(const NearRangeResult& r, NearRangeCheck& check);
+  void startReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
+                          ModeInputs& in);
+  void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
+                        ModeInputs& in);
   void enterMode(NavMode mode, std::uint64_t frame_number);
   bool centreInImage(const Pose& pose) const;
 
@@ -71,6 +87,11 @@ class NavigationPipeline {
   NearRangeTracker m_near;
   far::FarRangeEstimator m_far;
   acq::Acquisition m_acquisition;
+  LocalReacquisition m_reacquisition;
+  ReacquisitionStep m_last_reacquisition;
+  std::uint64_t m_filter_restarts = 0;
+  std::uint64_t m_reacquisitions_started = 0;
+  std::uint64_t m_reacquisitions_found = 0;
 
   NearRangeResult m_near_result;
   FilterUpdate m_last_pose_update;
@@ -78,7 +99,7 @@ class NavigationPipeline {
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
   Pose m_last_pose;                 ///< last trusted 6-DOF pose
   bool m_have_pose = false;
-  int m_coasted = 0;  ///< consecutive near-range frames without a usable measurement
+  int m_coasted = 0;  ///< consecutive near-range frames the prediction filled in
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
   std::uint64_t m_frames_processed = 0;

@@ -74,9 +74,21 @@ class PoseFilter {
   std::uint64_t rejectedUpdates() const { return m_rejected; }
   /// Gated-out updates since the last accepted one (FDIR input).
   std::uint32_t consecutiveRejections() const { return m_consecutive_rejections; }
+  /// Current multiplier of the process noise (1 .. adaptive_noise_max_scale), adapted to the innovations.
+  double processNoiseScale() const { return m_noise_scale; }
 
  private:
   void inject(const Vec12& dx);
+  void adaptProcessNoise(const FilterUpdate& result);
+  /// Adaptation constants: an exponential average of NIS / dof (weight 0.3: about the last 3 updates; on a
+  /// consistent model it is 1 +- 0.24, so 2 is a 4-sigma event) above 2 raises the noise by 4x per frame
+  /// (a tumble that starts is followed within 2-3 frames); otherwise it decays by 0.8x per frame (back to
+  /// nominal in ~20 frames, 4 s at 5 Hz). Shapes of the adaptation, not scene tuning: the bound is the
+  /// parameter.
+  static constexpr double kAdaptAverageWeight = 0.3;
+  static constexpr double kAdaptRaiseNisPerDof = 2.0;
+  static constexpr double kAdaptRaiseFactor = 4.0;
+  static constexpr double kAdaptDecayFactor = 0.8;
   void symmetrize();
   FilterUpdate gateResult(FilterUpdate result, double gate);
   /// The Kalman correction for a measurement of M consecutive error-state entries from `first` (H = [0 I 0]):
@@ -95,6 +107,8 @@ class PoseFilter {
   std::uint64_t m_accepted = 0;
   std::uint64_t m_rejected = 0;
   std::uint32_t m_consecutive_rejections = 0;
+  double m_noise_scale = 1.0;
+  double m_nis_average = 1.0;  ///< exponential average of NIS / dof
 };
 
 /// Far-range direction (unit, camera frame) and distance (along the boresight: t_c_m.z, CONVENTIONS.md) as a

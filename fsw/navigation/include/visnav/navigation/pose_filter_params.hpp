@@ -17,6 +17,7 @@ struct PoseFilterParams {
   double pose_gate_chi2 = 22.46;      ///< 6 dof, 99.9 %
   double position_gate_chi2 = 16.27;  ///< 3 dof, 99.9 %
   double max_prediction_s = 10.0;
+  double adaptive_noise_max_scale = 100.0;  ///< process noise may grow up to this factor (1: fixed)
   // Far-range measurement model (direction + distance -> position).
   double far_direction_sigma_deg = 0.1;
   double far_distance_sigma_rel = 0.2;
@@ -46,6 +47,10 @@ struct PoseFilterParams {
     v.real({"filter", "max_prediction_s", "s", 0.01, 1000.0,
             "longest single prediction step accepted (a longer gap means: re-initialise)"},
            max_prediction_s);
+    v.real({"filter", "adaptive_noise_max_scale", "-", 1.0, 1e6,
+            "the process noise follows the observed motion: it is raised when the innovations exceed their "
+            "expected size and decays back when they are consistent, up to this factor (1 keeps it fixed)"},
+           adaptive_noise_max_scale);
     v.real({"filter", "far_direction_sigma_deg", "deg", 1e-4, 30.0,
             "1-sigma far-range direction error: position uncertainty across the line of sight"},
            far_direction_sigma_deg);

@@ -33,6 +33,7 @@ struct NearRangeParams {
   double pixel_sigma_px = 0.1;
   double max_rms_px = 1.5;
   double degraded_rms_px = 0.6;
+  double reject_line_rms_gain = 0.5;
   // Surface switching (sec. II-H), viewing angle v of CONVENTIONS.md.
   double visibility_enter_low_deg = 45.0;
   double visibility_enter_high_deg = 135.0;
@@ -97,6 +98,11 @@ struct NearRangeParams {
            max_rms_px);
     v.real({"nearrange", "degraded_rms_px", "px", 0.01, 100.0, "pose residual above this: status degraded"},
            degraded_rms_px);
+    v.real({"nearrange", "reject_line_rms_gain", "-", 0.01, 1.0,
+            "leave-one-line-out: a refit without one line replaces the fit only when its residual is below "
+            "this fraction of the fit's (one wrong line, e.g. locked onto a neighbour, must explain a clear "
+            "share of the residual to be dropped)"},
+           reject_line_rms_gain);
     v.real({"nearrange", "visibility_enter_low_deg", "deg", 0.0, 90.0, "sec. II-H: start tracking above"},
            visibility_enter_low_deg);
     v.real({"nearrange", "visibility_enter_high_deg", "deg", 90.0, 180.0, "sec. II-H: start tracking below"},

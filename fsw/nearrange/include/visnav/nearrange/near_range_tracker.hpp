@@ -64,6 +64,7 @@ struct NearRangeResult {
   int lines_total = 0;
   int lines_used = 0;
   int silhouette_lines = 0;  ///< measured edges selected as outline only (not of a tracked surface)
+  int scanlines = 0;  ///< scanlines cast across the predicted edges (edge support = inlier_points / scanlines)
   int edge_points = 0;
   int inlier_points = 0;
   int texture_points = 0;
@@ -73,8 +74,8 @@ struct NearRangeResult {
   NearRangeTiming timing;
 };
 
-/// What the tracker saw on the last frame, for overlays (paper fig. 3). Views into tracker memory.
-struct EdgeDebug {
+/// The tracker's working state for one measured model edge this frame (also what overlays draw, paper fig. 3).
+struct EdgeMeasurement {
   int model_edge = -1;
   int first_point = 0;  ///< range [first_point, first_point + point_count) in the point arrays
   int point_count = 0;
@@ -83,7 +84,8 @@ struct EdgeDebug {
   Vec2 predicted_a_px;  ///< projected model edge endpoints, raw pixels
   Vec2 predicted_b_px;
 };
-struct ScanPointDebug {
+/// One scanline across a predicted edge and the edge point found on it (tracker working state).
+struct ScanPoint {
   Vec2 scan_centre_px;  ///< raw pixels
   Vec2 scan_normal;     ///< unit, raw pixels
   Vec2 edge_px;         ///< measured edge point, raw pixels (valid when method != kNone)
@@ -112,14 +114,34 @@ class NearRangeTracker {
   const NearRangeParams& params() const { return m_params; }
   const PolygonModel& model() const { return m_model; }
   const PinholeCamera& camera() const { return m_camera; }
-  const BoundedBuffer<EdgeDebug>& lastEdges() const { return m_edges; }
-  const BoundedBuffer<ScanPointDebug>& lastScanPoints() const { return m_scan_points; }
+  const BoundedBuffer<EdgeMeasurement>& lastEdges() const { return m_edges; }
+  const BoundedBuffer<ScanPoint>& lastScanPoints() const { return m_scan_points; }
 
  private:
-  struct Stamp;
+  /// Minimum edge points for the point-to-line fit: two per degree of freedom, so the 6-DOF fit keeps
+  /// redundancy to detect a bad point (a structural bound, not a tuning knob).
+  static constexpr int kMinEdgePointsForPose = 12;
+  /// The vertex residual needs four corners (eight residuals for six unknowns); rejecting one line must
+  /// leave that many, so the leave-one-out search needs one more.
+  static constexpr int kMinLinesForVertexPose = 4;
+  static constexpr int kMinLinesForLineRejection = kMinLinesForVertexPose + 1;
+  /// Neighbouring lines closer than ~2.9 deg to parallel give no vertex: their intersection error grows as
+  /// 1 / sin(angle), 20x the line error here (geometry, not tuning).
+  static constexpr double kMinVertexSinAngle = 0.05;
+  /// Point-to-line with three non-parallel lines still fixes 6 DOF (the vertex residual's fallback).
+  static constexpr int kMinLinesForPointToLine = 3;
+
   double elapsedUs(std::int64_t& since) const;
   void updateSurfaces(const Pose& predicted);
+  void selectEdges(NearRangeResult& out);
+  void measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out);
   void measureEdge(const MonoImage& image, const Pose& predicted, int model_edge, NearRangeResult& out);
+  bool outwardReference(const ModelEdge& edge, const Pose& predicted, Vec2& centroid_px) const;
+  bool measureScanline(const MonoImage& image, int model_edge, const Vec3& a_c, const Vec3& b_c, double t,
+                       int index, const Vec2& centroid_px, ScanPoint& sp);
+  bool fitPose(const Pose& predicted, Pose& pose, PoseFitResult& fit, NearRangeResult& out);
+  void finishMeasured(const Pose& predicted, const Pose& pose, const PoseFitResult& fit,
+                      NearRangeResult& out);
   void fitLines(std::uint64_t frame_index, NearRangeResult& out);
   int collectVertices(int excluded_slot);
   int collectEdgePoints(int excluded_slot);
@@ -144,10 +166,9 @@ class NearRangeTracker {
   BoundedBuffer<std::uint8_t> m_edge_selected;    ///< per model edge, this frame
   BoundedBuffer<std::int8_t> m_polarity;          ///< per model edge x kPolarityBins, last frame
   BoundedBuffer<std::int8_t> m_polarity_next;
-  BoundedBuffer<int> m_edge_slot;  ///< model edge -> index in m_edges, -1 if not measured
 
-  BoundedBuffer<EdgeDebug> m_edges;
-  BoundedBuffer<ScanPointDebug> m_scan_points;
+  BoundedBuffer<EdgeMeasurement> m_edges;
+  BoundedBuffer<ScanPoint> m_scan_points;
   BoundedBuffer<Vec2> m_points_ideal;  ///< edge points in ideal pixels, parallel to m_scan_points
   BoundedBuffer<std::uint8_t> m_inlier;
   BoundedBuffer<Vec2> m_scratch;

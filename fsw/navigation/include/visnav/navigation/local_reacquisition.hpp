@@ -1,0 +1,68 @@
+// Close-range reacquisition: after a near-range loss below the far-range hand-over, the track comes back
+// from the last good pose and the predicted motion, without passing through far range (which cannot see an
+// extended target). Each frame tries a bounded number of tracker starts: the prediction rotated about the
+// camera centre so the target's centre moves over a hexagonal grid of image offsets, ring by ring, out to a
+// radius that widens with the frames searched (a slew moves the whole image; an eclipse or a missed
+// prediction leaves the target near where it was). A start is a candidate only with good image evidence
+// (lines, inliers, residual, edge support), and only when no distinct pose (modulo the model's symmetries)
+// tracks as well in the same frame; it is delivered after it keeps tracking with the flight settings and
+// moves consistently for reacquire_confirm_frames. Until then the answer is "lost", never a guess.
+// All memory is sized in init(); step() allocates nothing and is bounded by the parameters.
+#pragma once
+
+#include <cstdint>
+
+#include "visnav/geometry/model_symmetry.hpp"
+#include "visnav/navigation/navigation_params.hpp"
+#include "visnav/nearrange/near_range_tracker.hpp"
+
+namespace visnav::nav {
+
+struct ReacquisitionStep {
+  bool found = false;      ///< confirmed: pose and covariance below are the delivered measurement
+  bool candidate = false;  ///< a candidate is being confirmed
+  bool ambiguous = false;  ///< two distinct poses tracked equally well this frame: none was taken
+  Pose pose;
+  Mat6 covariance = Mat6::Zero();
+  double quality = 0.0;
+  int hypotheses = 0;  ///< tracker starts tried this frame
+  int search_radius_px = 0;
+};
+
+class LocalReacquisition {
+ public:
+  LoadError init(const PinholeCamera& camera, const PolygonModel& model, const NavigationParams& params,
+                 const NearRangeParams& nearrange);
+  void start();
+  void stop() { m_active = false; }
+  bool active() const { return m_active; }
+  int framesSearching() const { return m_frames; }
+  const ModelSymmetries& symmetries() const { return m_symmetries; }
+
+  /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
+  void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number, ReacquisitionStep& out);
+
+ private:
+  Pose hypothesis(const Pose& predicted, int index) const;
+  static int hypothesesWithinRings(int rings) { return 1 + 3 * rings * (rings + 1); }
+  bool trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
+                 std::uint64_t frame_number, int passes, NearRangeResult& result) const;
+  void search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number, ReacquisitionStep& out);
+  void confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out);
+
+  PinholeCamera m_camera;
+  NavigationParams m_params;
+  ModelSymmetries m_symmetries;
+  NearRangeTracker m_wide;    ///< long scanlines: the capture range of one start
+  NearRangeTracker m_flight;  ///< the flight tracker's settings: what the hand-over will meet
+  double m_step_px = 1.0;
+  bool m_active = false;
+  bool m_confirming = false;
+  int m_frames = 0;
+  int m_cursor = 0;
+  int m_confirmed = 0;
+  Pose m_candidate;
+  NearRangeResult m_result;
+};
+
+}  // namespace visnav::nav

@@ -1,0 +1,159 @@
+#include "visnav/navigation/local_reacquisition.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "visnav/navigation/fdir_monitor.hpp"
+
+namespace visnav::nav {
+
+namespace {
+
+/// The rotation taking unit vector a onto unit vector b (about their common normal).
+Mat3 rotationBetween(const Vec3& a, const Vec3& b) {
+  const Vec3 axis = a.cross(b);
+  const double s = axis.norm();
+  if (s < 1e-15) return Mat3::Identity();
+  return expSo3(axis / s * std::atan2(s, a.dot(b)));
+}
+
+/// Tracker passes per start: the first pulls the pose in from the wide capture range, the second refines.
+constexpr int kPassesPerStart = 2;
+/// A rival must track at least this share of the best start's quality to make the frame ambiguous.
+constexpr double kRivalQualityShare = 0.9;
+
+}  // namespace
+
+LoadError LocalReacquisition::init(const PinholeCamera& camera, const PolygonModel& model,
+                                   const NavigationParams& params, const NearRangeParams& nearrange) {
+  m_camera = camera;
+  m_params = params;
+  m_symmetries.find(model);
+  NearRangeParams wide = nearrange;
+  wide.scanline_half_length_px = params.reacquire_scanline_half_length_px;
+  m_step_px = std::max(1.0, params.reacquire_step_rel * params.reacquire_scanline_half_length_px);
+  LoadError e = m_wide.init(camera, model, wide);
+  if (e.ok) e = m_flight.init(camera, model, nearrange);
+  if (!e.ok) return LoadError::failure("reacquisition: " + e.message);
+  m_active = false;
+  return LoadError::success();
+}
+
+void LocalReacquisition::start() {
+  m_active = true;
+  m_confirming = false;
+  m_frames = 0;
+  m_cursor = 0;
+  m_confirmed = 0;
+}
+
+Pose LocalReacquisition::hypothesis(const Pose& predicted, int index) const {
+  // Index 0: the prediction. Ring k >= 1 holds 6k starts at radius k * step, evenly spaced.
+  if (index == 0) return predicted;
+  int ring = 1;
+  while (hypothesesWithinRings(ring) <= index) ++ring;  // bounded: ring <= the largest ring searched
+  const int j = index - hypothesesWithinRings(ring - 1);
+  const double angle = 2.0 * kPi * j / (6.0 * ring);
+  const Vec2 offset = ring * m_step_px * Vec2(std::cos(angle), std::sin(angle));
+  Vec2 centre_px;
+  if (!m_camera.project(predicted.t_c_m, centre_px)) return predicted;
+  // Rotating the pose about the camera centre moves the target in the image as a slew does.
+  const Mat3 r = rotationBetween(m_camera.bearing(centre_px), m_camera.bearing(centre_px + offset));
+  Pose h;
+  h.R_c_m = r * predicted.R_c_m;
+  h.t_c_m = r * predicted.t_c_m;
+  return h;
+}
+
+bool LocalReacquisition::trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
+                                   std::uint64_t frame_number, int passes, NearRangeResult& result) const {
+  tracker.reset();
+  Pose pose = start;
+  for (int pass = 0; pass < passes; ++pass) {
+    tracker.track(image, pose, frame_number, result);
+    if (result.status == TrackStatus::kLost) return false;
+    pose = result.pose;
+  }
+  return result.status == TrackStatus::kTracking && imageEvidenceGood(result, m_params);
+}
+
+void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
+                                ReacquisitionStep& out) {
+  const double radius_px = m_step_px + m_params.reacquire_growth_px_per_frame * m_frames;
+  const double diagonal_px = std::hypot(m_camera.width(), m_camera.height());
+  const int rings = static_cast<int>(std::ceil(std::min(radius_px, diagonal_px) / m_step_px));
+  const int total = hypothesesWithinRings(rings);
+  out.search_radius_px = static_cast<int>(rings * m_step_px);
+  bool have_best = false;
+  NearRangeResult best;
+  bool ambiguous = false;
+  NearRangeResult r;
+  const int budget = std::min(m_params.reacquire_hypotheses_per_frame, total);
+  for (int n = 0; n < budget; ++n) {
+    if (m_cursor >= total) m_cursor = 0;  // the grid is re-centred on each frame's prediction
+    const Pose start = hypothesis(predicted, m_cursor++);
+    ++out.hypotheses;
+    if (!trackFrom(m_wide, image, start, frame_number, kPassesPerStart, r)) continue;
+    if (!have_best) {
+      best = r;
+      have_best = true;
+      continue;
+    }
+    const double tol_m = m_params.reacquire_max_motion_rel * best.pose.t_c_m.z();
+    const double tol_rad = m_params.reacquire_max_rotation_deg * kRadPerDeg;
+    if (m_symmetries.equivalent(r.pose, best.pose, tol_m, tol_rad)) {
+      if (r.quality > best.quality) best = r;
+      continue;
+    }
+    // A distinct pose that explains the image about as well: no way to tell which is right.
+    if (r.quality >= kRivalQualityShare * best.quality && best.quality >= kRivalQualityShare * r.quality)
+      ambiguous = true;
+    if (r.quality > best.quality) best = r;
+  }
+  if (!have_best) return;
+  if (ambiguous) {
+    out.ambiguous = true;
+    return;
+  }
+  m_candidate = best.pose;
+  m_confirming = true;
+  m_confirmed = 0;
+  m_flight.reset();
+  out.candidate = true;
+}
+
+void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out) {
+  NearRangeResult& r = m_result;
+  m_flight.track(image, m_candidate, frame_number, r);
+  const bool good = r.status == TrackStatus::kTracking && imageEvidenceGood(r, m_params);
+  const double moved_m = (r.pose.t_c_m - m_candidate.t_c_m).norm();
+  const double turned_rad = rotationAngleRad(r.pose.R_c_m, m_candidate.R_c_m);
+  const bool consistent = moved_m <= m_params.reacquire_max_motion_rel * m_candidate.t_c_m.z() &&
+                          turned_rad <= m_params.reacquire_max_rotation_deg * kRadPerDeg;
+  if (!good || !consistent) {
+    m_confirming = false;  // back to searching on the next frame
+    return;
+  }
+  m_candidate = r.pose;
+  out.candidate = true;
+  if (++m_confirmed < m_params.reacquire_confirm_frames) return;
+  out.found = true;
+  out.pose = r.pose;
+  out.covariance = r.covariance;
+  out.quality = r.quality;
+  m_active = false;
+}
+
+void LocalReacquisition::step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
+                              ReacquisitionStep& out) {
+  out = ReacquisitionStep{};
+  if (!m_active) return;
+  if (m_confirming) {
+    confirm(image, frame_number, out);
+  } else {
+    search(image, predicted, frame_number, out);
+  }
+  ++m_frames;
+}
+
+}  // namespace visnav::nav
