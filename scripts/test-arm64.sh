@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# arm64 CI step (issue 5): the flight computer's build, tested under qemu-aarch64 on the x86-64 host.
+# arm64 CI step: the flight computer's build, tested under qemu-aarch64 on the x86-64 host.
 #  1. installs what is missing (scripts/install-cross-deps.sh: cross g++, qemu-user, arm64 -dev packages);
 #  2. configures and builds the `aarch64` preset (Cortex-A53 flags, release -O2, warnings as errors);
 #  3. runs the unit tests under qemu-aarch64 and the instruction-count table once (`ctest --preset aarch64`:

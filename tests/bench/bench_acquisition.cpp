@@ -1,4 +1,5 @@
-// Cost of acquisition per cycle (issue 3: bounded in time, spread over several frames). Run:
+// Cost of acquisition per cycle (fsw/acquisition/README.md: bounded in time, spread over several frames).
+// Run:
 //   build/h-acq-rel/bin/bench_acquisition --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // and read the *_median rows. The search step is the steady cost of the first frames (hypotheses_per_cycle
 // hypotheses), the verify step the one frame that refines and tracker-checks the survivors, the whole
@@ -14,7 +15,7 @@ struct Bench {
   test::Scene scene;
   Pose truth;
   std::vector<test::RenderedFrame> frames;
-  nav::FarRangeSolution cue;
+  FarRangeSolution cue;
   explicit Bench(test::Target target) : scene(test::makeScene(target)) {
     truth = Pose{test::tiltedAttitude(20.0, 30.0, 40.0), Vec3(0.2, -0.1, 12.0)};
     synthetic::Renderer renderer;
@@ -42,7 +43,7 @@ void BM_AcquisitionSearchStep(benchmark::State& state) {
   acq::AcquisitionResult r;
   for (auto _ : state) {
     state.PauseTiming();
-    a.start(b.cue, 0);
+    a.start(b.cue);
     state.ResumeTiming();
     a.step(b.frames[0].image(), 0, r);
     benchmark::DoNotOptimize(r);
@@ -59,7 +60,7 @@ void BM_AcquisitionVerifyStep(benchmark::State& state) {
   acq::AcquisitionResult r;
   for (auto _ : state) {
     state.PauseTiming();
-    a.start(b.cue, 0);
+    a.start(b.cue);
     for (int i = 0; a.state() == acq::AcquisitionState::kSearching && i < 100; ++i)
       a.step(b.frames[0].image(), 0, r);
     state.ResumeTiming();

@@ -1,4 +1,4 @@
-// Speed of the far-range step (issue 3 targets: < 0.5 ms median at VGA, < 1 ms at 1024x768, one core) and of
+// Speed of the far-range step (targets: < 0.5 ms median at VGA, < 1 ms at 1024x768, one core) and of
 // each stage. Run: build/release/bin/bench_farrange --benchmark_repetitions=10
 //   --benchmark_report_aggregates_only=true ; read the *_median rows. The scene: the far_range satellite at
 // 300 m with the scenario's noise (full-frame search unless the name says roi).

@@ -1,4 +1,4 @@
-// Speed of the near-range step (issue 2 targets: whole step < 0.1 ms median at VGA with the 4-edge plate,
+// Speed of the near-range step (targets: whole step < 0.1 ms median at VGA with the 4-edge plate,
 // LM solve < 20 us). Run: build/release/bin/bench_nearrange --benchmark_repetitions=10
 //   --benchmark_report_aggregates_only=true ; read the *_median rows. Counters give the per-stage split.
 #include <benchmark/benchmark.h>

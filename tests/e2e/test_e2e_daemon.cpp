@@ -1,7 +1,8 @@
-// End-to-end (issue 4): visnavd on a replay sequence publishes over real Cyclone DDS on loopback;
-// visnav-monitor, a separate process, receives every PoseEstimate, FarRangeEstimate and Health sample (none
-// lost) and records CSV; that CSV holds exactly visnav-replay's numbers for the same sequence (same pipeline
-// code): equal pose, attitude, covariance and mode columns frame by frame, and equal visnav-eval summaries.
+// End-to-end (fsw/app/README.md, Tests): visnavd on a replay sequence publishes over real Cyclone DDS on
+// loopback; visnav-monitor, a separate process, receives every PoseEstimate, FarRangeEstimate and Health
+// sample (none lost) and records CSV; that CSV holds exactly visnav-replay's numbers for the same sequence
+// (same pipeline code): equal pose, attitude, covariance and mode columns frame by frame, and equal
+// visnav-eval summaries.
 //
 // visnavd runs on the simulated clock (deterministic, like visnav-replay) at the sequence's own rate, with a
 // real pause of --pace-ms per cycle so the monitor keeps up, after waiting for the monitor's readers.

@@ -1,6 +1,6 @@
 # Accuracy gate: render a scenario, replay it through the flight pipeline, score it against truth.
-# Near-range gates (issue 2) start from the first truth row; AUTO runs start in far range and must acquire
-# by themselves (issue 3). Fails when a near-range frame is lost or fewer than MIN_INSIDE (default 0.995, the
+# Near-range gates start from the first truth row; AUTO runs start in far range and must acquire
+# by themselves (fsw/navigation/README.md). Fails when a near-range frame is lost or fewer than MIN_INSIDE (default 0.995, the
 # issue's bound for the paper scenarios) of all frames have all six axes inside the 0.25 px envelope; AUTO
 # runs must also end in near range (visnav-eval --require-final-mode) with exactly EXPECT_TRANSITIONS mode
 # changes (no chatter). Invoked as:

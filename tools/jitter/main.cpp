@@ -146,8 +146,9 @@ int main(int argc, char** argv) {
   static visnav::exec::Executive executive;
   BusyTask task;
   task.busy_ns = static_cast<std::int64_t>(busy_us * 1e3);
+  visnav::exec::TaskId busy_task;
   visnav::LoadError e = executive.init(params, clock);
-  if (e.ok) e = executive.addTask("busy", task);
+  if (e.ok) e = executive.addTask(busy_task, "busy", task);
   if (!e.ok) {
     std::fprintf(stderr, "visnav-jitter: %s\n", e.message.c_str());
     return 2;
@@ -172,7 +173,7 @@ int main(int argc, char** argv) {
       report.memory_lock.applied ? ", memory locked" : "");
   std::printf("all figures in us\n");
   printStats("release jitter", jitter);
-  printStats("task execution", executive.taskStats(0).exec);
+  printStats("task execution", executive.taskStats(busy_task).exec);
   printStats("cycle busy", executive.cycleBusy());
   std::printf("slips %llu, releases skipped %llu, worst overrun %.1f us\n",
               static_cast<unsigned long long>(executive.counters().slips),

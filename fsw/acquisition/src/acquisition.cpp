@@ -24,6 +24,7 @@ const char* toString(AcquisitionFailure failure) {
     case AcquisitionFailure::kNoTarget: return "no_target";
     case AcquisitionFailure::kNoCandidate: return "no_candidate";
     case AcquisitionFailure::kNotConfirmed: return "not_confirmed";
+    case AcquisitionFailure::kAmbiguous: return "ambiguous";
   }
   return "unknown";
 }
@@ -44,7 +45,9 @@ LoadError Acquisition::init(const PinholeCamera& camera, const PolygonModel& mod
     wide.scanline_half_length_px = params.verify_scanline_half_length_px;
   if (e.ok) e = m_verifier.init(camera, model, wide);
   if (e.ok) e = m_confirmer.init(camera, model, nearrange);
+  if (e.ok) e = m_rival_confirmer.init(camera, model, nearrange);
   if (!e.ok) return e;
+  m_symmetries.find(model);
   m_candidates.reserve(static_cast<std::size_t>(params.search_candidates));
   m_refined.reserve(static_cast<std::size_t>(params.candidates));
   m_verified.reserve(static_cast<std::size_t>(params.candidates));
@@ -68,16 +71,16 @@ void Acquisition::fail(AcquisitionFailure failure) {
   m_failure = failure;
 }
 
-void Acquisition::start(const nav::FarRangeSolution& cue, std::uint64_t frame_number) {
+void Acquisition::start(const FarRangeSolution& cue) {
   if (!cue.valid) {
     reset();
     fail(AcquisitionFailure::kInvalidCue);
     return;
   }
-  start(cue.direction_c, cue.distance_m, frame_number);
+  start(cue.direction_c, cue.distance_m);
 }
 
-void Acquisition::start(const Vec3& direction_c, double distance_m, std::uint64_t /*frame_number*/) {
+void Acquisition::start(const Vec3& direction_c, double distance_m) {
   reset();
   const double norm = direction_c.norm();
   Vec2 centre_px;
@@ -92,7 +95,7 @@ void Acquisition::start(const Vec3& direction_c, double distance_m, std::uint64_
   const CameraIntrinsics& k = m_camera.intrinsics();
   const double range = distance_m / m_cue_direction.z();
   const double nearest = range / (1.0 + m_params.range_span_rel);
-  const double half_px = 1.15 * k.fx_px * m_bounding_radius_m / nearest +
+  const double half_px = m_params.window_margin * k.fx_px * m_bounding_radius_m / nearest +
                          k.fx_px * std::tan(m_params.direction_margin_deg * kRadPerDeg);
   const double expected_radius_px = k.fx_px * m_bounding_radius_m / range;
   const int scale = std::max(1, static_cast<int>(expected_radius_px / m_params.working_radius_px + 0.5));
@@ -128,8 +131,13 @@ void Acquisition::offer(BoundedBuffer<Candidate>& list, const Candidate& c, doub
   } else {
     list[slot] = c;
   }
+  sortBestFirst(list, slot);
+}
+
+template <typename T>
+void Acquisition::sortBestFirst(BoundedBuffer<T>& list, std::size_t from) {
   // One insertion step keeps the list best first (its length is bounded by the parameters).
-  for (std::size_t i = slot; i > 0 && list[i].score > list[i - 1].score; --i) std::swap(list[i], list[i - 1]);
+  for (std::size_t i = from; i > 0 && list[i].score > list[i - 1].score; --i) std::swap(list[i], list[i - 1]);
 }
 
 void Acquisition::search(AcquisitionResult& out) {
@@ -228,15 +236,16 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
     Verified v{f1 - m_params.rms_weight * r.rms_px, r.rms_px, r.quality, r.pose, r.covariance};
     ++out.score_evaluations;
     m_verified.push(v);
-    for (std::size_t i = m_verified.size() - 1; i > 0 && m_verified[i].score > m_verified[i - 1].score; --i)
-      std::swap(m_verified[i], m_verified[i - 1]);
+    sortBestFirst(m_verified, m_verified.size() - 1);
   }
   if (m_verified.empty()) return fail(AcquisitionFailure::kNoCandidate);
   m_current = 0;
-  m_confirmed = 0;
   m_pose = m_verified[0].pose;
   m_confirmer.reset();
-  if (m_params.confirm_frames == 0) {
+  m_confirmed = 0;
+  m_confirm_frames_run = 0;
+  chooseRival();
+  if (m_params.confirm_frames == 0 && !m_rival_alive) {
     m_last.pose = m_verified[0].pose;
     m_last.covariance = m_verified[0].covariance;
     m_last.quality = m_verified[0].quality;
@@ -247,26 +256,92 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
   m_state = AcquisitionState::kConfirming;
 }
 
-void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out) {
-  NearRangeResult r;
-  m_confirmer.track(image, m_pose, frame_number, r);
-  ++out.tracker_calls;
-  if (acceptable(r)) {
-    m_pose = r.pose;
-    m_last = r;
-    if (++m_confirmed >= m_params.confirm_frames) m_state = AcquisitionState::kSucceeded;
-    return;
+void Acquisition::chooseRival() {
+  // The best verified pose that is not a symmetric twin of the current one and scores within rival_margin
+  // of it: both are tracked through confirmation, so an equally good alternative is never silently dropped.
+  m_rival_alive = false;
+  const Verified& best = m_verified[static_cast<std::size_t>(m_current)];
+  for (std::size_t i = static_cast<std::size_t>(m_current) + 1; i < m_verified.size(); ++i) {
+    const Verified& v = m_verified[i];
+    // Distinct means beyond what the tracker can resolve: the tolerances grow by three of its sigmas (a
+    // near-frontal plate far out has two tilts within its noise: one hypothesis, not two).
+    const double tol_m = m_params.confirm_max_motion_rel * best.pose.t_c_m.z() +
+                         3.0 * std::sqrt(best.covariance.bottomRightCorner<3, 3>().trace());
+    const double tol_rad = m_params.confirm_max_rotation_deg * kRadPerDeg +
+                           3.0 * std::sqrt(best.covariance.topLeftCorner<3, 3>().trace());
+    if (m_symmetries.equivalent(v.pose, best.pose, tol_m, tol_rad)) continue;
+    if (v.score >= best.score - m_params.rival_margin) {
+      m_rival_alive = true;
+      m_rival_pose = v.pose;
+      m_rival_confirmer.reset();
+    }
+    break;  // sorted best first: later ones score lower still
   }
+}
+
+bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
+                              Pose& pose, NearRangeResult& r, double& agreement) {
+  // One confirmation frame: the pose keeps tracking with the flight settings, moves as a rigid target can
+  // between two frames, and keeps explaining the window's edges both ways.
+  tracker.track(image, pose, frame_number, r);
+  if (!acceptable(r)) return false;
+  // The allowance adds three of the tracker's own sigmas: far out the tilt of a plate is weakly observed and
+  // the first flight-tracker pass moves it by more than a target can turn in one frame.
+  const double sigma_rad = std::sqrt(r.covariance.topLeftCorner<3, 3>().trace());
+  const double sigma_m = std::sqrt(r.covariance.bottomRightCorner<3, 3>().trace());
+  const bool consistent =
+      (r.pose.t_c_m - pose.t_c_m).norm() <= m_params.confirm_max_motion_rel * pose.t_c_m.z() + 3.0 * sigma_m &&
+      rotationAngleRad(r.pose.R_c_m, pose.R_c_m) <=
+          m_params.confirm_max_rotation_deg * kRadPerDeg + 3.0 * sigma_rad;
+  agreement = m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1;
+  pose = r.pose;
+  return consistent && agreement >= m_params.min_confirm_agreement;
+}
+
+bool Acquisition::nextCandidate(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out) {
   // Lost on the way: the next verified candidate, re-checked on this frame.
+  NearRangeResult r;
   for (++m_current; m_current < static_cast<int>(m_verified.size()); ++m_current) {
     Pose pose = m_verified[static_cast<std::size_t>(m_current)].pose;
     if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, pose, r, out)) continue;
     m_pose = pose;
     m_confirmed = 0;
+    m_confirm_frames_run = 0;
     m_confirmer.reset();
+    chooseRival();
+    return true;
+  }
+  return false;
+}
+
+void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out) {
+  prepareWindow(image);  // the agreement is judged on this frame's edges
+  ++m_confirm_frames_run;
+  NearRangeResult r;
+  double agreement = 0.0;
+  ++out.tracker_calls;
+  if (!confirmStep(m_confirmer, image, frame_number, m_pose, r, agreement)) {
+    if (!nextCandidate(image, frame_number, out)) fail(AcquisitionFailure::kNotConfirmed);
     return;
   }
-  fail(AcquisitionFailure::kNotConfirmed);
+  m_last = r;
+  ++m_confirmed;
+  if (m_rival_alive) {
+    NearRangeResult rival;
+    double rival_agreement = 0.0;
+    ++out.tracker_calls;
+    const bool rival_tracks =
+        confirmStep(m_rival_confirmer, image, frame_number, m_rival_pose, rival, rival_agreement);
+    const double rival_score = rival_agreement - m_params.rms_weight * rival.rms_px;
+    const double score = agreement - m_params.rms_weight * r.rms_px;
+    m_rival_alive = rival_tracks && rival_score >= score - m_params.rival_margin;
+  }
+  if (m_confirmed < m_params.confirm_frames) return;
+  if (!m_rival_alive) {
+    m_state = AcquisitionState::kSucceeded;
+  } else if (m_confirm_frames_run >= m_params.max_confirm_frames) {
+    fail(AcquisitionFailure::kAmbiguous);  // never a coin toss between two poses: status lost, retry later
+  }
 }
 
 Status Acquisition::step(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out) {

@@ -1,8 +1,6 @@
 // Daemon set-up, the loop and its start and stop summaries; the four cycle tasks are in daemon_tasks.cpp.
 #include "visnav/app/daemon.hpp"
 
-#include <dds/dds.h>
-
 #include <array>
 #include <cinttypes>
 #include <cstdio>
@@ -17,12 +15,24 @@ namespace visnav::app {
 namespace {
 
 constexpr std::int64_t kDiscoverySettleNs = 500'000'000;  // reader side of a new match (see initTelemetry)
-constexpr dds_duration_t kFinalAckWait = DDS_SECS(2);
+constexpr std::int64_t kFinalAckWaitNs = 2'000'000'000;   // readers acknowledge the last samples
 
 template <Status (Daemon::*Task)(const exec::CycleInfo&)>
 Status runTask(void* daemon, const exec::CycleInfo& cycle) {
   return (static_cast<Daemon*>(daemon)->*Task)(cycle);
 }
+
+/// The task of each cycle stage, in CycleStage order (the order the executive runs them).
+struct StageTask {
+  CycleStage stage;
+  exec::TaskFn fn;
+};
+constexpr std::array<StageTask, kCycleStageCount> kStageTasks = {{
+    {CycleStage::kAcquire, &runTask<&Daemon::acquireTask>},
+    {CycleStage::kProcess, &runTask<&Daemon::processTask>},
+    {CycleStage::kPublish, &runTask<&Daemon::publishTask>},
+    {CycleStage::kHealth, &runTask<&Daemon::healthTask>},
+}};
 
 double us(std::int64_t ns) { return static_cast<double>(ns) * 1e-3; }
 
@@ -90,10 +100,13 @@ int Daemon::init(const VisnavConfig& config, const DaemonOptions& options) {
     m_clock = std::make_unique<exec::MonotonicClock>();
   }
   LoadError e = m_executive.init(config.executive, *m_clock);
-  if (e.ok) e = m_executive.addTask("acquire", &runTask<&Daemon::acquireTask>, this);
-  if (e.ok) e = m_executive.addTask("process", &runTask<&Daemon::processTask>, this);
-  if (e.ok) e = m_executive.addTask("publish", &runTask<&Daemon::publishTask>, this);
-  if (e.ok) e = m_executive.addTask("health", &runTask<&Daemon::healthTask>, this);
+  m_heartbeat.reset();
+  for (const StageTask& task : kStageTasks) {
+    if (!e.ok) break;
+    const auto i = static_cast<std::size_t>(stageIndex(task.stage));
+    e = m_executive.addTask(m_task_ids[i], stageName(task.stage), task.fn, this);
+    m_heartbeat.registerStage(task.stage);
+  }
   if (!e.ok) {
     m_log.event(LogLevel::kError, "init_failed", "stage=executive message=\"%s\"", e.message.c_str());
     return kExitInit;
@@ -121,15 +134,12 @@ int Daemon::initTelemetry() {
   }
   if (m_options.wait_subscribers <= 0) return kExitOk;
   const auto timeout_ns = static_cast<std::int64_t>(m_options.wait_timeout_s * 1e9);
-  for (telemetry::Topic topic :
-       {telemetry::Topic::kPose, telemetry::Topic::kFarRange, telemetry::Topic::kHealth}) {
-    if (!telemetry::waitForReaders(m_writer.writer(topic),
-                                   static_cast<std::uint32_t>(m_options.wait_subscribers), timeout_ns)) {
-      m_log.event(LogLevel::kError, "init_failed",
-                  "stage=telemetry message=\"fewer than %d readers on %s within %.1f s\"",
-                  m_options.wait_subscribers, telemetry::topicName(topic), m_options.wait_timeout_s);
-      return kExitInit;
-    }
+  telemetry::Topic missing = telemetry::Topic::kPose;
+  if (!m_writer.waitForReaders(static_cast<std::uint32_t>(m_options.wait_subscribers), timeout_ns, missing)) {
+    m_log.event(LogLevel::kError, "init_failed",
+                "stage=telemetry message=\"fewer than %d readers on %s within %.1f s\"",
+                m_options.wait_subscribers, telemetry::topicName(missing), m_options.wait_timeout_s);
+    return kExitInit;
   }
   // The writer sees the match first; the reader drops data from a writer it has not matched yet, and a
   // keep-last-1 writer may no longer hold that sample for a retransmission. The reader's ready file closes
@@ -190,9 +200,7 @@ int Daemon::run() {
   const exec::StopReason reason = m_executive.run(m_options.max_cycles);
   m_notifier.stopping();
   if (m_telemetry_on)  // let the last samples reach the readers before the participant goes
-    for (telemetry::Topic topic :
-         {telemetry::Topic::kPose, telemetry::Topic::kFarRange, telemetry::Topic::kHealth})
-      dds_wait_for_acks(m_writer.writer(topic), kFinalAckWait);
+    m_writer.waitForAcks(kFinalAckWaitNs);
   logStopSummary(reason);
   return kExitOk;
 }
@@ -201,27 +209,36 @@ void Daemon::logStopSummary(exec::StopReason reason) {
   const exec::ExecutiveCounters& c = m_executive.counters();
   const camera::CameraCounters& cam = m_camera.source->counters();
   const telemetry::WriterCounters& w = m_writer.counters();
+  std::array<char, 160> misses{};  // "acquire:0,process:0,publish:0,health:0": cycles each stage did not beat
+  std::size_t used = 0;
+  for (int i = 0; i < kCycleStageCount && used < misses.size(); ++i) {
+    const auto stage = static_cast<CycleStage>(i);
+    const int n = std::snprintf(misses.data() + used, misses.size() - used, "%s%s:%" PRIu64, i > 0 ? "," : "",
+                                stageName(stage), m_heartbeat.stage(stage).missed);
+    if (n < 0) break;
+    used += static_cast<std::size_t>(n);
+  }
   m_log.event(LogLevel::kNotice, "stop",
               "reason=%s cycles=%" PRIu64 " frames=%" PRIu64 " cycles_without_frame=%" PRIu64
               " camera_dropped=%" PRIu64 " camera_timeouts=%" PRIu64 " camera_errors=%" PRIu64
               " slips=%" PRIu64 " releases_skipped=%" PRIu64 " worst_overrun_ms=%.3f task_failures=%" PRIu64
               " mode=%s transitions=%" PRIu64 " commands=%" PRIu64 " commands_accepted=%" PRIu64
               " fault_onsets=%" PRIu64 " samples_written=%" PRIu64 " write_failures=%" PRIu64
-              " sample_pool_misses=%" PRIu64 " watchdog_notifications=%" PRIu64 " log_suppressed=%" PRIu64
-              " elapsed_s=%.3f",
+              " sample_pool_misses=%" PRIu64 " watchdog_notifications=%" PRIu64 " watchdog_withheld=%" PRIu64
+              " heartbeat_misses=%s log_suppressed=%" PRIu64 " elapsed_s=%.3f",
               stopReasonName(reason, m_counters.end_of_stream), c.cycles, m_counters.frames,
               m_counters.cycles_without_frame, cam.frames_dropped, cam.timeouts, cam.errors, c.slips,
               c.releases_skipped, static_cast<double>(c.worst_overrun_ns) * 1e-6, c.task_failures,
               nav::toString(m_pipeline.mode()), m_pipeline.modes().transitionCount(), m_counters.commands,
               m_counters.commands_accepted, m_counters.fault_onsets, w.samples_written, w.write_failures,
-              m_writer.samplePoolMisses(), m_notifier.sent(), m_counters.log_suppressed + c.events_suppressed,
-              m_log.elapsedS());
+              m_writer.samplePoolMisses(), m_notifier.sent(), m_counters.watchdog_withheld, misses.data(),
+              m_counters.log_suppressed + c.events_suppressed, m_log.elapsedS());
   const exec::DurationStats& jitter = m_executive.releaseJitter();
   const exec::DurationStats& busy = m_executive.cycleBusy();
-  const exec::DurationStats& acquire = m_executive.taskStats(0).exec;
-  const exec::DurationStats& process = m_executive.taskStats(1).exec;
-  const exec::DurationStats& publish = m_executive.taskStats(2).exec;
-  const exec::DurationStats& health = m_executive.taskStats(3).exec;
+  const exec::DurationStats& acquire = m_executive.taskStats(taskId(CycleStage::kAcquire)).exec;
+  const exec::DurationStats& process = m_executive.taskStats(taskId(CycleStage::kProcess)).exec;
+  const exec::DurationStats& publish = m_executive.taskStats(taskId(CycleStage::kPublish)).exec;
+  const exec::DurationStats& health = m_executive.taskStats(taskId(CycleStage::kHealth)).exec;
   m_log.event(LogLevel::kNotice, "stop_timing",
               "clock=%s jitter_p50_us=%.1f jitter_p99_us=%.1f jitter_max_us=%.1f busy_p50_us=%.1f "
               "busy_p99_us=%.1f busy_max_us=%.1f acquire_p50_us=%.1f acquire_p99_us=%.1f process_p50_us=%.1f "
@@ -242,7 +259,8 @@ void Daemon::onSlip(const exec::SlipEvent& event) {
 }
 
 void Daemon::onTaskFailure(const exec::TaskFailureEvent& event) {
-  if (event.task == 0) return;  // the acquire task logs its camera problems itself, with the driver's text
+  // The acquire task logs its camera problems itself, with the driver's text.
+  if (event.task == taskId(CycleStage::kAcquire)) return;
   m_log.event(LogLevel::kWarning, "task_failure", "task=%s status=%s minor_frame=%" PRIu64, event.name,
               toString(event.status), event.minor_frame);
 }

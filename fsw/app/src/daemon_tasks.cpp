@@ -1,6 +1,7 @@
-// The four cycle tasks of visnavd and the event lines they write. Nothing here allocates: the frame, the
-// solution, the health record and the command batch are members sized at init, log lines are formatted on
-// the stack (event_log.hpp).
+// The four cycle tasks of visnavd, their heartbeats and the event lines they write. Nothing here allocates:
+// the frame, the solution, the health record and the command batch are members sized at init, log lines are
+// formatted on the stack (event_log.hpp). When a stage beats (its work of the cycle done): fsw/app/README.md,
+// "Watchdog".
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
@@ -9,14 +10,6 @@
 #include "visnav/telemetry/sample_mapping.hpp"
 
 namespace visnav::app {
-
-const char* faultName(int bit) {
-  static constexpr const char* kNames[nav::kFaultBitCount] = {
-      "inlier_ratio",        "too_few_lines",      "residual",  "not_converged",
-      "innovation",          "implausible",        "frame_age", "no_frame",
-      "far_range_no_target", "acquisition_failed", "cycle_slip"};
-  return bit >= 0 && bit < nav::kFaultBitCount ? kNames[bit] : "unknown";
-}
 
 bool Daemon::allowLog(std::uint64_t& reported) {
   if (reported < static_cast<std::uint64_t>(m_config.daemon.log_throttle)) {
@@ -30,13 +23,22 @@ bool Daemon::allowLog(std::uint64_t& reported) {
 Status Daemon::acquireTask(const exec::CycleInfo& cycle) {
   m_skip_cycle = false;
   const std::int64_t start_ns = m_clock->nowNs();
-  // Bounded wait: never past the cycle's deadline (issue 4: a late camera must not block the cycle).
+  // Bounded wait: never past the cycle's deadline (a late camera must not block the cycle;
+  // fsw/app/README.md).
   const std::int64_t left_ns = std::max<std::int64_t>(0, cycle.deadline_ns - start_ns);
   const std::int64_t timeout_ns = std::min(m_config.camera.acquireTimeoutNs(), left_ns);
   const camera::AcquireResult result = m_camera.source->acquire(timeout_ns, m_frame);
   m_have_frame = result == camera::AcquireResult::kFrame;
   noteCameraResult(result);
   m_acquire_us = static_cast<double>(m_clock->nowNs() - start_ns) * 1e-3;
+  // Heartbeat: a frame, or the end of a playback (a source that is done, not failing), or a gap of at most
+  // camera_stall_cycles cycles (a slow camera, a recovering driver). A longer gap is a failed stage.
+  if (result == camera::AcquireResult::kFrame || result == camera::AcquireResult::kEndOfStream)
+    m_cycles_since_frame = 0;
+  else
+    ++m_cycles_since_frame;
+  if (m_cycles_since_frame <= static_cast<std::uint64_t>(m_config.daemon.camera_stall_cycles))
+    m_heartbeat.beat(CycleStage::kAcquire);
   const bool failed = result == camera::AcquireResult::kError || result == camera::AcquireResult::kDeviceLost;
   return failed ? Status::kNotEnoughData : Status::kOk;
 }
@@ -101,36 +103,67 @@ Status Daemon::processTask(const exec::CycleInfo&) {
   }
   logTransitions();
   logFaultOnsets(m_solution.fault_bits, m_solution.frame_number);
+  if (status == Status::kOk) m_heartbeat.beat(CycleStage::kProcess);  // a missing frame is not its failure
   return status;
 }
 
 Status Daemon::publishTask(const exec::CycleInfo&) {
-  if (m_skip_cycle || !m_telemetry_on) return Status::kOk;
+  if (m_skip_cycle) return Status::kOk;
   // A failed write (counted by the writer) is a task failure: the executive counts and reports it.
-  return m_writer.publishNav(m_solution) ? Status::kOk : Status::kCapacityExceeded;
+  const bool ok = !m_telemetry_on || m_writer.publishNav(m_solution);
+  if (ok) m_heartbeat.beat(CycleStage::kPublish);  // telemetry off: nothing to publish is done work
+  return ok ? Status::kOk : Status::kCapacityExceeded;
 }
 
-Status Daemon::healthTask(const exec::CycleInfo&) {
-  if (m_skip_cycle) return Status::kOk;
+Status Daemon::healthTask(const exec::CycleInfo& cycle) {
+  if (m_skip_cycle) return Status::kOk;  // the end of a playback: stopping, no heartbeat verdict
   handleCommands();
   m_pipeline.fillHealth(m_health);
   if (m_any_command) m_health.last_command = m_last_ack;  // includes rejections the pipeline never saw
   const exec::ExecutiveCounters& counters = m_executive.counters();
   m_health.frames_dropped = m_camera.source->counters().frames_dropped + m_counters.cycles_without_frame;
   m_health.cycle_slips = counters.slips;
-  constexpr int kSlipBit = 10;  // kFaultCycleSlip: the executive's, not FDIR's
-  static_assert(nav::kFaultCycleSlip == 1U << kSlipBit, "slip bit index");
-  if (counters.slips > m_slips_seen)
-    m_health.fault_bits |= nav::kFaultCycleSlip;  // the previous cycle slipped
+  // kFaultCycleSlip is the executive's, not FDIR's: the daemon sets and counts it.
+  constexpr auto kSlipBit = static_cast<std::size_t>(bitIndex(kFaultCycleSlip));
+  if (counters.slips > m_slips_seen) m_health.fault_bits |= kFaultCycleSlip;  // the previous cycle slipped
   m_slips_seen = counters.slips;
   m_health.fault_counts[kSlipBit] =
       static_cast<std::uint32_t>(std::min<std::uint64_t>(counters.slips, UINT32_MAX));
-  for (int task = 0; task < nav::kTaskCount && task < m_executive.taskCount(); ++task)
-    exec::fillTimingSummary(m_executive.taskStats(task).exec,
-                            m_health.task_timing[static_cast<std::size_t>(task)]);
-  m_notifier.watchdog();  // the whole cycle ran: systemd may stop waiting
-  if (!m_telemetry_on) return Status::kOk;
-  return m_writer.publishHealth(m_health) ? Status::kOk : Status::kCapacityExceeded;
+  static_assert(nav::kTaskCount == kCycleStageCount, "Health task_timing is indexed by CycleStage");
+  for (int i = 0; i < kCycleStageCount; ++i)
+    exec::fillTimingSummary(m_executive.taskStats(m_task_ids[static_cast<std::size_t>(i)]).exec,
+                            m_health.task_timing[static_cast<std::size_t>(i)]);
+  const bool ok = !m_telemetry_on || m_writer.publishHealth(m_health);
+  if (ok) m_heartbeat.beat(CycleStage::kHealth);
+  endHeartbeatCycle(cycle.minor_frame);
+  return ok ? Status::kOk : Status::kCapacityExceeded;
+}
+
+void Daemon::endHeartbeatCycle(std::uint64_t minor_frame) {
+  const bool all_beat = m_heartbeat.endCycle();
+  for (int i = 0; i < kCycleStageCount; ++i) {
+    const auto stage = static_cast<CycleStage>(i);
+    const StageHeartbeat& h = m_heartbeat.stage(stage);
+    bool& logged = m_heartbeat_onset_logged[static_cast<std::size_t>(i)];
+    if (h.missed_run == 1U) {
+      logged = allowLog(m_heartbeat_logs[static_cast<std::size_t>(i)]);
+      if (logged)
+        m_log.event(LogLevel::kWarning, "heartbeat_missed",
+                    "stage=%s minor_frame=%" PRIu64 " missed=%" PRIu64, stageName(stage), minor_frame,
+                    h.missed);
+    } else if (h.ended_run > 0U && logged) {  // the recovery of a logged onset (throttled with it)
+      logged = false;
+      m_log.event(LogLevel::kNotice, "heartbeat_restored",
+                  "stage=%s minor_frame=%" PRIu64 " missed_in_a_row=%" PRIu64 " missed=%" PRIu64,
+                  stageName(stage), minor_frame, h.ended_run, h.missed);
+    }
+  }
+  if (!all_beat) {  // no WATCHDOG=1: a stage that keeps failing lets systemd's WatchdogSec expire
+    ++m_counters.watchdog_withheld;
+    return;
+  }
+  ++m_counters.watchdog_strokes;
+  m_notifier.watchdog();
 }
 
 void Daemon::handleCommands() {

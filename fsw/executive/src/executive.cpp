@@ -24,7 +24,9 @@ LoadError Executive::init(const ExecutiveParams& params, Clock& clock) {
   return LoadError::success();
 }
 
-LoadError Executive::addTask(const char* name, TaskFn fn, void* context, int divisor, int offset) {
+LoadError Executive::addTask(TaskId& id, const char* name, TaskFn fn, void* context, int divisor,
+                             int offset) {
+  id = TaskId{};
   if (m_clock == nullptr) return LoadError::failure("executive: addTask() before init()");
   if (name == nullptr || fn == nullptr)
     return LoadError::failure("executive: task needs a name and a function");
@@ -38,14 +40,15 @@ LoadError Executive::addTask(const char* name, TaskFn fn, void* context, int div
   m_tasks[i] = TaskEntry{fn, context, divisor, offset};
   m_stats[i] = TaskStats{};
   m_stats[i].name = name;
+  id = TaskId(static_cast<int>(i));
   return LoadError::success();
 }
 
-LoadError Executive::addTask(const char* name, CycleTask& task, int divisor, int offset) {
+LoadError Executive::addTask(TaskId& id, const char* name, CycleTask& task, int divisor, int offset) {
   const TaskFn trampoline = [](void* context, const CycleInfo& cycle) {
     return static_cast<CycleTask*>(context)->runCycle(cycle);
   };
-  return addTask(name, trampoline, &task, divisor, offset);
+  return addTask(id, name, trampoline, &task, divisor, offset);
 }
 
 void Executive::resetStatistics() {
@@ -87,17 +90,18 @@ void Executive::runCycle(const CycleInfo& info) {
         static_cast<std::uint64_t>(task.offset))
       continue;
     TaskStats& stats = m_stats[static_cast<std::size_t>(i)];
+    const TaskId id(i);
     const std::int64_t start_ns = m_clock->nowNs();
-    m_clock->onTaskStart(i);
+    m_clock->onTaskStart(id);
     const Status status = task.fn(task.context, info);
-    m_clock->onTaskEnd(i, info.minor_frame);
+    m_clock->onTaskEnd(id, info.minor_frame);
     stats.exec.add(m_clock->nowNs() - start_ns);
     ++stats.runs;
     if (status == Status::kOk) continue;
     ++stats.failures;
     stats.last_failure = status;
     ++m_counters.task_failures;
-    if (allowEvent(m_failure_events)) m_observer->onTaskFailure({i, stats.name, status, info.minor_frame});
+    if (allowEvent(m_failure_events)) m_observer->onTaskFailure({id, stats.name, status, info.minor_frame});
   }
 }
 

@@ -11,22 +11,23 @@ bool SimulatedClock::sleepUntilNs(std::int64_t deadline_ns) {
   return true;
 }
 
-void SimulatedClock::onTaskStart(int /*task*/) {
+void SimulatedClock::onTaskStart(TaskId /*task*/) {
   if (m_model == nullptr && m_mode == SimulatedTaskTime::kMeasured) m_task_real_start_ns = monotonicNowNs();
 }
 
-void SimulatedClock::onTaskEnd(int task, std::uint64_t minor_frame) {
+void SimulatedClock::onTaskEnd(TaskId task, std::uint64_t minor_frame) {
   if (m_model != nullptr) {
     advanceNs(m_model->durationNs(task, minor_frame));
-  } else if (m_mode == SimulatedTaskTime::kFixed && task >= 0 && task < kMaxTasks) {
-    advanceNs(m_fixed_ns[static_cast<std::size_t>(task)]);
+  } else if (m_mode == SimulatedTaskTime::kFixed && task.valid() && task.index() < kMaxTasks) {
+    advanceNs(m_fixed_ns[static_cast<std::size_t>(task.index())]);
   } else if (m_mode == SimulatedTaskTime::kMeasured) {
     advanceNs(monotonicNowNs() - m_task_real_start_ns);
   }
 }
 
-void SimulatedClock::setFixedTaskNs(int task, std::int64_t duration_ns) {
-  if (task >= 0 && task < kMaxTasks) m_fixed_ns[static_cast<std::size_t>(task)] = duration_ns;
+void SimulatedClock::setFixedTaskNs(TaskId task, std::int64_t duration_ns) {
+  if (task.valid() && task.index() < kMaxTasks)
+    m_fixed_ns[static_cast<std::size_t>(task.index())] = duration_ns;
 }
 
 void SimulatedClock::setWakeLatency(std::int64_t fixed_ns, std::int64_t spread_ns, std::uint64_t seed) {

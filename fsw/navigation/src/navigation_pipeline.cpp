@@ -217,7 +217,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   in.depth_m = out.pose_valid ? out.pose.t_c_m.z() : m_last_pose.t_c_m.z();
 }
 
-void NavigationPipeline::enterMode(NavMode mode, std::uint64_t frame_number) {
+void NavigationPipeline::enterMode(NavMode mode) {
   m_fdir.resetPersistence();
   m_coasted = 0;
   switch (mode) {
@@ -226,7 +226,7 @@ void NavigationPipeline::enterMode(NavMode mode, std::uint64_t frame_number) {
       m_far.reset();
       m_reacquisition.stop();
       break;
-    case NavMode::kAcquisition: m_acquisition.start(m_last_far_fix, frame_number); break;
+    case NavMode::kAcquisition: m_acquisition.start(m_last_far_fix); break;
     case NavMode::kNearRange:
       m_near.reset();
       m_reacquisition.stop();
@@ -270,7 +270,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
       case NavMode::kNearRange: runNearRange(frame->image, out.frame_number, out, in); break;
     }
   }
-  if (m_modes.step(in, out.frame_number)) enterMode(m_modes.mode(), out.frame_number);
+  if (m_modes.step(in, out.frame_number)) enterMode(m_modes.mode());
   out.fault_bits = m_fdir.endFrame();
   if (m_clock != nullptr) out.timing.process_us = static_cast<double>(m_clock() - start) * 1e-3;
   return status;
@@ -280,7 +280,7 @@ bool NavigationPipeline::command(ModeCommandKind kind, std::uint32_t command_id,
                                  CommandAck& ack) {
   const NavMode before = m_modes.mode();
   const bool accepted = m_modes.command(kind, command_id, m_last_far_fix.valid, frame_number, ack);
-  if (accepted && m_modes.mode() != before) enterMode(m_modes.mode(), frame_number);
+  if (accepted && m_modes.mode() != before) enterMode(m_modes.mode());
   m_last_command = ack;
   return accepted;
 }

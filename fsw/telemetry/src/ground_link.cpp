@@ -10,7 +10,7 @@ LoadError GroundLink::init(const TelemetryParams& params, int reader_depth) {
   if (LoadError e = m_participant.init(params.domain_id, params.partitionName()); !e.ok) return e;
   m_waitset = dds_create_waitset(m_participant.handle());
   if (m_waitset < 0) return ddsFailure("creating the waitset", m_waitset);
-  for (Topic topic : {Topic::kPose, Topic::kFarRange, Topic::kHealth}) {
+  for (Topic topic : kFlightTopics) {
     dds_qos_t* qos = makeReaderQos(topic, reader_depth);
     const dds_entity_t reader =
         dds_create_reader(m_participant.subscriber(), m_participant.topic(topic), qos, nullptr);
@@ -37,7 +37,7 @@ bool GroundLink::waitForData(std::int64_t timeout_ns) {
 }
 
 bool GroundLink::allReadersMatched() const {
-  for (Topic topic : {Topic::kPose, Topic::kFarRange, Topic::kHealth}) {
+  for (Topic topic : kFlightTopics) {
     dds_subscription_matched_status_t status{};
     if (dds_get_subscription_matched_status(reader(topic), &status) != DDS_RETCODE_OK) return false;
     if (status.current_count == 0) return false;

@@ -74,6 +74,31 @@ dds_entity_t TelemetryWriter::writer(Topic topic) const {
   return 0;
 }
 
+bool TelemetryWriter::waitForReaders(std::uint32_t count, std::int64_t timeout_ns, Topic& missing) const {
+  const std::int64_t deadline_ns = monotonicNowNs() + timeout_ns;
+  for (Topic topic : kFlightTopics) {
+    const std::int64_t left_ns = deadline_ns - monotonicNowNs();
+    if (!telemetry::waitForReaders(writer(topic), count, left_ns > 0 ? left_ns : 0)) {
+      missing = topic;
+      return false;
+    }
+  }
+  return true;
+}
+
+bool TelemetryWriter::waitForAcks(std::int64_t timeout_ns) const {
+  const std::int64_t deadline_ns = monotonicNowNs() + timeout_ns;
+  bool all = true;
+  for (Topic topic : kFlightTopics) {
+    const dds_entity_t w = writer(topic);
+    if (w <= 0) continue;
+    const std::int64_t left_ns = deadline_ns - monotonicNowNs();
+    all =
+        dds_wait_for_acks(w, static_cast<dds_duration_t>(left_ns > 0 ? left_ns : 0)) == DDS_RETCODE_OK && all;
+  }
+  return all;
+}
+
 std::uint32_t TelemetryWriter::poseDeadlineMisses() const {
   dds_offered_deadline_missed_status_t status{};
   if (dds_get_offered_deadline_missed_status(m_pose_writer, &status) != DDS_RETCODE_OK) return 0;

@@ -58,10 +58,10 @@ inline Mat3 tiltedAttitude(double tilt_deg, double tilt_axis_deg, double spin_de
 
 /// The far-range cue for `truth`: direction rotated by `direction_error_deg` (about an image-plane axis at
 /// `error_axis_deg`), distance scaled by (1 + distance_error_rel).
-inline nav::FarRangeSolution perturbedCue(const Pose& truth, double direction_error_deg,
-                                          double error_axis_deg, double distance_error_rel) {
+inline FarRangeSolution perturbedCue(const Pose& truth, double direction_error_deg, double error_axis_deg,
+                                     double distance_error_rel) {
   const Vec3 axis(std::cos(error_axis_deg * kRadPerDeg), std::sin(error_axis_deg * kRadPerDeg), 0.0);
-  nav::FarRangeSolution cue;
+  FarRangeSolution cue;
   cue.valid = true;
   cue.direction_c = Eigen::AngleAxisd(direction_error_deg * kRadPerDeg, axis) * truth.t_c_m.normalized();
   cue.distance_m = truth.t_c_m.z() * (1.0 + distance_error_rel);
@@ -88,11 +88,10 @@ inline std::vector<RenderedFrame> renderStatic(synthetic::Renderer& renderer, co
 }
 
 inline AcquisitionRun runAcquisition(acq::Acquisition& acquisition, const Scene& scene,
-                                     const std::vector<RenderedFrame>& frames,
-                                     const nav::FarRangeSolution& cue, int max_steps = 60,
-                                     MonotonicClockNs clock = nullptr) {
+                                     const std::vector<RenderedFrame>& frames, const FarRangeSolution& cue,
+                                     int max_steps = 60, MonotonicClockNs clock = nullptr) {
   AcquisitionRun run;
-  acquisition.start(cue, 0);
+  acquisition.start(cue);
   for (int i = 0; i < max_steps; ++i) {
     const RenderedFrame& f = frames[static_cast<std::size_t>(i) % frames.size()];
     const std::int64_t t0 = clock != nullptr ? clock() : 0;

@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
       const auto frames =
           test::renderStatic(renderer, truth, 3, 1000U * static_cast<std::uint64_t>(case_index));
       const double dist_err = (case_index % 2 == 0 ? 1.0 : -1.0) * o.distance_error;
-      const nav::FarRangeSolution cue =
+      const FarRangeSolution cue =
           test::perturbedCue(truth, o.direction_error_deg, 137.0 * case_index, dist_err);
       const test::AcquisitionRun run = test::runAcquisition(acquisition, scene, frames, cue, 60, &nowNs);
       step_sum_us += run.step_sum_us;

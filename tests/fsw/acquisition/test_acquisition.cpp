@@ -1,7 +1,8 @@
 // Acquisition on rendered frames: the paper's plate and the shaded box from several attitudes at 5-25 m
 // with the far-range cue 20 % off in distance and 1 deg off in direction; rejection of frames without the
 // target; bounded steps; determinism; hand-over to the flight tracker; no allocation after init.
-// REQUIREMENT (issue 3): acquisition bounded in time, allocation-free, hands over a pose the tracker keeps.
+// REQUIREMENT (fsw/acquisition/README.md): acquisition bounded in time, allocation-free, hands over a pose
+// the tracker keeps.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -85,7 +86,7 @@ TEST_P(AcquisitionTest, HandsOverAPoseTheFlightTrackerKeeps) {
     frames.push_back(test::renderFrame(
         renderer, Pose{test::tiltedAttitude(20.0 + 0.2 * i, 45.0, 70.0), Vec3(-0.3, 0.2, 14.0 - 0.05 * i)},
         500U + static_cast<std::uint64_t>(i)));
-  acquisition.start(test::perturbedCue(frames[0].truth, 1.0, 45.0, 0.2), 0);
+  acquisition.start(test::perturbedCue(frames[0].truth, 1.0, 45.0, 0.2));
   acq::AcquisitionResult r;
   std::size_t i = 0;
   for (; i < frames.size() && acquisition.state() != AcquisitionState::kSucceeded; ++i)
@@ -147,22 +148,22 @@ TEST_F(PlateAcquisitionTest, NoTargetInTheImageFailsCleanly) {
 }
 
 TEST_F(PlateAcquisitionTest, InvalidCueFailsAtOnce) {
-  nav::FarRangeSolution cue;
+  FarRangeSolution cue;
   cue.valid = false;
-  acquisition.start(cue, 0);
+  acquisition.start(cue);
   std::vector<std::uint8_t> pixels(640U * 480U, 25U);
   acq::AcquisitionResult r;
   acquisition.step(MonoImage::from8(ImageView8(pixels.data(), 640, 480)), 0, r);
   EXPECT_EQ(r.state, AcquisitionState::kFailed);
   EXPECT_EQ(r.failure, AcquisitionFailure::kInvalidCue);
-  acquisition.start(Vec3(0.0, 0.0, -1.0), 10.0, 0);  // behind the camera
+  acquisition.start(Vec3(0.0, 0.0, -1.0), 10.0);  // behind the camera
   EXPECT_EQ(acquisition.state(), AcquisitionState::kFailed);
-  acquisition.start(Vec3(0.0, 0.0, 1.0), -5.0, 0);
+  acquisition.start(Vec3(0.0, 0.0, 1.0), -5.0);
   EXPECT_EQ(acquisition.state(), AcquisitionState::kFailed);
 }
 
 TEST_F(PlateAcquisitionTest, WrongImageSizeIsSkippedAndEachStepIsBounded) {
-  acquisition.start(Vec3(0.0, 0.0, 1.0), 10.0, 0);
+  acquisition.start(Vec3(0.0, 0.0, 1.0), 10.0);
   std::vector<std::uint8_t> small(100U * 100U, 0U);
   acq::AcquisitionResult r;
   EXPECT_EQ(acquisition.step(MonoImage::from8(ImageView8(small.data(), 100, 100)), 0, r),
@@ -218,7 +219,7 @@ TEST(AcquisitionNoAlloc, WholeAcquisitionsAllocateNothingAfterInit) {
     bool succeeded = false, failed = false;
     for (int run = 0; run < 2; ++run) {
       const auto& source = run == 0 ? frames : empty;
-      acquisition.start(cue, 0);
+      acquisition.start(cue);
       acq::AcquisitionResult r;
       for (int i = 0; i < 40 && acquisition.state() != AcquisitionState::kSucceeded &&
                       acquisition.state() != AcquisitionState::kFailed;

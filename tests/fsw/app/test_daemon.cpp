@@ -1,12 +1,19 @@
 // The daemon's cycle in-process: a replay camera on the simulated clock (deterministic), real DDS on loopback
 // read back by a GroundLink in the same process. Checks the wiring against the pipeline driven directly, the
-// command path, slips and task timings in Health, the bounded camera wait on the real clock, and the log.
+// command path, slips and task timings in Health, the bounded camera wait on the real clock, the log, and the
+// systemd watchdog withheld while a stage keeps failing (a real datagram socket stands in for systemd).
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <array>
 #include <chrono>
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -200,7 +207,7 @@ TEST(Daemon, SlipsAndTaskTimingsReachHealth) {
   const nav::HealthRecord& health = daemon.lastHealth();
   EXPECT_EQ(daemon.executive().counters().slips, 6U);
   EXPECT_EQ(health.cycle_slips, 5U);  // the sixth slip is known only after its health task ran
-  EXPECT_EQ(health.fault_counts[10], 5U);
+  EXPECT_EQ(health.fault_counts[static_cast<std::size_t>(bitIndex(kFaultCycleSlip))], 5U);
   EXPECT_NE(health.fault_bits & nav::kFaultCycleSlip, 0U);
   for (int task = 0; task < nav::kTaskCount; ++task) {
     const nav::TaskTimingSummary& t = health.task_timing[static_cast<std::size_t>(task)];
@@ -231,11 +238,94 @@ TEST(Daemon, ACameraSlowerThanTheCycleNeverBlocksIt) {
   EXPECT_EQ(daemon.counters().cycles_without_frame, 8U);
   EXPECT_EQ(daemon.camera().counters().timeouts, 8U);
   EXPECT_EQ(daemon.executive().counters().slips, 0U);
-  const exec::DurationStats& acquire = daemon.executive().taskStats(0).exec;
+  const exec::DurationStats& acquire = daemon.executive().taskStats(daemon.taskId(CycleStage::kAcquire)).exec;
   EXPECT_LT(acquire.maxNs(), 80'000'000);  // 50 ms bound plus scheduling
   EXPECT_GE(acquire.maxNs(), 50'000'000);
   EXPECT_EQ(daemon.lastHealth().frames_dropped, 8U);
   EXPECT_NE(log.text().find("event=fault_onset fault=no_frame frame="), std::string::npos) << log.text();
+}
+
+/// systemd's end of $NOTIFY_SOCKET: a datagram socket bound at a path of the test.
+class NotifySocket {
+ public:
+  NotifySocket() {
+    m_path = "/tmp/visnav-daemon-notify-" + std::to_string(getpid());
+    m_fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::memcpy(address.sun_path, m_path.c_str(), m_path.size() + 1);
+    unlink(m_path.c_str());
+    EXPECT_EQ(bind(m_fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)), 0);
+  }
+  ~NotifySocket() {
+    close(m_fd);
+    unlink(m_path.c_str());
+  }
+  const std::string& path() const { return m_path; }
+  /// Takes every datagram waiting and returns how many were "WATCHDOG=1".
+  int drainWatchdogs() {
+    int count = 0;
+    char buffer[512];
+    for (ssize_t n; (n = recv(m_fd, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0;)
+      count += std::string(buffer, static_cast<std::size_t>(n)) == "WATCHDOG=1" ? 1 : 0;
+    return count;
+  }
+
+ private:
+  std::string m_path;
+  int m_fd = -1;
+};
+
+// The watchdog means health (fsw/app/README.md, "Watchdog"): frames 20..29 of the replay are unreadable, so
+// the camera delivers nothing for 10 cycles; past [daemon] camera_stall_cycles = 2 the acquire stage stops
+// beating and WATCHDOG=1 stops, one cycle at a time, until frames come again. Simulated clock: exact counts.
+TEST(Daemon, AStageThatKeepsFailingWithholdsTheWatchdog) {
+  const std::string source = test::renderedApproachCi(kFrames);
+  ASSERT_FALSE(source.empty());
+  test::TempDir dir("daemon");
+  const std::string sequence = dir.path() + "/sequence";
+  std::filesystem::copy(source, sequence, std::filesystem::copy_options::recursive);
+  {
+    replay::ReplayCamera copy({sequence, camera::Pacing::kAsFastAsPossible, false, 2});
+    ASSERT_TRUE(copy.open().ok);
+    for (std::size_t i = 20; i < 30; ++i) std::ofstream(copy.sequence().frames[i].file) << "not a PGM\n";
+  }
+  const VisnavConfig config = test::configFromText(
+      dir,
+      replayConfig(sequence, partitionFor("daemon-watchdog"), false, "[daemon]\ncamera_stall_cycles = 2\n"));
+  NotifySocket systemd;
+  setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
+  setenv("WATCHDOG_USEC", "2000000", 1);
+  LogFile log;
+  Daemon daemon(log.log);
+  DaemonOptions options;
+  options.simulated_clock = true;
+  const int init = daemon.init(config, options);
+  unsetenv("NOTIFY_SOCKET");
+  unsetenv("WATCHDOG_USEC");
+  ASSERT_EQ(init, kExitOk) << log.text();
+  ASSERT_TRUE(daemon.notifier().active());
+
+  std::vector<int> strokes;  // WATCHDOG=1 per cycle
+  for (int cycle = 0; cycle < 40; ++cycle) {
+    ASSERT_EQ(daemon.executive().run(1), exec::StopReason::kCycleLimit);
+    strokes.push_back(systemd.drainWatchdogs());
+  }
+  std::vector<int> expected(40, 1);
+  for (std::size_t i = 22; i < 30; ++i) expected[i] = 0;  // cycles 20, 21 are within the stall allowance
+  EXPECT_EQ(strokes, expected);
+  EXPECT_EQ(daemon.counters().frames, 30U);
+  EXPECT_EQ(daemon.camera().counters().errors, 10U);
+  EXPECT_EQ(daemon.counters().watchdog_withheld, 8U);
+  EXPECT_EQ(daemon.counters().watchdog_strokes, 32U);
+  const HeartbeatMonitor& heartbeat = daemon.heartbeat();
+  EXPECT_EQ(heartbeat.stage(CycleStage::kAcquire).missed, 8U);
+  for (CycleStage stage : {CycleStage::kProcess, CycleStage::kPublish, CycleStage::kHealth})
+    EXPECT_EQ(heartbeat.stage(stage).missed, 0U) << stageName(stage);  // no frame is not processing's failure
+  const std::string text = log.text();
+  EXPECT_NE(text.find("event=heartbeat_missed stage=acquire minor_frame="), std::string::npos) << text;
+  EXPECT_NE(text.find("event=heartbeat_restored stage=acquire minor_frame="), std::string::npos) << text;
+  EXPECT_NE(text.find("missed_in_a_row=8 missed=8"), std::string::npos) << text;
 }
 
 TEST(Daemon, AStopRequestEndsTheLoopWithinOneCycle) {

@@ -1,9 +1,9 @@
-// REQUIREMENT (issue 4): zero allocations per cycle in the daemon's steady state, measured over 1000 cycles.
-// The daemon's whole cycle (acquire from a looping replay camera, the navigation pipeline, health, log lines,
-// the systemd watchdog) runs on the simulated clock after a warm-up into near range. The cycle's thread makes
-// 0 allocations, with DDS telemetry off and on (the writers serialize into pools sized at init:
-// fsw/telemetry/README.md); with telemetry on, Cyclone's background threads may allocate a little now and
-// then (heartbeats, discovery), which the whole-process count shows and bounds. Counted: operator new
+// REQUIREMENT (fsw/app/README.md): zero allocations per cycle in the daemon's steady state, measured over
+// 1000 cycles. The daemon's whole cycle (acquire from a looping replay camera, the navigation pipeline,
+// health, log lines, the systemd watchdog) runs on the simulated clock after a warm-up into near range. The
+// cycle's thread makes 0 allocations, with DDS telemetry off and on (the writers serialize into pools sized
+// at init: fsw/telemetry/README.md); with telemetry on, Cyclone's background threads may allocate a little
+// now and then (heartbeats, discovery), which the whole-process count shows and bounds. Counted: operator new
 // everywhere; malloc/calloc/realloc too outside ASan (tests/support/alloc_counter). The sanitizer build runs
 // -O0 with ASan (near range ~25 ms, acquisition seconds per frame): it counts 200 cycles and skips what the
 // release run covers (telemetry off, the every-mode loop); the release build runs everything over 1000

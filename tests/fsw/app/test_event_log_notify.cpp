@@ -107,15 +107,20 @@ TEST(EventLog, WritingALineAllocatesNothing) {
   log.event(LogLevel::kInfo, "warm", "x=%.3f", 1.5);
   const std::uint64_t before = visnav::test::allocationCount();
   for (int i = 0; i < 50; ++i)
-    log.event(LogLevel::kWarning, "fault_onset", "fault=%s frame=%d q=%.6f", faultName(i % 11), i, 0.25 * i);
+    log.event(LogLevel::kWarning, "fault_onset", "fault=%s frame=%d q=%.6f", faultName(i % kFaultBitCount), i,
+              0.25 * i);
   EXPECT_EQ(visnav::test::allocationCount() - before, 0U);
 }
 
-TEST(FaultNames, OnePerBit) {
-  EXPECT_STREQ(faultName(0), "inlier_ratio");
-  EXPECT_STREQ(faultName(7), "no_frame");
-  EXPECT_STREQ(faultName(10), "cycle_slip");
-  EXPECT_STREQ(faultName(11), "unknown");
+TEST(FaultNames, OnePerBitBesideTheEnum) {
+  EXPECT_STREQ(faultName(bitIndex(kFaultInlierRatio)), "inlier_ratio");
+  EXPECT_STREQ(faultName(bitIndex(kFaultNoFrame)), "no_frame");
+  EXPECT_STREQ(faultName(bitIndex(kFaultCycleSlip)), "cycle_slip");
+  EXPECT_EQ(bitIndex(kFaultCycleSlip), 10);
+  EXPECT_STREQ(faultName(kFaultBitCount), "unknown");
+  EXPECT_STREQ(faultName(-1), "unknown");
+  EXPECT_STREQ(stageName(CycleStage::kAcquire), "acquire");
+  EXPECT_STREQ(stageName(CycleStage::kHealth), "health");
 }
 
 // systemd's side of the protocol: a datagram socket bound at the path NOTIFY_SOCKET names.

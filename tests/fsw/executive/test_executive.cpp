@@ -1,5 +1,6 @@
 // The cyclic executive on the simulated clock: schedule order and phases, releases, slips without catch-up
-// bursts, task failures, throttled events, stop requests (also from a signal handler), statistics.
+// bursts, task failures, throttled events, stop requests (also from a signal handler), statistics. Tasks are
+// named by the TaskId addTask() hands out, never by their position in the table.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,7 +17,7 @@ constexpr std::int64_t kMs = 1000000;
 constexpr std::int64_t kPeriod5Hz = 200 * kMs;
 
 struct TaskCall {
-  int task;
+  TaskId task;
   CycleInfo info;
   std::int64_t now_ns;
 };
@@ -25,7 +26,7 @@ struct TaskCall {
 struct Recorder {
   SimulatedClock* clock = nullptr;
   std::vector<TaskCall>* log = nullptr;
-  int task = 0;
+  TaskId task;                   // set by addTask()
   std::uint64_t fail_every = 0;  // fail on minor frames that are multiples of this (0: never)
   std::int64_t advance_ns = 0;   // simulated work done by the task itself
 };
@@ -50,13 +51,13 @@ class ExecutiveTest : public ::testing::Test {
   void SetUp() override { log.reserve(10000); }
   void start(const ExecutiveParams& params = {}) { ASSERT_TRUE(executive.init(params, clock).ok); }
   Recorder& add(const char* name, int divisor = 1, int offset = 0) {
-    const int index = executive.taskCount();
-    recorders[static_cast<std::size_t>(index)] = Recorder{&clock, &log, index, 0, 0};
-    EXPECT_TRUE(
-        executive.addTask(name, record, &recorders[static_cast<std::size_t>(index)], divisor, offset).ok);
-    return recorders[static_cast<std::size_t>(index)];
+    Recorder& r = recorders[static_cast<std::size_t>(executive.taskCount())];
+    r = Recorder{&clock, &log, TaskId{}, 0, 0};
+    EXPECT_TRUE(executive.addTask(r.task, name, record, &r, divisor, offset).ok);
+    EXPECT_TRUE(r.task.valid());
+    return r;
   }
-  std::vector<std::uint64_t> framesOf(int task) const {
+  std::vector<std::uint64_t> framesOf(TaskId task) const {
     std::vector<std::uint64_t> frames;
     for (const TaskCall& r : log)
       if (r.task == task) frames.push_back(r.info.minor_frame);
@@ -71,15 +72,16 @@ class ExecutiveTest : public ::testing::Test {
 
 TEST_F(ExecutiveTest, RunsTasksInRegistrationOrderAtAbsoluteReleases) {
   start();
-  add("acquire");
-  add("process");
-  add("publish");
-  add("health");
+  const std::array<TaskId, 4> ids = {add("acquire").task, add("process").task, add("publish").task,
+                                     add("health").task};
+  for (std::size_t a = 0; a < ids.size(); ++a)
+    for (std::size_t b = a + 1; b < ids.size(); ++b) EXPECT_NE(ids[a], ids[b]);
+  EXPECT_FALSE(TaskId{}.valid());
   EXPECT_EQ(executive.run(5), StopReason::kCycleLimit);
   ASSERT_EQ(log.size(), 20U);
   for (std::size_t i = 0; i < log.size(); ++i) {
     const auto k = static_cast<std::int64_t>(i / 4);
-    EXPECT_EQ(log[i].task, static_cast<int>(i % 4));
+    EXPECT_EQ(log[i].task, ids[i % 4]);
     EXPECT_EQ(log[i].info.minor_frame, static_cast<std::uint64_t>(k));
     EXPECT_EQ(log[i].info.release_ns, 1000 * kMs + k * kPeriod5Hz);
     EXPECT_EQ(log[i].info.deadline_ns, log[i].info.release_ns + kPeriod5Hz);
@@ -87,22 +89,24 @@ TEST_F(ExecutiveTest, RunsTasksInRegistrationOrderAtAbsoluteReleases) {
   }
   EXPECT_EQ(executive.counters().cycles, 5U);
   EXPECT_EQ(executive.counters().slips, 0U);
-  EXPECT_EQ(executive.taskStats(2).runs, 5U);
-  EXPECT_STREQ(executive.taskStats(3).name, "health");
+  EXPECT_EQ(executive.taskStats(ids[2]).runs, 5U);
+  EXPECT_STREQ(executive.taskStats(ids[3]).name, "health");
+  EXPECT_STREQ(executive.taskStats(TaskId{}).name, "");  // an invalid id: an empty record, no out-of-bounds
+  EXPECT_EQ(executive.taskStats(TaskId{}).runs, 0U);
 }
 
 TEST_F(ExecutiveTest, DivisorAndOffsetSelectMinorFrames) {
   ExecutiveParams params;
   params.minor_frames_per_major = 4;  // 20 Hz ticks in a 5 Hz major frame
   start(params);
-  add("every");
-  add("fourth_at_1", 4, 1);
-  add("second_at_0", 2, 0);
+  const TaskId every = add("every").task;
+  const TaskId fourth = add("fourth_at_1", 4, 1).task;
+  const TaskId second = add("second_at_0", 2, 0).task;
   executive.run(8);
   EXPECT_EQ(executive.minorPeriodNs(), 50 * kMs);
-  EXPECT_EQ(framesOf(0), (std::vector<std::uint64_t>{0, 1, 2, 3, 4, 5, 6, 7}));
-  EXPECT_EQ(framesOf(1), (std::vector<std::uint64_t>{1, 5}));
-  EXPECT_EQ(framesOf(2), (std::vector<std::uint64_t>{0, 2, 4, 6}));
+  EXPECT_EQ(framesOf(every), (std::vector<std::uint64_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(framesOf(fourth), (std::vector<std::uint64_t>{1, 5}));
+  EXPECT_EQ(framesOf(second), (std::vector<std::uint64_t>{0, 2, 4, 6}));
 }
 
 TEST_F(ExecutiveTest, OverrunSkipsToNextFutureReleaseWithoutBurst) {
@@ -111,10 +115,10 @@ TEST_F(ExecutiveTest, OverrunSkipsToNextFutureReleaseWithoutBurst) {
   start(params);
   CountingObserver observer;
   executive.setObserver(&observer);
-  add("work");
+  const TaskId work = add("work").task;
   // Frame 3 takes 450 ms, the others 10 ms; a task taking exactly the period ends on its deadline: no slip.
   struct Model final : TaskDurationModel {
-    std::int64_t durationNs(int, std::uint64_t frame) override {
+    std::int64_t durationNs(TaskId, std::uint64_t frame) override {
       return frame == 3U ? 450 * kMs : frame == 1U ? kPeriod5Hz : 10 * kMs;
     }
   } model;
@@ -122,7 +126,7 @@ TEST_F(ExecutiveTest, OverrunSkipsToNextFutureReleaseWithoutBurst) {
   executive.run(6);
   // Frame 3 released at +600 ms ends at +1050 ms: releases 4 (+800) and 5 (+1000) are in the past and
   // dropped; the next cycle is frame 6 at +1200 ms, then 7, 8 on time.
-  EXPECT_EQ(framesOf(0), (std::vector<std::uint64_t>{0, 1, 2, 3, 6, 7}));
+  EXPECT_EQ(framesOf(work), (std::vector<std::uint64_t>{0, 1, 2, 3, 6, 7}));
   for (std::size_t i = 1; i < log.size(); ++i) EXPECT_GE(log[i].now_ns - log[i - 1].now_ns, kPeriod5Hz);
   EXPECT_EQ(executive.counters().slips, 1U);
   EXPECT_EQ(executive.counters().releases_skipped, 2U);
@@ -131,7 +135,7 @@ TEST_F(ExecutiveTest, OverrunSkipsToNextFutureReleaseWithoutBurst) {
   EXPECT_EQ(observer.slips[0].minor_frame, 3U);
   EXPECT_EQ(observer.slips[0].overrun_ns, 250 * kMs);
   EXPECT_EQ(observer.slips[0].releases_skipped, 2U);
-  EXPECT_EQ(executive.taskStats(0).exec.maxNs(), 450 * kMs);
+  EXPECT_EQ(executive.taskStats(work).exec.maxNs(), 450 * kMs);
 }
 
 TEST_F(ExecutiveTest, PersistentOverrunRunsEveryOtherReleaseAndThrottlesEvents) {
@@ -143,9 +147,9 @@ TEST_F(ExecutiveTest, PersistentOverrunRunsEveryOtherReleaseAndThrottlesEvents) 
   clock.applyParams(params);
   CountingObserver observer;
   executive.setObserver(&observer);
-  add("slow");
+  const TaskId slow = add("slow").task;
   executive.run(5);
-  EXPECT_EQ(framesOf(0), (std::vector<std::uint64_t>{0, 2, 4, 6, 8}));
+  EXPECT_EQ(framesOf(slow), (std::vector<std::uint64_t>{0, 2, 4, 6, 8}));
   EXPECT_EQ(executive.counters().slips, 5U);
   EXPECT_EQ(executive.counters().releases_skipped, 5U);
   EXPECT_EQ(observer.slips.size(), 2U);
@@ -159,19 +163,20 @@ TEST_F(ExecutiveTest, FailingTaskIsCountedAndNeverStopsTheCycle) {
   start(params);
   CountingObserver observer;
   executive.setObserver(&observer);
-  add("ok_before");
-  add("flaky").fail_every = 3;  // fails on frames 0, 3, 6, 9
-  add("ok_after");
+  const TaskId before = add("ok_before").task;
+  Recorder& flaky = add("flaky");
+  flaky.fail_every = 3;  // fails on frames 0, 3, 6, 9
+  const TaskId after = add("ok_after").task;
   executive.run(10);
-  EXPECT_EQ(executive.taskStats(0).runs, 10U);
-  EXPECT_EQ(executive.taskStats(2).runs, 10U);  // the task after the failing one still runs every cycle
-  EXPECT_EQ(executive.taskStats(1).failures, 4U);
-  EXPECT_EQ(executive.taskStats(1).last_failure, Status::kNotConverged);
-  EXPECT_EQ(executive.taskStats(0).failures, 0U);
+  EXPECT_EQ(executive.taskStats(before).runs, 10U);
+  EXPECT_EQ(executive.taskStats(after).runs, 10U);  // the task after the failing one still runs every cycle
+  EXPECT_EQ(executive.taskStats(flaky.task).failures, 4U);
+  EXPECT_EQ(executive.taskStats(flaky.task).last_failure, Status::kNotConverged);
+  EXPECT_EQ(executive.taskStats(before).failures, 0U);
   EXPECT_EQ(executive.counters().task_failures, 4U);
   ASSERT_EQ(observer.failures.size(), 1U);
   EXPECT_STREQ(observer.failures[0].name, "flaky");
-  EXPECT_EQ(observer.failures[0].task, 1);
+  EXPECT_EQ(observer.failures[0].task, flaky.task);
   EXPECT_EQ(observer.failures[0].status, Status::kNotConverged);
   EXPECT_EQ(executive.counters().events_suppressed, 3U);
 }
@@ -187,11 +192,12 @@ TEST_F(ExecutiveTest, StopRequestEndsTheLoopAfterTheCurrentCycle) {
     }
   } stopper;
   stopper.executive = &executive;
-  ASSERT_TRUE(executive.addTask("stopper", stopper).ok);
-  add("last");
+  TaskId stopper_id;
+  ASSERT_TRUE(executive.addTask(stopper_id, "stopper", stopper).ok);
+  const TaskId last = add("last").task;
   EXPECT_EQ(executive.run(0), StopReason::kStopRequested);
   EXPECT_EQ(executive.counters().cycles, 5U);
-  EXPECT_EQ(framesOf(2).back(), 4U);                        // the cycle that asked to stop was completed
+  EXPECT_EQ(framesOf(last).back(), 4U);                     // the cycle that asked to stop was completed
   EXPECT_EQ(executive.run(3), StopReason::kStopRequested);  // the request stays until cleared
   executive.clearStop();
   EXPECT_EQ(executive.run(3), StopReason::kCycleLimit);
@@ -208,7 +214,8 @@ TEST_F(ExecutiveTest, StopRequestFromSignalHandler) {
       return Status::kOk;
     }
   } raiser;
-  ASSERT_TRUE(executive.addTask("raiser", raiser).ok);
+  TaskId raiser_id;
+  ASSERT_TRUE(executive.addTask(raiser_id, "raiser", raiser).ok);
   g_signal_target = &executive;
   struct sigaction action {};
   action.sa_handler = stopFromSignal;
@@ -244,15 +251,15 @@ TEST_F(ExecutiveTest, ReleaseJitterStatisticsMatchTheWakeLatencyModel) {
 
 TEST_F(ExecutiveTest, ExecutionTimeStatisticsFromDurationModel) {
   start();
-  add("t");
+  const TaskId t = add("t").task;
   struct Model final : TaskDurationModel {
-    std::int64_t durationNs(int, std::uint64_t frame) override {
+    std::int64_t durationNs(TaskId, std::uint64_t frame) override {
       return static_cast<std::int64_t>(frame % 100U + 1U) * 1000;
     }
   } model;
   clock.setDurationModel(&model);
   executive.run(1000);
-  const DurationStats& s = executive.taskStats(0).exec;
+  const DurationStats& s = executive.taskStats(t).exec;
   EXPECT_EQ(s.minNs(), 1000);
   EXPECT_EQ(s.maxNs(), 100000);
   EXPECT_DOUBLE_EQ(s.meanNs(), 50500.0);
@@ -260,8 +267,8 @@ TEST_F(ExecutiveTest, ExecutionTimeStatisticsFromDurationModel) {
   EXPECT_LE(s.quantileNs(0.99), 99000 * 17 / 16);
   EXPECT_EQ(executive.cycleBusy().maxNs(), 100000);
   executive.resetStatistics();
-  EXPECT_EQ(executive.taskStats(0).exec.count(), 0U);
-  EXPECT_STREQ(executive.taskStats(0).name, "t");
+  EXPECT_EQ(executive.taskStats(t).exec.count(), 0U);
+  EXPECT_STREQ(executive.taskStats(t).name, "t");
 }
 
 TEST_F(ExecutiveTest, MeasuredTaskTimeAdvancesTheSimulatedClock) {
@@ -277,10 +284,11 @@ TEST_F(ExecutiveTest, MeasuredTaskTimeAdvancesTheSimulatedClock) {
       return Status::kOk;
     }
   } busy;
-  ASSERT_TRUE(executive.addTask("busy", busy).ok);
+  TaskId busy_id;
+  ASSERT_TRUE(executive.addTask(busy_id, "busy", busy).ok);
   executive.run(3);
-  EXPECT_GE(executive.taskStats(0).exec.minNs(), 2 * kMs);
-  EXPECT_LT(executive.taskStats(0).exec.minNs(), kPeriod5Hz);
+  EXPECT_GE(executive.taskStats(busy_id).exec.minNs(), 2 * kMs);
+  EXPECT_LT(executive.taskStats(busy_id).exec.minNs(), kPeriod5Hz);
 }
 
 TEST_F(ExecutiveTest, InitRejectsBadParametersAndAFullTable) {
@@ -288,14 +296,17 @@ TEST_F(ExecutiveTest, InitRejectsBadParametersAndAFullTable) {
   bad.major_frame_hz = 1000.0;
   bad.minor_frames_per_major = 64;
   EXPECT_FALSE(executive.init(bad, clock).ok);
-  EXPECT_FALSE(executive.addTask("early", record, nullptr).ok);  // before init
+  TaskId id;
+  EXPECT_FALSE(executive.addTask(id, "early", record, nullptr).ok);  // before init
+  EXPECT_FALSE(id.valid());
   start();
-  EXPECT_FALSE(executive.addTask("no_fn", nullptr, nullptr).ok);
-  EXPECT_FALSE(executive.addTask("bad_offset", record, nullptr, 2, 2).ok);
-  EXPECT_FALSE(executive.addTask("bad_divisor", record, nullptr, 0, 0).ok);
+  EXPECT_FALSE(executive.addTask(id, "no_fn", nullptr, nullptr).ok);
+  EXPECT_FALSE(executive.addTask(id, "bad_offset", record, nullptr, 2, 2).ok);
+  EXPECT_FALSE(executive.addTask(id, "bad_divisor", record, nullptr, 0, 0).ok);
   for (int i = 0; i < kMaxTasks; ++i) add("t");
-  const LoadError full = executive.addTask("one_too_many", record, nullptr);
+  const LoadError full = executive.addTask(id, "one_too_many", record, nullptr);
   EXPECT_FALSE(full.ok);
+  EXPECT_FALSE(id.valid());
   EXPECT_NE(full.message.find("one_too_many"), std::string::npos);
   EXPECT_EQ(executive.taskCount(), kMaxTasks);
 }

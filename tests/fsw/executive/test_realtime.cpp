@@ -48,7 +48,8 @@ TEST(MonotonicClock, ExecutiveKeepsAbsolutePhaseAt100Hz) {
     }
   } log;
   log.out = releases;
-  ASSERT_TRUE(executive.addTask("log", log).ok);
+  TaskId log_task;
+  ASSERT_TRUE(executive.addTask(log_task, "log", log).ok);
   EXPECT_EQ(executive.run(20), StopReason::kCycleLimit);
   // Functional checks only (timing figures come from visnav-jitter): no release before its ideal time.
   EXPECT_GE(executive.releaseJitter().minNs(), 0);

@@ -1,4 +1,4 @@
-# Far-range accuracy gate (issue 3): render the calibration frames and the far_range_ci scenario, calibrate
+# Far-range accuracy gate (fsw/farrange/README.md): render the calibration frames and the far_range_ci scenario, calibrate
 # gamma once per method, run both methods and fail unless the robust (default) method meets the targets:
 # direction error median < 0.1 deg, distance error median < 10 % (750 m -> 30 m, one calibration), right
 # target on >= 95 % of all frames and of the frames with the clutter object in view. Invoked as:

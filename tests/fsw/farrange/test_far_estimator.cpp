@@ -207,7 +207,7 @@ TEST(FarRangeEstimator, RejectsABadConfigAndABadImage) {
 TEST(FarRangeEstimator, FillsTheNavigationSolution) {
   Scene s;
   const FarRangeResult r = estimateOnce(s.camera, FarRangeParams{}, s.frame(test::satAt(500.0, 2.0)));
-  const nav::FarRangeSolution sol = toFarRangeSolution(r);
+  const FarRangeSolution sol = toFarRangeSolution(r);
   EXPECT_EQ(sol.valid, r.valid);
   EXPECT_EQ(sol.direction_c, r.direction_c);
   EXPECT_EQ(sol.distance_m, r.distance_m);

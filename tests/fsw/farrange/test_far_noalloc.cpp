@@ -1,4 +1,4 @@
-// REQUIREMENT: the per-frame far-range call allocates nothing after init (issue 3, design card), in every
+// REQUIREMENT: the per-frame far-range call allocates nothing after init (fsw/farrange/README.md), in every
 // path: full frame, region of interest, ROI fallback, coasting, lost, both methods, 8- and 16-bit frames.
 #include <gtest/gtest.h>
 

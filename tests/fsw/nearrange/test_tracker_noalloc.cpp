@@ -1,4 +1,4 @@
-// REQUIREMENT: the per-frame call allocates nothing after init (issue 2, design card).
+// REQUIREMENT: the per-frame call allocates nothing after init (fsw/nearrange/README.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Acquisition (issue 3): from the far-range cue (direction, rough distance) and the image, a first 6-DOF pose
+// Acquisition: from the far-range cue (direction, rough distance) and the image, a first 6-DOF pose
 // the near-range tracker converges from. A resumable state machine, one step() per frame, bounded per call:
 //   searching  : score hypotheses_per_cycle (attitude grid x distance) per frame on the cue's window against
 //                the coarse-spread edge evidence, keep the best search_candidates distinct ones;
@@ -16,7 +16,8 @@
 #include "visnav/acquisition/attitude_grid.hpp"
 #include "visnav/acquisition/edge_scorer.hpp"
 #include "visnav/acquisition/working_image.hpp"
-#include "visnav/navigation/nav_solution.hpp"  // the FarRangeSolution contract (header only, not linked)
+#include "visnav/core/stage_interfaces.hpp"  // the FarRangeSolution cue
+#include "visnav/geometry/model_symmetry.hpp"
 #include "visnav/nearrange/near_range_tracker.hpp"
 
 namespace visnav::acq {
@@ -37,6 +38,7 @@ enum class AcquisitionFailure : std::uint8_t {
   kNoTarget,      ///< the window holds no edge structure above noise (min_edge_snr)
   kNoCandidate,   ///< no refined candidate passed the tracker check
   kNotConfirmed,  ///< every verified candidate lost track during confirmation
+  kAmbiguous,     ///< a distinct rival pose kept tracking as well as the best until max_confirm_frames
 };
 const char* toString(AcquisitionFailure failure);
 
@@ -81,8 +83,8 @@ class Acquisition {
                  const NearRangeParams& nearrange);
 
   /// Begins a new acquisition from a cue: direction_c (unit, camera frame) and distance_m (t_c_m.z).
-  void start(const Vec3& direction_c, double distance_m, std::uint64_t frame_number);
-  void start(const nav::FarRangeSolution& cue, std::uint64_t frame_number);
+  void start(const Vec3& direction_c, double distance_m);
+  void start(const FarRangeSolution& cue);
   void reset();
 
   /// One frame. kInvalidArgument for an image of the wrong size (the step is skipped, nothing changes).
@@ -113,6 +115,12 @@ class Acquisition {
                       int passes, Pose& pose, NearRangeResult& result, AcquisitionResult& out) const;
   bool acceptable(const NearRangeResult& r) const;
   void confirm(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
+  bool confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number, Pose& pose,
+                   NearRangeResult& r, double& agreement);
+  void chooseRival();
+  bool nextCandidate(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
+  template <typename T>
+  static void sortBestFirst(BoundedBuffer<T>& list, std::size_t from);
 
   PinholeCamera m_camera;
   AcquisitionParams m_params;
@@ -121,6 +129,8 @@ class Acquisition {
   EdgeScorer m_scorer;
   NearRangeTracker m_verifier;   ///< wide scanlines: larger capture range on a candidate
   NearRangeTracker m_confirmer;  ///< the flight tracker's settings: what the hand-over will meet
+  NearRangeTracker m_rival_confirmer;  ///< tracks the best distinct rival alongside
+  ModelSymmetries m_symmetries;
   double m_bounding_radius_m = 0.0;
 
   AcquisitionState m_state = AcquisitionState::kIdle;
@@ -135,6 +145,9 @@ class Acquisition {
   BoundedBuffer<Verified> m_verified;     ///< highest evidence first
   int m_current = 0;                      ///< verified candidate under confirmation
   int m_confirmed = 0;
+  int m_confirm_frames_run = 0;
+  bool m_rival_alive = false;
+  Pose m_rival_pose;
   Pose m_pose;
   NearRangeResult m_last;
 };

@@ -1,4 +1,4 @@
-// Every tunable of acquisition (tracker initialisation, issue 3), with units, ranges and defaults. The
+// Every tunable of acquisition (tracker initialisation), with units, ranges and defaults. The
 // generated reference is config/PARAMETERS.md; a run takes its values from the [acquisition] table.
 #pragma once
 
@@ -38,6 +38,13 @@ struct AcquisitionParams {
   double min_quality = 0.4;
   int confirm_frames = 2;
   bool accept_degraded = true;
+  // Never deliver a wrong pose: what confirmation demands.
+  double min_confirm_agreement = 0.5;
+  double rival_margin = 0.05;
+  int max_confirm_frames = 8;
+  double confirm_max_motion_rel = 0.05;
+  double confirm_max_rotation_deg = 5.0;
+  double window_margin = 1.15;
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -131,6 +138,28 @@ struct AcquisitionParams {
     v.boolean({"acquisition", "accept_degraded", "-", 0, 1,
                "accept tracker status degraded (not only tracking) during verification and confirmation"},
               accept_degraded);
+    v.real({"acquisition", "min_confirm_agreement", "-", 0.0, 1.0,
+            "two-way edge agreement (F1) the confirmed pose must keep on every confirmation frame"},
+           min_confirm_agreement);
+    v.real(
+        {"acquisition", "rival_margin", "-", 0.0, 1.0,
+         "a distinct verified pose (not a symmetric twin) scoring within this of the best is a rival: both "
+         "are tracked, and the best is confirmed only once the rival falls this far behind or loses track"},
+        rival_margin);
+    v.integer({"acquisition", "max_confirm_frames", "count", 1, 1000,
+               "confirmation with a rival alive ends here: still ambiguous means failed (status lost)"},
+              max_confirm_frames);
+    v.real({"acquisition", "confirm_max_motion_rel", "-", 0.001, 1.0,
+            "consistency with the predicted motion: largest position change per confirmation frame, as a "
+            "share of the depth"},
+           confirm_max_motion_rel);
+    v.real({"acquisition", "confirm_max_rotation_deg", "deg", 0.01, 180.0,
+            "consistency with the predicted motion: largest attitude change per confirmation frame"},
+           confirm_max_rotation_deg);
+    v.real({"acquisition", "window_margin", "-", 1.0, 4.0,
+            "search window half size = window_margin x the target's radius at the nearest distance covered "
+            "(+ the direction margin): room for the centroid bias of partly visible edges"},
+           window_margin);
   }
 
   /// Cross-field checks the per-field ranges cannot express. Returns nullptr when valid.
@@ -138,6 +167,7 @@ struct AcquisitionParams {
     if (2 * working_radius_px > max_working_side_px)
       return "max_working_side_px must be >= 2 * working_radius_px";
     if (candidates > search_candidates) return "candidates must be <= search_candidates";
+    if (max_confirm_frames < confirm_frames) return "max_confirm_frames must be >= confirm_frames";
     return nullptr;
   }
 };

@@ -4,7 +4,8 @@
 //   process  pipeline.process(frame or none, now) -> NavSolution; the frame goes back to the driver
 //   publish  TelemetryWriter::publishNav (PoseEstimate + FarRangeEstimate)
 //   health   poll ModeCommands -> pipeline.command -> acknowledgment; fillHealth + the executive's task
-//            timings + camera drops + cycle slips -> publishHealth; WATCHDOG=1 to systemd
+//            timings + camera drops + cycle slips -> publishHealth; WATCHDOG=1 to systemd only when every
+//            stage beat its heartbeat this cycle (heartbeat_monitor.hpp)
 // Everything is sized in init(); the tasks allocate nothing of their own (Cyclone 0.10.2 allocates inside
 // dds_write for samples over 256 bytes: fsw/telemetry/README.md). Events (mode transitions, commands, fault
 // onsets, camera loss, slips) are logged as key=value lines (event_log.hpp). Design note: fsw/app/README.md.
@@ -17,6 +18,7 @@
 
 #include "visnav/app/camera_factory.hpp"
 #include "visnav/app/event_log.hpp"
+#include "visnav/app/heartbeat_monitor.hpp"
 #include "visnav/app/sd_notify.hpp"
 #include "visnav/app/visnav_config.hpp"
 #include "visnav/executive/executive.hpp"
@@ -52,6 +54,9 @@ struct DaemonCounters {
   std::uint64_t commands_accepted = 0;
   std::uint64_t fault_onsets = 0;
   std::uint64_t log_suppressed = 0;  ///< event lines beyond [daemon] log_throttle
+  std::uint64_t watchdog_strokes =
+      0;  ///< cycles every stage beat: WATCHDOG=1 was due (sent if systemd listens)
+  std::uint64_t watchdog_withheld = 0;  ///< cycles a stage did not beat: no WATCHDOG=1
   bool end_of_stream = false;
 };
 
@@ -70,13 +75,18 @@ class Daemon final : private exec::ExecutiveObserver {
   /// Async-signal-safe: the loop ends after the current cycle, or at once when it sleeps.
   void requestStop() noexcept { m_executive.requestStop(); }
 
-  /// The four tasks (public so tests can drive them; run() registers them in this order).
+  /// The four tasks (public so tests can drive them; init() registers them in CycleStage order).
   Status acquireTask(const exec::CycleInfo& cycle);
   Status processTask(const exec::CycleInfo& cycle);
   Status publishTask(const exec::CycleInfo& cycle);
   Status healthTask(const exec::CycleInfo& cycle);
 
   exec::Executive& executive() { return m_executive; }
+  /// The executive's id of a stage's task (invalid before init()).
+  exec::TaskId taskId(CycleStage stage) const {
+    return m_task_ids[static_cast<std::size_t>(stageIndex(stage))];
+  }
+  const HeartbeatMonitor& heartbeat() const { return m_heartbeat; }
   const nav::NavigationPipeline& pipeline() const { return m_pipeline; }
   const camera::CameraSource& camera() const { return *m_camera.source; }
   const telemetry::TelemetryWriter& telemetryWriter() const { return m_writer; }
@@ -94,6 +104,7 @@ class Daemon final : private exec::ExecutiveObserver {
   void noteCameraResult(camera::AcquireResult result);
   void logTransitions();
   void logFaultOnsets(std::uint32_t faults, std::uint64_t frame);
+  void endHeartbeatCycle(std::uint64_t minor_frame);
   void handleCommands();
   void logStart();
   void logStopSummary(exec::StopReason reason);
@@ -105,17 +116,20 @@ class Daemon final : private exec::ExecutiveObserver {
   nav::NavigationPipeline m_pipeline;
   std::unique_ptr<exec::Clock> m_clock;
   exec::Executive m_executive;
+  std::array<exec::TaskId, kCycleStageCount> m_task_ids{};  ///< CycleStage -> the executive's task
   telemetry::Participant m_participant;
   telemetry::TelemetryWriter m_writer;
   telemetry::CommandReader m_commands;
   bool m_telemetry_on = false;
   SdNotifier m_notifier;
+  HeartbeatMonitor m_heartbeat;
 
   // Cycle state, sized here (no allocation in the tasks).
   Frame m_frame;
   bool m_have_frame = false;
   bool m_skip_cycle = false;  ///< end of a playback: the remaining tasks of the cycle do nothing
   bool m_camera_lost = false;
+  std::uint64_t m_cycles_since_frame = 0;  ///< acquire calls without a frame in a row (the stall rule)
   double m_acquire_us = 0.0;
   nav::NavSolution m_solution;
   nav::HealthRecord m_health;
@@ -127,10 +141,11 @@ class Daemon final : private exec::ExecutiveObserver {
   std::uint64_t m_slips_seen = 0;
   std::array<std::uint64_t, nav::kFaultBitCount> m_fault_logs{};
   std::uint64_t m_camera_logs = 0;
+  std::array<std::uint64_t, kCycleStageCount> m_heartbeat_logs{};
+  std::array<bool, kCycleStageCount> m_heartbeat_onset_logged{};
   DaemonCounters m_counters;
 };
 
-/// Name of a fault bit index (0..kFaultBitCount-1) for logs: "inlier_ratio", "too_few_lines", ...
-const char* faultName(int bit);
+// Fault names for logs: visnav::faultName() beside the FaultBit enum (visnav/core/stage_interfaces.hpp).
 
 }  // namespace visnav::app

@@ -17,8 +17,10 @@ class PacedSimulatedClock final : public exec::Clock {
   std::int64_t nowNs() override { return m_simulated.nowNs(); }
   /// Pauses pace_ns of real time (interruptible: false on a signal), then jumps to the deadline.
   bool sleepUntilNs(std::int64_t deadline_ns) override;
-  void onTaskStart(int task) override { m_simulated.onTaskStart(task); }
-  void onTaskEnd(int task, std::uint64_t minor_frame) override { m_simulated.onTaskEnd(task, minor_frame); }
+  void onTaskStart(exec::TaskId task) override { m_simulated.onTaskStart(task); }
+  void onTaskEnd(exec::TaskId task, std::uint64_t minor_frame) override {
+    m_simulated.onTaskEnd(task, minor_frame);
+  }
 
   exec::SimulatedClock& simulated() { return m_simulated; }
 

@@ -45,6 +45,7 @@ struct DaemonParams {
   bool playback_loop = false;
   bool stop_at_end_of_stream = true;
   int log_throttle = 20;
+  int camera_stall_cycles = 10;
 
   PlaybackPacing pacing() const { return static_cast<PlaybackPacing>(playback_pacing); }
 
@@ -67,6 +68,12 @@ struct DaemonParams {
                "log lines per kind of repeated event (fault onset per fault, camera errors, slips); later "
                "ones are only counted (in the stop summary)"},
               log_throttle);
+    v.integer(
+        {"daemon", "camera_stall_cycles", "cycles", 0, 1000000,
+         "the acquire stage counts as failed (no heartbeat, so no systemd WATCHDOG=1) once the camera has "
+         "delivered no frame for more than this many cycles in a row (timeouts, errors, a lost device; "
+         "not the end of a playback)"},
+        camera_stall_cycles);
   }
   const char* crossCheck() const { return nullptr; }
 };

@@ -1,6 +1,6 @@
-// One camera frame as it travels through a cycle (architecture.md): a non-owning mono view into a
-// driver-owned buffer plus the metadata the estimators and the telemetry need. The driver gets the buffer
-// back when the cycle calls CameraSource::release().
+// One camera frame as it travels through a cycle (fsw/app/README.md, "The cycle"): a non-owning mono view
+// into a driver-owned buffer plus the metadata the estimators and the telemetry need. The driver gets the
+// buffer back when the cycle calls CameraSource::release().
 #pragma once
 
 #include <cstdint>

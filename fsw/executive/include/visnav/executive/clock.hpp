@@ -22,8 +22,8 @@ class Clock {
   /// stop flag and may call again.
   virtual bool sleepUntilNs(std::int64_t deadline_ns) = 0;
   /// Around every task run: lets a simulated clock charge the task's modelled duration.
-  virtual void onTaskStart(int /*task*/) {}
-  virtual void onTaskEnd(int /*task*/, std::uint64_t /*minor_frame*/) {}
+  virtual void onTaskStart(TaskId /*task*/) {}
+  virtual void onTaskEnd(TaskId /*task*/, std::uint64_t /*minor_frame*/) {}
 };
 
 /// CLOCK_MONOTONIC; sleeps with clock_nanosleep(TIMER_ABSTIME), so lateness never accumulates.
@@ -40,7 +40,7 @@ std::int64_t monotonicNowNs();
 class TaskDurationModel {
  public:
   virtual ~TaskDurationModel() = default;
-  virtual std::int64_t durationNs(int task, std::uint64_t minor_frame) = 0;
+  virtual std::int64_t durationNs(TaskId task, std::uint64_t minor_frame) = 0;
 };
 
 enum class SimulatedTaskTime : int { kZero = 0, kFixed = 1, kMeasured = 2 };
@@ -52,8 +52,8 @@ class SimulatedClock final : public Clock {
   std::int64_t nowNs() override { return m_now_ns; }
   /// Jumps to the deadline (never backwards) plus the modelled wake latency.
   bool sleepUntilNs(std::int64_t deadline_ns) override;
-  void onTaskStart(int task) override;
-  void onTaskEnd(int task, std::uint64_t minor_frame) override;
+  void onTaskStart(TaskId task) override;
+  void onTaskEnd(TaskId task, std::uint64_t minor_frame) override;
 
   /// Moves time forward (a task may call it to model its own duration).
   void advanceNs(std::int64_t delta_ns) {
@@ -62,7 +62,7 @@ class SimulatedClock final : public Clock {
   /// kFixed: every task takes `task_ns[task]`; kMeasured: the real elapsed time of the task (realistic,
   /// not deterministic); kZero: tasks take no time. A custom model, when set, wins over all three.
   void setTaskTime(SimulatedTaskTime mode) { m_mode = mode; }
-  void setFixedTaskNs(int task, std::int64_t duration_ns);
+  void setFixedTaskNs(TaskId task, std::int64_t duration_ns);
   void setAllFixedTaskNs(std::int64_t duration_ns) { m_fixed_ns.fill(duration_ns); }
   void setDurationModel(TaskDurationModel* model) { m_model = model; }
   /// sim_task_time and sim_task_us of the [executive] config.

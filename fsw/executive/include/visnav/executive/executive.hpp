@@ -25,7 +25,7 @@ struct SlipEvent {
 };
 
 struct TaskFailureEvent {
-  int task = 0;
+  TaskId task;
   const char* name = "";
   Status status = Status::kOk;
   std::uint64_t minor_frame = 0;
@@ -66,9 +66,11 @@ class Executive {
 
   /// Init time: checks the parameters, forgets every task and statistic.
   LoadError init(const ExecutiveParams& params, Clock& clock);
-  /// Init time: appends a task. It runs in the minor frames m with m % divisor == offset.
-  LoadError addTask(const char* name, TaskFn fn, void* context, int divisor = 1, int offset = 0);
-  LoadError addTask(const char* name, CycleTask& task, int divisor = 1, int offset = 0);
+  /// Init time: appends a task. It runs in the minor frames m with m % divisor == offset. On success `id`
+  /// names the task from then on (taskStats(), TaskFailureEvent::task, the clock's hooks); on failure `id` is
+  /// invalid. `name` must outlive the executive (a literal or a static names table).
+  LoadError addTask(TaskId& id, const char* name, TaskFn fn, void* context, int divisor = 1, int offset = 0);
+  LoadError addTask(TaskId& id, const char* name, CycleTask& task, int divisor = 1, int offset = 0);
   void setObserver(ExecutiveObserver* observer) { m_observer = observer; }
 
   /// Runs minor frames until requestStop() or `max_cycles` cycles (0: no limit). The first release is the
@@ -81,7 +83,11 @@ class Executive {
   void clearStop() noexcept { m_stop.store(false, std::memory_order_relaxed); }
 
   int taskCount() const { return m_task_count; }
-  const TaskStats& taskStats(int task) const { return m_stats[static_cast<std::size_t>(task)]; }
+  /// Statistics of a task addTask() registered (an invalid id: an empty record).
+  const TaskStats& taskStats(TaskId task) const {
+    return task.valid() && task.index() < m_task_count ? m_stats[static_cast<std::size_t>(task.index())]
+                                                       : m_no_stats;
+  }
   const DurationStats& releaseJitter() const { return m_jitter; }  ///< wake minus ideal release [ns]
   const DurationStats& cycleBusy() const { return m_busy; }        ///< wake to end of the last task [ns]
   const ExecutiveCounters& counters() const { return m_counters; }
@@ -107,6 +113,7 @@ class Executive {
   std::int64_t m_period_ns = 0;
   std::array<TaskEntry, kMaxTasks> m_tasks{};
   std::array<TaskStats, kMaxTasks> m_stats{};
+  TaskStats m_no_stats;  ///< what taskStats() of an invalid id returns
   int m_task_count = 0;
   DurationStats m_jitter;
   DurationStats m_busy;

@@ -21,6 +21,23 @@ struct CycleInfo {
   std::int64_t deadline_ns = 0;   ///< release_ns + period: the cycle should end before this
 };
 
+/// A task of the table, as Executive::addTask() hands it out. The caller keeps it and names the task by it
+/// (statistics, failure events, simulated durations), never by its position in the table. Default: invalid.
+class TaskId {
+ public:
+  constexpr TaskId() = default;
+  constexpr bool valid() const { return m_index >= 0; }
+  /// Slot in the executive's fixed tables (0 .. kMaxTasks-1; -1 when invalid).
+  constexpr int index() const { return m_index; }
+  friend constexpr bool operator==(TaskId a, TaskId b) { return a.m_index == b.m_index; }
+  friend constexpr bool operator!=(TaskId a, TaskId b) { return a.m_index != b.m_index; }
+
+ private:
+  friend class Executive;
+  constexpr explicit TaskId(int index) : m_index(index) {}
+  int m_index = -1;
+};
+
 using TaskFn = Status (*)(void* context, const CycleInfo& cycle);
 
 /// Object form of a task (a "port" with one method).

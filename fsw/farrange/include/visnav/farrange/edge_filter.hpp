@@ -1,6 +1,6 @@
 // Edge filter of paper sec. III-B: 3x3 integer gradient kernels, X = |J * Kx| + |J * Ky|, normalised to
-// [0, 1] (eq. 10). Sobel is the default (design card); eq. 9's kernels as printed are Prewitt-type and
-// offered as a setting. Eq. 10 divides by max X; the robust method divides by a multiple of a percentile
+// [0, 1] (eq. 10). Sobel is the default (fsw/farrange/README.md); eq. 9's kernels as printed are Prewitt-type
+// and offered as a setting. Eq. 10 divides by max X; the robust method divides by a multiple of a percentile
 // of X (the median by default: the noise level, the same in any region of interest; never below a floor)
 // and clips at 1, so one bright non-target edge cannot push the target below t_in.
 // Row loops are straight and branch-free inside, so -O2 vectorises them (SSE2 here, NEON on ARM).

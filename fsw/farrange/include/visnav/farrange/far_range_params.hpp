@@ -12,7 +12,7 @@ namespace visnav::far {
 /// paper: exactly as published (normalise by the single maximum, raw cluster size, most circular cluster).
 /// robust: percentile normalisation, filled clusters, size/shape checks, gating by the last estimate, ROI.
 enum class FarRangeMethod : int { kPaper = 0, kRobust = 1 };
-/// sobel: the design card's kernel; prewitt: eq. 9's kernels as printed.
+/// sobel: the usual Sobel kernel (centre weight 2); prewitt: eq. 9's kernels as printed.
 enum class EdgeKernel : int { kSobel = 0, kPrewitt = 1 };
 
 struct FarRangeParams {
@@ -53,7 +53,7 @@ struct FarRangeParams {
         "paper|robust", method);
     v.enumeration(
         {"farrange", "edge_kernel", "-", 0, 1,
-         "3x3 gradient kernels of the edge filter: sobel (design card) or prewitt (eq. 9 as printed)"},
+         "3x3 gradient kernels of the edge filter: sobel (centre weight 2) or prewitt (eq. 9 as printed)"},
         "sobel|prewitt", edge_kernel);
     v.real({"farrange", "beta", "-", 0.0, 1.0e6, "Table 1 beta: histogram rarity dampening of eq. 12"}, beta);
     v.real({"farrange", "edge_weight", "-", 0.0, 1.0, "Table 1 lambda_1: weight of the edge filter (eq. 13)"},

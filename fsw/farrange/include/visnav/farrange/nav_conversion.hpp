@@ -1,15 +1,15 @@
-// FarRangeResult -> the pipeline's FarRangeSolution (fsw/navigation nav_solution.hpp). Header-only, so
-// visnav_farrange does not link visnav_navigation (navigation uses the estimators, not the reverse); include
-// it where both are linked.
+// FarRangeResult -> FarRangeSolution, the stage interface far range hands to acquisition and navigation
+// (visnav/core/stage_interfaces.hpp). Header-only; includes far range and core only (navigation uses the
+// estimators, not the reverse).
 #pragma once
 
+#include "visnav/core/stage_interfaces.hpp"
 #include "visnav/farrange/far_range_estimator.hpp"
-#include "visnav/navigation/nav_solution.hpp"
 
 namespace visnav::far {
 
-inline nav::FarRangeSolution toFarRangeSolution(const FarRangeResult& r) {
-  nav::FarRangeSolution s;
+inline FarRangeSolution toFarRangeSolution(const FarRangeResult& r) {
+  FarRangeSolution s;
   s.valid = r.valid;
   s.direction_c = r.direction_c;
   s.azimuth_rad = r.azimuth_rad;

@@ -1,4 +1,4 @@
-// Mode management (issue 3): standby, far range, acquisition, near range. Distance conditions must hold for
+// Mode management: standby, far range, acquisition, near range. Distance conditions must hold for
 // `enter_frames` consecutive frames and the two distance thresholds are apart, so measurement noise around
 // one threshold never makes the mode chatter. Every transition is recorded with its reason. Pure logic:
 // no allocation, no I/O.

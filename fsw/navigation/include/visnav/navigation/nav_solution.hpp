@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "visnav/core/stage_interfaces.hpp"
 #include "visnav/core/types.hpp"
 #include "visnav/geometry/pose.hpp"
 
@@ -24,33 +25,23 @@ const char* toString(NavMode mode);
 enum class ModeCommandKind : std::uint8_t { kForceFarRange = 0, kReacquire = 1, kStandby = 2, kResume = 3 };
 const char* toString(ModeCommandKind kind);
 
-/// FDIR fault bits (HealthRecord::fault_bits, NavSolution::fault_bits).
-enum FaultBit : std::uint32_t {
-  kFaultInlierRatio = 1U << 0,        ///< edge-point inlier ratio of a line below threshold
-  kFaultTooFewLines = 1U << 1,        ///< usable lines below threshold
-  kFaultResidual = 1U << 2,           ///< LM residual above threshold
-  kFaultNotConverged = 1U << 3,       ///< LM did not converge
-  kFaultInnovation = 1U << 4,         ///< NIS against the Kalman prediction above the gate
-  kFaultImplausible = 1U << 5,        ///< range or image-bounds check failed
-  kFaultFrameAge = 1U << 6,           ///< frame older than allowed when processed
-  kFaultNoFrame = 1U << 7,            ///< camera delivered no frame this cycle
-  kFaultFarRangeNoTarget = 1U << 8,   ///< far range found no acceptable cluster
-  kFaultAcquisitionFailed = 1U << 9,  ///< acquisition gave up on a candidate
-  kFaultCycleSlip = 1U << 10,         ///< the executive missed a deadline
-};
-constexpr int kFaultBitCount = 11;
-
-struct FarRangeSolution {
-  bool valid = false;
-  Vec3 direction_c = Vec3::UnitZ();  ///< unit line of sight in the camera frame (CONVENTIONS.md)
-  double azimuth_rad = 0.0;          ///< atan2(x, z)
-  double elevation_rad = 0.0;        ///< atan2(-y, hypot(x, z)): up in the image is positive
-  double distance_m = 0.0;           ///< eq. 16, gamma / sqrt(n)
-  int cluster_pixels = 0;            ///< n of eq. 16
-  double circularity = 0.0;          ///< eq. 15
-  int cluster_count = 0;
-  double quality = 0.0;  ///< [0, 1]
-};
+// The stage interfaces (FarRangeSolution, FaultBit and its names) live in core
+// (visnav/core/stage_interfaces.hpp) so far range and acquisition need not include navigation; these keep the
+// nav:: spellings working.
+using visnav::FarRangeSolution;
+using visnav::FaultBit;
+using visnav::kFaultAcquisitionFailed;
+using visnav::kFaultBitCount;
+using visnav::kFaultCycleSlip;
+using visnav::kFaultFarRangeNoTarget;
+using visnav::kFaultFrameAge;
+using visnav::kFaultImplausible;
+using visnav::kFaultInlierRatio;
+using visnav::kFaultInnovation;
+using visnav::kFaultNoFrame;
+using visnav::kFaultNotConverged;
+using visnav::kFaultResidual;
+using visnav::kFaultTooFewLines;
 
 /// Per-stage time of this frame [us].
 struct StageTimes {
@@ -83,7 +74,7 @@ struct TaskTimingSummary {
   double max_us = 0.0;
   double p99_us = 0.0;
 };
-constexpr int kTaskCount = 4;  ///< acquire, process, publish, health
+constexpr int kTaskCount = kCycleStageCount;  ///< acquire, process, publish, health (CycleStage order)
 
 struct ModeTransition {
   NavMode from = NavMode::kStandby;

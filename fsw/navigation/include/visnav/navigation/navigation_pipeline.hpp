@@ -75,7 +75,7 @@ class NavigationPipeline {
                           ModeInputs& in);
   void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                         ModeInputs& in);
-  void enterMode(NavMode mode, std::uint64_t frame_number);
+  void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
 
   PinholeCamera m_camera;

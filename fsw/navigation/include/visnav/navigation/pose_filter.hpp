@@ -1,4 +1,4 @@
-// Relative-pose Kalman filter (issue 3; paper sec. II-H suggests it for frames without a trackable surface):
+// Relative-pose Kalman filter (paper sec. II-H suggests it for frames without a trackable surface):
 // constant linear and angular velocity of the target in the camera frame, attitude as an error state on
 // SO(3) with the left perturbation of Pose::boxPlus (CONVENTIONS.md). It predicts the pose the tracker
 // projects with, propagates through frames without a usable measurement (missed frames: predict(2 T)),

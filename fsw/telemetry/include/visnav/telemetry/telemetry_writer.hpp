@@ -32,12 +32,20 @@ class TelemetryWriter {
 
   const WriterCounters& counters() const { return m_counters; }
   dds_entity_t writer(Topic topic) const;
+
+  /// Init time: waits (bounded by `timeout_ns` over all topics) until every flight topic's writer has at
+  /// least `count` matched readers. False on timeout, with `missing` the first topic short of readers.
+  bool waitForReaders(std::uint32_t count, std::int64_t timeout_ns, Topic& missing) const;
+  /// Shutdown: waits (bounded by `timeout_ns` over all topics) until the matched reliable readers have
+  /// acknowledged every sample written, so the last samples arrive before the participant goes. True when
+  /// all did (or nothing was written yet: no writer).
+  bool waitForAcks(std::int64_t timeout_ns) const;
   /// Offered-deadline misses of the pose writer so far (a cycle that published nothing in time).
   std::uint32_t poseDeadlineMisses() const;
   /// Serialized-sample pool of one flight topic, for pooledSertypeStats() (nullptr: kModeCommand, before
   /// init).
   const PooledSertype* sertype(Topic topic) const {
-    return static_cast<int>(topic) < 3 ? m_sertypes[static_cast<int>(topic)] : nullptr;
+    return static_cast<int>(topic) < kFlightTopicCount ? m_sertypes[static_cast<int>(topic)] : nullptr;
   }
   /// Samples that found their topic's pool empty and took a heap block, over the three topics.
   std::uint64_t samplePoolMisses() const;
@@ -48,7 +56,7 @@ class TelemetryWriter {
   dds_entity_t m_pose_writer = 0;
   dds_entity_t m_far_writer = 0;
   dds_entity_t m_health_writer = 0;
-  const PooledSertype* m_sertypes[3] = {};  // pose, far range, health
+  const PooledSertype* m_sertypes[kFlightTopicCount] = {};  // kFlightTopics order
   std::uint64_t m_nav_samples = 0;
   std::uint64_t m_health_samples = 0;
   WriterCounters m_counters;
