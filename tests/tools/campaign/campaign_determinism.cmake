@@ -1,0 +1,21 @@
+# Runs a tiny campaign twice (one thread, then two; --no-timing) and requires campaign.json (without its
+# "timing" object) and scenes.csv to be bit-identical. -DCAMPAIGN=<visnav-campaign> -DOUT=<dir>
+set(args --runs 1 --seed 7 --families plate,box,smallsat --max-frames 12 --no-timing --quiet)
+foreach(run 1 2)
+  file(REMOVE_RECURSE ${OUT}/run${run})
+  execute_process(COMMAND ${CAMPAIGN} ${args} --jobs ${run} --out ${OUT}/run${run} RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "visnav-campaign run ${run} exited ${rc}:\n${out}\n${err}")
+  endif()
+  file(READ ${OUT}/run${run}/campaign.json json)
+  string(JSON json${run} REMOVE "${json}" timing)
+  file(READ ${OUT}/run${run}/scenes.csv csv${run})
+endforeach()
+if(NOT json1 STREQUAL json2)
+  message(FATAL_ERROR "campaign.json differs between the two runs (outside \"timing\")")
+endif()
+if(NOT csv1 STREQUAL csv2)
+  message(FATAL_ERROR "scenes.csv differs between the two runs")
+endif()
+message(STATUS "campaign.json and scenes.csv identical over two runs")

@@ -1,0 +1,78 @@
+// Per-frame verdicts of visnav-campaign (definitions: tools/campaign/README.md) and the recovery events of a
+// scene. Pure functions over hand-checkable inputs, so the unit tests can build frames by hand.
+#pragma once
+
+#include <vector>
+
+#include "visnav/geometry/camera.hpp"
+#include "visnav/geometry/polygon_model.hpp"
+#include "visnav/geometry/pose.hpp"
+#include "visnav/navigation/nav_solution.hpp"
+
+namespace visnav::campaign {
+
+struct Thresholds {
+  double wrong_position_rel = 0.05;  ///< of the true range |t|
+  double wrong_attitude_deg = 5.0;   ///< modulo the model's symmetries
+  double accurate_position_rel = 0.01;
+  double accurate_attitude_deg = 1.0;
+  double min_visible_px = 20.0;              ///< projected bounding-sphere diameter 2 f R / z
+  double min_facing_cos = 0.17364817766693;  ///< cos 80 deg: some surface must face the camera this much
+};
+
+/// The target can be seen: not eclipsed, in front of the camera, its bounding sphere's centre (the model
+/// origin) projects inside the image, 2 f R / z >= min_visible_px, and some surface faces the camera
+/// (n . line of sight < -min_facing_cos: a single-sided plate seen from behind or edge-on shows nothing).
+bool targetVisible(const PinholeCamera& camera, const PolygonModel& model, const Pose& truth, bool eclipsed,
+                   const Thresholds& th = {});
+
+struct FrameOutcome {
+  int frame = 0;
+  bool visible = false;
+  bool expected =
+      false;  ///< visible, and a 6-DOF pose is due (near scenes; approach scenes below acquire_below_m)
+  bool eclipsed = false;
+  bool slew = false;                           ///< the line of sight jumped at this frame
+  double range_m = 0.0;                        ///< |t| of the truth
+  nav::NavMode mode = nav::NavMode::kStandby;  ///< the mode the frame was processed in
+  bool pose_valid = false;
+  std::uint32_t fault_bits = 0;
+  double position_error_m = 0.0;    ///< |t_est - t_truth| (pose_valid only)
+  double attitude_error_deg = 0.0;  ///< modulo symmetries (pose_valid only)
+  bool has_nis = false;
+  double nis = 0.0;
+  double process_us = 0.0;
+  // Verdicts (classifyFrame).
+  bool wrong = false;
+  bool tracked = false;
+  bool accurate = false;
+};
+
+/// Sets wrong / tracked / accurate from pose_valid, mode, range and the errors:
+///   wrong    = pose_valid and (position error > 5 % of range or attitude error > 5 deg)
+///   tracked  = pose_valid and mode near range or acquisition, and not wrong
+///   accurate = tracked and position error <= 1 % of range and attitude error <= 1 deg
+void classifyFrame(FrameOutcome& f, const Thresholds& th = {});
+
+enum class EventKind { kSlew = 0, kEclipseEnd, kReappear, kLoss };
+const char* toString(EventKind kind);
+
+struct RecoveryEvent {
+  EventKind kind = EventKind::kLoss;
+  int frame = 0;     ///< the event's frame index
+  int latency = -1;  ///< frames from the event to the next tracked frame (0: tracked at once); -1: never
+};
+
+/// Recovery events of a scene, in frame order, at most one per frame (priority slew, eclipse end, reappear,
+/// loss):
+///   slew        the slew frame;
+///   eclipse end the first non-eclipsed frame after an eclipse, when it is visible (else the next visible
+///   one); reappear    a visible frame after a non-visible one (other causes: out of view, back side), once
+///   some
+///               frame was tracked (or `tracked_at_start`: near scenes start from a given pose);
+///   loss        a visible frame not tracked right after a tracked frame (frame 0: after the given start
+///               pose, when `tracked_at_start`).
+/// Latency: frames from the event to the first tracked frame at or after it; -1 when the scene ends first.
+std::vector<RecoveryEvent> recoveryEvents(const std::vector<FrameOutcome>& frames, bool tracked_at_start);
+
+}  // namespace visnav::campaign

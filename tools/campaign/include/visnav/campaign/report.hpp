@@ -1,0 +1,93 @@
+// Statistics over the scenes of a campaign (per family and overall), the --require-* gates, and the
+// outputs: the stdout table, DIR/campaign.json, DIR/scenes.csv and DIR/campaign.png. Timing numbers live
+// in their own fields (JSON "timing" object, CSV time_* columns) so everything else is bit-identical
+// between runs with the same arguments.
+#pragma once
+
+#include <array>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "visnav/campaign/options.hpp"
+#include "visnav/campaign/runner.hpp"
+#include "visnav/campaign/scene.hpp"
+#include "visnav/eval/canvas.hpp"
+
+namespace visnav::campaign {
+
+struct SceneRun {
+  Scene scene;
+  SceneResult result;
+};
+
+struct Distribution {
+  int count = 0;
+  double mean = 0.0;
+  double median = 0.0;
+  double p95 = 0.0;
+  double max = 0.0;
+};
+Distribution distribution(std::vector<double> values);
+
+/// Chi-square, 6 dof, 99.9 %: the filter's default pose gate.
+constexpr double kNisGate = 22.46;
+constexpr int kModeCount = 4;  ///< nav::NavMode values
+
+struct GroupSummary {
+  std::string name;  ///< family name or "overall"
+  int scenes = 0;
+  int near_scenes = 0;
+  int approach_scenes = 0;
+  int frames = 0;
+  int visible = 0;
+  int expected = 0;
+  int tracked = 0;
+  int accurate = 0;
+  int wrong = 0;  ///< confidently wrong frames
+  int wrong_scenes = 0;
+  Distribution tracked_fraction;  ///< over scenes with expected frames
+  Distribution accurate_fraction;
+  double tracked_fraction_worst = -1.0;
+  const SceneRun* worst_tracked = nullptr;
+  const SceneRun* worst_wrong = nullptr;  ///< most confidently wrong frames
+  int recovery_events = 0;
+  int recovery_never = 0;
+  Distribution recovery;                     ///< latencies of the events that recovered [frames]
+  const SceneRun* worst_recovery = nullptr;  ///< a "never", else the largest latency
+  Distribution mode_changes_near;
+  Distribution mode_changes_approach;
+  const SceneRun* worst_modes = nullptr;
+  Distribution acquisition_latency;  ///< approach scenes that acquired
+  int acquisition_never = 0;
+  Distribution nis;
+  int nis_above_gate = 0;
+  std::array<Distribution, kModeCount> step_us{};  ///< timing: per mode the frame was processed in
+};
+
+GroupSummary summarise(const std::string& name, const std::vector<const SceneRun*>& runs);
+/// "overall" first, then one per family present, in family order.
+std::vector<GroupSummary> summariseAll(const std::vector<SceneRun>& runs);
+
+struct GateResult {
+  std::string name;
+  bool passed = true;
+  std::string detail;
+  const SceneRun* worst = nullptr;
+};
+std::vector<GateResult> checkGates(const std::vector<SceneRun>& runs, const Gates& gates);
+
+/// One line per scene: "box/17 near 150 fr: tracked 0.973 (146/150) accurate 0.80 wrong 0 recovery max 3
+/// ...".
+std::string sceneLine(const SceneRun& run);
+/// The compact stdout table (groups, then the worst confidently wrong frames).
+std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vector<SceneRun>& runs,
+                         bool timing);
+
+void writeJson(std::ostream& out, const CampaignOptions& options, const std::vector<SceneRun>& runs,
+               const std::vector<GroupSummary>& groups, const std::vector<GateResult>& gates);
+void writeCsv(std::ostream& out, const std::vector<SceneRun>& runs);
+eval::Canvas renderCampaignPlot(const std::vector<SceneRun>& runs, const std::vector<GroupSummary>& groups,
+                                const Gates& gates);
+
+}  // namespace visnav::campaign

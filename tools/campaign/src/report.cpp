@@ -1,0 +1,492 @@
+#include "visnav/campaign/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+
+#include "visnav/eval/metrics.hpp"
+
+namespace visnav::campaign {
+namespace {
+
+std::string num(double v, const char* format = "%.6g") {
+  if (!std::isfinite(v)) return "null";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), format, v + 0.0);  // + 0.0: no "-0"
+  return buf;
+}
+
+std::string quote(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (const char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string seedText(std::uint64_t seed) { return std::to_string(static_cast<unsigned long long>(seed)); }
+
+const char* kindText(const Scene& s) { return s.is_case ? "case" : s.approach ? "approach" : "near"; }
+
+std::string fraction(double f) { return f < 0.0 ? std::string("-") : num(f, "%.3f"); }
+
+std::string distributionJson(const Distribution& d) {
+  return "{\"count\": " + std::to_string(d.count) + ", \"mean\": " + num(d.mean) +
+         ", \"median\": " + num(d.median) + ", \"p95\": " + num(d.p95) + ", \"max\": " + num(d.max) + "}";
+}
+
+std::string sceneRef(const SceneRun* r) { return r == nullptr ? std::string("null") : quote(r->scene.name); }
+
+}  // namespace
+
+Distribution distribution(std::vector<double> values) {
+  Distribution d;
+  if (values.empty()) return d;
+  std::sort(values.begin(), values.end());
+  d.count = static_cast<int>(values.size());
+  d.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+  d.median = eval::percentileSorted(values, 0.5);
+  d.p95 = eval::percentileSorted(values, 0.95);
+  d.max = values.back();
+  return d;
+}
+
+GroupSummary summarise(const std::string& name, const std::vector<const SceneRun*>& runs) {
+  GroupSummary g;
+  g.name = name;
+  std::vector<double> tracked_fractions, accurate_fractions, latencies, modes_near, modes_approach,
+      acquisition, nis;
+  std::array<std::vector<double>, kModeCount> steps;
+  int worst_wrong = 0;
+  int worst_latency = -1;
+  bool worst_never = false;
+  int worst_modes = -1;
+  for (const SceneRun* run : runs) {
+    const Scene& s = run->scene;
+    const SceneResult& r = run->result;
+    ++g.scenes;
+    (s.approach ? g.approach_scenes : g.near_scenes) += 1;
+    g.frames += static_cast<int>(r.frames.size());
+    g.visible += r.visible;
+    g.expected += r.expected;
+    g.tracked += r.tracked;
+    g.accurate += r.accurate;
+    g.wrong += r.wrong;
+    if (r.wrong > 0) ++g.wrong_scenes;
+    if (r.wrong > worst_wrong) {
+      worst_wrong = r.wrong;
+      g.worst_wrong = run;
+    }
+    if (r.tracked_fraction >= 0.0) {
+      tracked_fractions.push_back(r.tracked_fraction);
+      accurate_fractions.push_back(r.accurate_fraction);
+      if (g.worst_tracked == nullptr || r.tracked_fraction < g.tracked_fraction_worst) {
+        g.tracked_fraction_worst = r.tracked_fraction;
+        g.worst_tracked = run;
+      }
+    }
+    for (const RecoveryEvent& e : r.events) {
+      ++g.recovery_events;
+      if (e.latency < 0) {
+        ++g.recovery_never;
+        if (!worst_never) {
+          worst_never = true;
+          g.worst_recovery = run;
+        }
+      } else {
+        latencies.push_back(e.latency);
+        if (!worst_never && e.latency > worst_latency) {
+          worst_latency = e.latency;
+          g.worst_recovery = run;
+        }
+      }
+    }
+    (s.approach ? modes_approach : modes_near).push_back(r.mode_changes);
+    if (r.mode_changes > worst_modes) {
+      worst_modes = r.mode_changes;
+      g.worst_modes = run;
+    }
+    if (r.acquisition_latency >= 0) acquisition.push_back(r.acquisition_latency);
+    if (r.acquisition_latency == -1) ++g.acquisition_never;
+    for (const FrameOutcome& f : r.frames) {
+      if (f.has_nis) {
+        nis.push_back(f.nis);
+        if (f.nis > kNisGate) ++g.nis_above_gate;
+      }
+      steps[static_cast<std::size_t>(f.mode)].push_back(f.process_us);
+    }
+  }
+  g.tracked_fraction = distribution(tracked_fractions);
+  g.accurate_fraction = distribution(accurate_fractions);
+  g.recovery = distribution(latencies);
+  g.mode_changes_near = distribution(modes_near);
+  g.mode_changes_approach = distribution(modes_approach);
+  g.acquisition_latency = distribution(acquisition);
+  g.nis = distribution(nis);
+  for (std::size_t m = 0; m < steps.size(); ++m) g.step_us[m] = distribution(steps[m]);
+  return g;
+}
+
+std::vector<GroupSummary> summariseAll(const std::vector<SceneRun>& runs) {
+  std::vector<GroupSummary> groups;
+  std::vector<const SceneRun*> all;
+  for (const SceneRun& r : runs) all.push_back(&r);
+  groups.push_back(summarise("overall", all));
+  for (int f = 0; f < kFamilyCount; ++f) {
+    std::vector<const SceneRun*> some;
+    for (const SceneRun& r : runs)
+      if (static_cast<int>(r.scene.family) == f) some.push_back(&r);
+    if (!some.empty()) groups.push_back(summarise(toString(static_cast<Family>(f)), some));
+  }
+  return groups;
+}
+
+std::vector<GateResult> checkGates(const std::vector<SceneRun>& runs, const Gates& gates) {
+  std::vector<GateResult> out;
+  std::vector<const SceneRun*> all;
+  for (const SceneRun& r : runs) all.push_back(&r);
+  const GroupSummary g = summarise("overall", all);
+  char buf[256];
+  if (gates.tracked_fraction) {
+    GateResult r;
+    r.name = "tracked fraction";
+    r.passed = g.worst_tracked == nullptr || g.tracked_fraction_worst >= gates.min_tracked_fraction;
+    r.worst = g.worst_tracked;
+    int below = 0;
+    for (const SceneRun& run : runs)
+      below += run.result.tracked_fraction >= 0.0 && run.result.tracked_fraction < gates.min_tracked_fraction;
+    std::snprintf(buf, sizeof(buf), "worst scene %.4f, required >= %.4f; %d of %d scenes below",
+                  g.tracked_fraction_worst, gates.min_tracked_fraction, below, g.tracked_fraction.count);
+    r.detail = buf;
+    out.push_back(r);
+  }
+  if (gates.no_confident_wrong) {
+    GateResult r;
+    r.name = "no confidently wrong pose";
+    r.passed = g.wrong == 0;
+    r.worst = g.worst_wrong;
+    std::snprintf(buf, sizeof(buf), "%d confidently wrong frames in %d scenes", g.wrong, g.wrong_scenes);
+    r.detail = buf;
+    out.push_back(r);
+  }
+  if (gates.recovery) {
+    GateResult r;
+    r.name = "recovery frames";
+    int over = 0;
+    for (const SceneRun& run : runs)
+      for (const RecoveryEvent& e : run.result.events) over += e.latency > gates.max_recovery_frames ? 1 : 0;
+    r.passed = g.recovery_never == 0 && over == 0;
+    r.worst = g.worst_recovery;
+    std::snprintf(buf, sizeof(buf), "%d events: %d never recovered, %d took more than %d frames (max %.0f)",
+                  g.recovery_events, g.recovery_never, over, gates.max_recovery_frames, g.recovery.max);
+    r.detail = buf;
+    out.push_back(r);
+  }
+  if (gates.mode_changes) {
+    GateResult r;
+    r.name = "mode changes";
+    const int worst = g.worst_modes == nullptr ? 0 : g.worst_modes->result.mode_changes;
+    r.passed = worst <= gates.max_mode_changes;
+    r.worst = g.worst_modes;
+    std::snprintf(buf, sizeof(buf), "worst scene %d, allowed <= %d", worst, gates.max_mode_changes);
+    r.detail = buf;
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string sceneLine(const SceneRun& run) {
+  const Scene& s = run.scene;
+  const SceneResult& r = run.result;
+  if (!r.error.ok) return s.name + ": NOT RUN: " + r.error.message;
+  char buf[512];
+  std::string recovery = "none";
+  if (!r.events.empty()) {
+    recovery = std::to_string(r.events.size()) + " events, max " +
+               (r.recovery_max >= 0 ? std::to_string(r.recovery_max) : std::string("-")) + ", never " +
+               std::to_string(r.recovery_never);
+  }
+  std::snprintf(buf, sizeof(buf),
+                "%s (%s, %d frames): tracked %s (%d/%d expected), accurate %s, confidently wrong %d, "
+                "recovery %s, mode changes %d%s",
+                s.name.c_str(), kindText(s), static_cast<int>(r.frames.size()),
+                fraction(r.tracked_fraction).c_str(), r.tracked, r.expected,
+                fraction(r.accurate_fraction).c_str(), r.wrong, recovery.c_str(), r.mode_changes,
+                r.acquisition_latency >= 0
+                    ? (", acquired after " + std::to_string(r.acquisition_latency) + " frames").c_str()
+                : r.acquisition_latency == -1 ? ", never acquired"
+                                              : "");
+  return buf;
+}
+
+std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vector<SceneRun>& runs,
+                         bool timing) {
+  std::ostringstream o;
+  char buf[512];
+  std::snprintf(buf, sizeof(buf), "%-9s %6s %6s %6s  %-24s %6s  %-18s %-22s %-13s %-19s\n", "group", "scenes",
+                "frames", "visibl", "tracked mean / worst", "accur", "conf.wrong (scenes)",
+                "recovery med/p95/max/never", "modes med/max", "nis mean/p95/>gate");
+  o << buf;
+  for (const GroupSummary& g : groups) {
+    const std::string worst =
+        g.worst_tracked == nullptr
+            ? std::string("-")
+            : fraction(g.tracked_fraction_worst) + " (" +
+                  (g.worst_tracked->scene.is_case ? g.worst_tracked->scene.name
+                                                  : "seed " + seedText(g.worst_tracked->scene.seed)) +
+                  ")";
+    const std::string tracked =
+        (g.tracked_fraction.count > 0 ? num(g.tracked_fraction.mean, "%.3f") : "-") + " / " + worst;
+    const std::string wrong = std::to_string(g.wrong) + " (" + std::to_string(g.wrong_scenes) + ")";
+    const std::string rec = g.recovery_events == 0
+                                ? std::string("-")
+                                : num(g.recovery.median, "%.0f") + "/" + num(g.recovery.p95, "%.0f") + "/" +
+                                      num(g.recovery.max, "%.0f") + "/" + std::to_string(g.recovery_never);
+    std::vector<double> all_modes;
+    const Distribution& mn = g.mode_changes_near;
+    const std::string modes =
+        (mn.count > 0 ? num(mn.median, "%.0f") + "/" + num(mn.max, "%.0f") : std::string("-")) +
+        (g.approach_scenes > 0 ? " a " + num(g.mode_changes_approach.median, "%.0f") + "/" +
+                                     num(g.mode_changes_approach.max, "%.0f")
+                               : std::string());
+    const std::string nis = g.nis.count == 0 ? std::string("-")
+                                             : num(g.nis.mean, "%.1f") + "/" + num(g.nis.p95, "%.1f") + "/" +
+                                                   num(100.0 * g.nis_above_gate / g.nis.count, "%.1f") + "%";
+    std::snprintf(buf, sizeof(buf), "%-9s %6d %6d %6d  %-24s %6s  %-18s %-22s %-13s %-19s\n", g.name.c_str(),
+                  g.scenes, g.frames, g.visible, tracked.c_str(),
+                  g.accurate_fraction.count > 0 ? num(g.accurate_fraction.mean, "%.3f").c_str() : "-",
+                  wrong.c_str(), rec.c_str(), modes.c_str(), nis.c_str());
+    o << buf;
+  }
+  const GroupSummary& all = groups.front();
+  if (all.approach_scenes > 0) {
+    std::snprintf(buf, sizeof(buf),
+                  "approach scenes: %d, acquired in %d (frames from the first expected frame: median %.0f, "
+                  "max %.0f), never %d\n",
+                  all.approach_scenes, all.acquisition_latency.count, all.acquisition_latency.median,
+                  all.acquisition_latency.max, all.acquisition_never);
+    o << buf;
+  }
+  if (timing) {
+    o << "step time [us] median/p95 per mode:";
+    for (int m = 0; m < kModeCount; ++m) {
+      const Distribution& d = all.step_us[static_cast<std::size_t>(m)];
+      if (d.count == 0) continue;
+      std::snprintf(buf, sizeof(buf), "  %s %.0f/%.0f (%d)", nav::toString(static_cast<nav::NavMode>(m)),
+                    d.median, d.p95, d.count);
+      o << buf;
+    }
+    o << "\n";
+  }
+  // The worst confidently wrong frames (largest attitude error first).
+  struct Wrong {
+    const SceneRun* run;
+    const FrameOutcome* f;
+  };
+  std::vector<Wrong> wrong;
+  for (const SceneRun& r : runs)
+    for (const FrameOutcome& f : r.result.frames)
+      if (f.wrong) wrong.push_back({&r, &f});
+  if (!wrong.empty()) {
+    std::stable_sort(wrong.begin(), wrong.end(), [](const Wrong& a, const Wrong& b) {
+      return a.f->attitude_error_deg + 100.0 * a.f->position_error_m / a.f->range_m >
+             b.f->attitude_error_deg + 100.0 * b.f->position_error_m / b.f->range_m;
+    });
+    o << "confidently wrong frames: " << wrong.size() << " (worst " << std::min<std::size_t>(wrong.size(), 10)
+      << "; all in campaign.json)\n";
+    for (std::size_t i = 0; i < wrong.size() && i < 10; ++i) {
+      const FrameOutcome& f = *wrong[i].f;
+      std::snprintf(
+          buf, sizeof(buf),
+          "  %-22s frame %4d %-11s range %7.2f m  position %8.3f m (%6.1f %%)  attitude %7.2f deg\n",
+          wrong[i].run->scene.name.c_str(), f.frame, nav::toString(f.mode), f.range_m, f.position_error_m,
+          100.0 * f.position_error_m / f.range_m, f.attitude_error_deg);
+      o << buf;
+    }
+  }
+  return o.str();
+}
+
+void writeJson(std::ostream& o, const CampaignOptions& options, const std::vector<SceneRun>& runs,
+               const std::vector<GroupSummary>& groups, const std::vector<GateResult>& gates) {
+  const Thresholds th;
+  o << "{\n  \"tool\": \"visnav-campaign\",\n";
+  o << "  \"command\": {\"runs\": " << options.runs << ", \"seed\": " << seedText(options.seed)
+    << ", \"families\": [";
+  for (std::size_t i = 0; i < options.families.size() && options.cases.empty(); ++i)
+    o << (i ? ", " : "") << quote(toString(options.families[i]));
+  o << "], \"cases\": [";
+  for (std::size_t i = 0; i < options.cases.size(); ++i) o << (i ? ", " : "") << quote(options.cases[i]);
+  o << "], \"model\": " << quote(options.model_path) << ", \"config\": " << quote(options.config_path)
+    << ", \"max_frames\": " << options.max_frames << "},\n";
+  o << "  \"definitions\": {\"wrong_position_rel\": " << num(th.wrong_position_rel)
+    << ", \"wrong_attitude_deg\": " << num(th.wrong_attitude_deg)
+    << ", \"accurate_position_rel\": " << num(th.accurate_position_rel)
+    << ", \"accurate_attitude_deg\": " << num(th.accurate_attitude_deg)
+    << ", \"min_visible_px\": " << num(th.min_visible_px) << ", \"nis_gate\": " << num(kNisGate) << "},\n";
+  bool passed = true;
+  o << "  \"gates\": [";
+  for (std::size_t i = 0; i < gates.size(); ++i) {
+    const GateResult& g = gates[i];
+    passed = passed && g.passed;
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << quote(g.name)
+      << ", \"passed\": " << (g.passed ? "true" : "false") << ", \"detail\": " << quote(g.detail)
+      << ", \"worst_scene\": " << sceneRef(g.worst) << ", \"rerun\": "
+      << (g.worst == nullptr ? std::string("null") : quote(rerunCommand(g.worst->scene, options))) << "}";
+  }
+  o << (gates.empty() ? "],\n" : "\n  ],\n");
+  o << "  \"passed\": " << (passed ? "true" : "false") << ",\n";
+  o << "  \"summary\": {";
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    const GroupSummary& g = groups[i];
+    o << (i ? ",\n    " : "\n    ") << quote(g.name) << ": {\"scenes\": " << g.scenes
+      << ", \"near_scenes\": " << g.near_scenes << ", \"approach_scenes\": " << g.approach_scenes
+      << ", \"frames\": " << g.frames << ", \"visible\": " << g.visible << ", \"expected\": " << g.expected
+      << ", \"tracked\": " << g.tracked << ", \"accurate\": " << g.accurate
+      << ",\n      \"tracked_fraction\": " << distributionJson(g.tracked_fraction)
+      << ", \"tracked_fraction_worst\": " << num(g.tracked_fraction_worst)
+      << ", \"worst_tracked_scene\": " << sceneRef(g.worst_tracked)
+      << ",\n      \"accurate_fraction\": " << distributionJson(g.accurate_fraction)
+      << ",\n      \"confidently_wrong_frames\": " << g.wrong
+      << ", \"confidently_wrong_scenes\": " << g.wrong_scenes
+      << ", \"worst_wrong_scene\": " << sceneRef(g.worst_wrong)
+      << ",\n      \"recovery_events\": " << g.recovery_events << ", \"recovery_never\": " << g.recovery_never
+      << ", \"recovery_latency\": " << distributionJson(g.recovery)
+      << ", \"worst_recovery_scene\": " << sceneRef(g.worst_recovery)
+      << ",\n      \"mode_changes_near\": " << distributionJson(g.mode_changes_near)
+      << ", \"mode_changes_approach\": " << distributionJson(g.mode_changes_approach)
+      << ", \"worst_modes_scene\": " << sceneRef(g.worst_modes)
+      << ",\n      \"acquisition_latency\": " << distributionJson(g.acquisition_latency)
+      << ", \"acquisition_never\": " << g.acquisition_never << ",\n      \"nis\": " << distributionJson(g.nis)
+      << ", \"nis_above_gate\": " << g.nis_above_gate << ", \"nis_above_gate_fraction\": "
+      << num(g.nis.count > 0 ? static_cast<double>(g.nis_above_gate) / g.nis.count : 0.0) << "}";
+  }
+  o << "\n  },\n";
+  o << "  \"scenes\": [";
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const Scene& s = runs[i].scene;
+    const SceneResult& r = runs[i].result;
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << quote(s.name)
+      << ", \"family\": " << quote(toString(s.family)) << ", \"kind\": " << quote(kindText(s))
+      << ", \"seed\": " << seedText(s.seed) << ", \"rerun\": " << quote(rerunCommand(s, options))
+      << ",\n      \"parameters\": {";
+    const std::vector<SceneParam> params = sceneParameters(s);
+    for (std::size_t k = 0; k < params.size(); ++k)
+      o << (k ? ", " : "") << quote(params[k].key) << ": "
+        << (params[k].is_number ? params[k].value : quote(params[k].value));
+    o << "},\n      \"results\": {";
+    if (!r.error.ok) {
+      o << "\"error\": " << quote(r.error.message) << "}}";
+      continue;
+    }
+    o << "\"frames\": " << r.frames.size() << ", \"visible\": " << r.visible
+      << ", \"expected\": " << r.expected << ", \"tracked\": " << r.tracked
+      << ", \"accurate\": " << r.accurate << ", \"pose_frames\": " << r.pose_frames
+      << ", \"confidently_wrong\": " << r.wrong
+      << ", \"tracked_fraction\": " << (r.tracked_fraction < 0 ? "null" : num(r.tracked_fraction))
+      << ", \"accurate_fraction\": " << (r.accurate_fraction < 0 ? "null" : num(r.accurate_fraction))
+      << ", \"recovery_never\": " << r.recovery_never << ", \"recovery_max\": " << r.recovery_max
+      << ", \"mode_changes\": " << r.mode_changes << ", \"acquisition_latency\": "
+      << (r.acquisition_latency == -2 ? std::string("null") : std::to_string(r.acquisition_latency))
+      << ", \"max_position_error_rel\": " << num(r.max_position_error_rel)
+      << ", \"max_attitude_error_deg\": " << num(r.max_attitude_error_deg)
+      << ", \"nis_count\": " << r.nis_count << ", \"nis_mean\": " << num(r.nis_mean) << "},\n";
+    o << "      \"events\": [";
+    for (std::size_t k = 0; k < r.events.size(); ++k)
+      o << (k ? ", " : "") << "{\"kind\": " << quote(toString(r.events[k].kind))
+        << ", \"frame\": " << r.events[k].frame << ", \"latency\": "
+        << (r.events[k].latency < 0 ? std::string("\"never\"") : std::to_string(r.events[k].latency)) << "}";
+    o << "],\n      \"transitions\": [";
+    for (std::size_t k = 0; k < r.transitions.size(); ++k) {
+      const TransitionRecord& t = r.transitions[k];
+      o << (k ? ", " : "") << "{\"frame\": " << t.frame << ", \"from\": " << quote(nav::toString(t.from))
+        << ", \"to\": " << quote(nav::toString(t.to)) << ", \"reason\": " << quote(t.reason) << "}";
+    }
+    o << "]}";
+  }
+  o << (runs.empty() ? "],\n" : "\n  ],\n");
+  o << "  \"confidently_wrong\": [";
+  bool first = true;
+  for (const SceneRun& run : runs) {
+    for (const FrameOutcome& f : run.result.frames) {
+      if (!f.wrong) continue;
+      o << (first ? "\n    " : ",\n    ") << "{\"scene\": " << quote(run.scene.name)
+        << ", \"family\": " << quote(toString(run.scene.family)) << ", \"seed\": " << seedText(run.scene.seed)
+        << ", \"frame\": " << f.frame << ", \"mode\": " << quote(nav::toString(f.mode))
+        << ", \"fault_bits\": " << f.fault_bits << ", \"range_m\": " << num(f.range_m)
+        << ", \"position_error_m\": " << num(f.position_error_m)
+        << ", \"position_error_pct\": " << num(100.0 * f.position_error_m / f.range_m)
+        << ", \"attitude_error_deg\": " << num(f.attitude_error_deg) << "}";
+      first = false;
+    }
+  }
+  o << (first ? "],\n" : "\n  ],\n");
+  // Everything that depends on the machine's clock or the thread count: strip this object to compare runs.
+  o << "  \"timing\": {\"enabled\": " << (options.timing ? "true" : "false") << ", \"jobs\": " << options.jobs
+    << ", \"step_us\": {";
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    o << (i ? ", " : "") << quote(groups[i].name) << ": {";
+    for (int m = 0; m < kModeCount; ++m)
+      o << (m ? ", " : "") << quote(nav::toString(static_cast<nav::NavMode>(m))) << ": "
+        << distributionJson(groups[i].step_us[static_cast<std::size_t>(m)]);
+    o << "}";
+  }
+  o << "},\n    \"scenes\": [";
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    std::vector<double> steps;
+    for (const FrameOutcome& f : runs[i].result.frames) steps.push_back(f.process_us);
+    const Distribution d = distribution(steps);
+    o << (i ? ", " : "") << "{\"name\": " << quote(runs[i].scene.name)
+      << ", \"wall_s\": " << num(runs[i].result.wall_s) << ", \"step_median_us\": " << num(d.median)
+      << ", \"step_p95_us\": " << num(d.p95) << "}";
+  }
+  o << "]}\n}\n";
+}
+
+void writeCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
+  std::vector<std::string> param_keys;
+  if (!runs.empty())
+    for (const SceneParam& p : sceneParameters(runs.front().scene)) param_keys.push_back(p.key);
+  o << "name,family,kind,seed";
+  for (const std::string& k : param_keys) o << "," << k;
+  o << ",frames_run,visible,expected,tracked,accurate,confidently_wrong,tracked_fraction,accurate_fraction,"
+       "recovery_events,recovery_never,recovery_max,mode_changes,acquisition_latency,max_position_error_pct,"
+       "max_attitude_error_deg,nis_count,nis_mean,error,time_wall_s,time_step_median_us,time_step_p95_us\n";
+  for (const SceneRun& run : runs) {
+    const Scene& s = run.scene;
+    const SceneResult& r = run.result;
+    o << csvField(s.name) << "," << toString(s.family) << "," << kindText(s) << "," << seedText(s.seed);
+    for (const SceneParam& p : sceneParameters(s)) o << "," << csvField(p.value);
+    std::vector<double> steps;
+    for (const FrameOutcome& f : r.frames) steps.push_back(f.process_us);
+    const Distribution d = distribution(steps);
+    o << "," << r.frames.size() << "," << r.visible << "," << r.expected << "," << r.tracked << ","
+      << r.accurate << "," << r.wrong << "," << (r.tracked_fraction < 0 ? "" : num(r.tracked_fraction)) << ","
+      << (r.accurate_fraction < 0 ? "" : num(r.accurate_fraction)) << "," << r.events.size() << ","
+      << r.recovery_never << "," << r.recovery_max << "," << r.mode_changes << ","
+      << (r.acquisition_latency == -2 ? std::string() : std::to_string(r.acquisition_latency)) << ","
+      << num(100.0 * r.max_position_error_rel) << "," << num(r.max_attitude_error_deg) << "," << r.nis_count
+      << "," << num(r.nis_mean) << "," << csvField(r.error.message) << "," << num(r.wall_s) << ","
+      << num(d.median) << "," << num(d.p95) << "\n";
+  }
+}
+
+}  // namespace visnav::campaign

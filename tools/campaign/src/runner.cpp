@@ -1,0 +1,149 @@
+#include "visnav/campaign/runner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <memory>
+
+#include "visnav/core/frame.hpp"
+#include "visnav/synthetic/renderer.hpp"
+
+namespace visnav::campaign {
+namespace {
+
+std::int64_t monotonicNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
+}
+
+constexpr std::size_t kMaxTransitionRecords = 64;
+
+}  // namespace
+
+void summariseScene(const Scene& scene, double acquire_below_m, SceneResult& r) {
+  r.visible = r.expected = r.tracked = r.accurate = r.wrong = r.pose_frames = 0;
+  r.max_position_error_rel = r.max_attitude_error_deg = 0.0;
+  r.nis_count = 0;
+  double nis_sum = 0.0;
+  int first_expected = -1;
+  for (FrameOutcome& f : r.frames) {
+    f.expected = f.visible && (!scene.approach || scene.truth(f.frame).t_c_m.z() <= acquire_below_m);
+    r.visible += f.visible ? 1 : 0;
+    if (f.expected) {
+      if (first_expected < 0) first_expected = f.frame;
+      ++r.expected;
+      r.tracked += f.tracked ? 1 : 0;
+      r.accurate += f.accurate ? 1 : 0;
+    }
+    r.wrong += f.wrong ? 1 : 0;
+    if (f.pose_valid) {
+      ++r.pose_frames;
+      r.max_position_error_rel = std::max(r.max_position_error_rel, f.position_error_m / f.range_m);
+      r.max_attitude_error_deg = std::max(r.max_attitude_error_deg, f.attitude_error_deg);
+    }
+    if (f.has_nis) {
+      ++r.nis_count;
+      nis_sum += f.nis;
+    }
+  }
+  r.nis_mean = r.nis_count > 0 ? nis_sum / r.nis_count : 0.0;
+  r.tracked_fraction = r.expected > 0 ? static_cast<double>(r.tracked) / r.expected : -1.0;
+  r.accurate_fraction = r.expected > 0 ? static_cast<double>(r.accurate) / r.expected : -1.0;
+  r.events = recoveryEvents(r.frames, !scene.approach);
+  r.recovery_never = 0;
+  r.recovery_max = -1;
+  for (const RecoveryEvent& e : r.events) {
+    if (e.latency < 0)
+      ++r.recovery_never;
+    else
+      r.recovery_max = std::max(r.recovery_max, e.latency);
+  }
+  r.acquisition_latency = -2;
+  if (scene.approach && first_expected >= 0) {
+    r.acquisition_latency = -1;
+    for (std::size_t i = static_cast<std::size_t>(first_expected); i < r.frames.size(); ++i)
+      if (r.frames[i].tracked) {
+        r.acquisition_latency = static_cast<int>(i) - first_expected;
+        break;
+      }
+  }
+}
+
+SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing, const Thresholds& th) {
+  SceneResult res;
+  const std::int64_t wall_start = timing ? monotonicNs() : 0;
+  const PinholeCamera camera(scene.camera);
+  synthetic::Renderer renderer;
+  if (LoadError e = renderer.init(camera, scene.model, scene.render); !e.ok) {
+    res.error = LoadError::failure(scene.name + ": " + e.message);
+    return res;
+  }
+  nav::PipelineParams params = base;
+  params.farrange.gamma = scene.gamma;  // calibrated for this target and camera, as a user would
+  auto pipeline = std::make_unique<nav::NavigationPipeline>();
+  if (LoadError e = pipeline->init(camera, scene.model, params); !e.ok) {
+    res.error = LoadError::failure(scene.name + ": pipeline: " + e.message);
+    return res;
+  }
+  if (timing) pipeline->setClock(&monotonicNs);
+  if (!scene.approach) pipeline->startNearRange(scene.truth(0), 0);
+  const std::uint64_t transitions_start = pipeline->modes().transitionCount();
+
+  const int w = scene.camera.width_px;
+  const int h = scene.camera.height_px;
+  std::vector<std::uint8_t> image(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  res.frames.resize(static_cast<std::size_t>(scene.frames));
+  Pose hidden;  // eclipse: the target is drawn behind the camera, the background stays
+  hidden.t_c_m = Vec3(0.0, 0.0, -1000.0);
+  for (int i = 0; i < scene.frames; ++i) {
+    const Pose truth = scene.truth(i);
+    const bool eclipsed = scene.eclipsed(i);
+    const std::int64_t t_ns = scene.timestampNs(i);
+    renderer.setFrameIndex(i);
+    renderer.render(eclipsed ? hidden : truth,
+                    synthetic::Renderer::frameSeed(scene.noise_seed, static_cast<std::uint64_t>(i)),
+                    image.data(), w);
+    Frame frame;
+    frame.image = MonoImage::from8(ImageView8(image.data(), w, h));
+    frame.exposure_time_ns = t_ns;
+    frame.sequence = static_cast<std::uint64_t>(i);
+    const std::uint64_t transitions_before = pipeline->modes().transitionCount();
+    nav::NavSolution sol;
+    pipeline->process(&frame, t_ns, sol);  // simulated clock: processed at its exposure time
+
+    FrameOutcome& f = res.frames[static_cast<std::size_t>(i)];
+    f.frame = i;
+    f.eclipsed = eclipsed;
+    f.slew = scene.events.slew && i == scene.events.slew_frame;
+    f.visible = targetVisible(camera, scene.model, truth, eclipsed, th);
+    f.range_m = truth.t_c_m.norm();
+    f.mode = sol.mode;
+    f.pose_valid = sol.pose_valid;
+    f.fault_bits = sol.fault_bits;
+    if (sol.pose_valid) {
+      f.position_error_m = (sol.pose.t_c_m - truth.t_c_m).norm();
+      f.attitude_error_deg = attitudeErrorModuloDeg(sol.pose.R_c_m, truth.R_c_m, scene.symmetries);
+    }
+    const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
+    if (u.status == Status::kOk && u.dof == 6) {
+      f.has_nis = true;
+      f.nis = u.nis;
+    }
+    f.process_us = sol.timing.process_us;
+    classifyFrame(f, th);
+    if (pipeline->modes().transitionCount() != transitions_before &&
+        res.transitions.size() < kMaxTransitionRecords) {
+      const nav::ModeTransition& t = pipeline->modes().lastTransition();
+      res.transitions.push_back({i, t.from, t.to, std::string(t.reason.data())});
+    }
+  }
+  res.mode_changes = static_cast<int>(pipeline->modes().transitionCount() - transitions_start);
+  summariseScene(scene, params.navigation.acquire_below_m, res);
+  if (timing) res.wall_s = static_cast<double>(monotonicNs() - wall_start) * 1e-9;
+  return res;
+}
+
+}  // namespace visnav::campaign
