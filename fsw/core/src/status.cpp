@@ -11,6 +11,7 @@ const char* toString(Status status) {
     case Status::kNotConverged: return "not converged";
     case Status::kDegenerate: return "degenerate";
     case Status::kOutOfImage: return "out of image";
+    case Status::kGaveUp: return "gave up";
   }
   return "unknown";
 }

@@ -14,6 +14,8 @@ Eigen::Matrix<double, 3, 6> pointJacobian(const Vec3& rotated_m) {
   return j;
 }
 
+inline double cross2(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
 class VertexProblem {
  public:
   VertexProblem(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation* obs,
@@ -26,12 +28,9 @@ class VertexProblem {
     cost = 0.0;
     int residuals = 0;
     for (int i = 0; i < m_count; ++i) {
-      const Vec3 rotated = pose.R_c_m * m_model.vertices()[m_obs[i].vertex];
-      Vec2 px;
-      Mat23 d_px_d_p;
-      if (!m_camera.projectIdeal(rotated + pose.t_c_m, px, &d_px_d_p)) return 0;
-      const Vec2 r = px - m_obs[i].px_ideal;
-      const Mat26 j = d_px_d_p * pointJacobian(rotated);
+      Vec2 r;
+      Mat26 j;
+      if (!vertexResidual(m_camera, m_model, m_obs[i], pose, r, j)) return 0;
       jtj.noalias() += j.transpose() * j;
       jtr.noalias() += j.transpose() * r;
       cost += r.squaredNorm();
@@ -57,8 +56,6 @@ class VertexProblem {
   int m_count;
 };
 
-inline double cross2(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
-
 class PointToLineProblem {
  public:
   PointToLineProblem(const PinholeCamera& camera, const PolygonModel& model, const EdgePointObservation* obs,
@@ -71,24 +68,9 @@ class PointToLineProblem {
     cost = 0.0;
     int residuals = 0;
     for (int i = 0; i < m_count; ++i) {
-      const ModelEdge& edge = m_model.edges()[m_obs[i].edge];
-      const Vec3 ra = pose.R_c_m * m_model.vertices()[edge.v0];
-      const Vec3 rb = pose.R_c_m * m_model.vertices()[edge.v1];
-      Vec2 a, b;
-      Mat23 da, db;
-      if (!m_camera.projectIdeal(ra + pose.t_c_m, a, &da) || !m_camera.projectIdeal(rb + pose.t_c_m, b, &db))
-        return 0;
-      const Vec2 d = b - a;
-      const double len = d.norm();
-      if (len < 1e-9) return 0;
-      const Vec2 w = m_obs[i].px_ideal - a;
-      // r = cross(d, w) / |d|: signed distance of the edge point from the projected model edge.
-      const double r = cross2(d, w) / len;
-      const Vec2 dc_db(w.y(), -w.x());
-      const Vec2 dc_da(d.y() - w.y(), w.x() - d.x());
-      const Vec2 dr_db = dc_db / len - r * d / (len * len);
-      const Vec2 dr_da = dc_da / len + r * d / (len * len);
-      const Mat16 j = dr_da.transpose() * da * pointJacobian(ra) + dr_db.transpose() * db * pointJacobian(rb);
+      double r = 0.0;
+      Mat16 j;
+      if (!pointToLineResidual(m_camera, m_model, m_obs[i], pose, r, j)) return 0;
       jtj.noalias() += j.transpose() * j;
       jtr.noalias() += j.transpose() * r;
       cost += r * r;
@@ -138,6 +120,42 @@ bool finish(const LmSummary<6>& lm, double pixel_sigma_px, PoseFitResult& result
 }
 
 }  // namespace
+
+bool vertexResidual(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation& obs,
+                    const Pose& pose, Vec2& residual, Mat26& jacobian) {
+  const Vec3 rotated = pose.R_c_m * model.vertices()[obs.vertex];
+  Vec2 px;
+  Mat23 d_px_d_p;
+  if (!camera.projectIdeal(rotated + pose.t_c_m, px, &d_px_d_p)) return false;
+  residual = px - obs.px_ideal;
+  jacobian = d_px_d_p * pointJacobian(rotated);
+  return true;
+}
+
+bool pointToLineResidual(const PinholeCamera& camera, const PolygonModel& model,
+                         const EdgePointObservation& obs, const Pose& pose, double& residual,
+                         Mat16& jacobian) {
+  const ModelEdge& edge = model.edges()[obs.edge];
+  const Vec3 ra = pose.R_c_m * model.vertices()[edge.v0];
+  const Vec3 rb = pose.R_c_m * model.vertices()[edge.v1];
+  Vec2 a, b;
+  Mat23 da, db;
+  if (!camera.projectIdeal(ra + pose.t_c_m, a, &da) || !camera.projectIdeal(rb + pose.t_c_m, b, &db))
+    return false;
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  if (len < 1e-9) return false;
+  const Vec2 w = obs.px_ideal - a;
+  // r = cross(d, w) / |d|: signed distance of the edge point from the projected model edge.
+  const double r = cross2(d, w) / len;
+  const Vec2 dc_db(w.y(), -w.x());
+  const Vec2 dc_da(d.y() - w.y(), w.x() - d.x());
+  const Vec2 dr_db = dc_db / len - r * d / (len * len);
+  const Vec2 dr_da = dc_da / len + r * d / (len * len);
+  residual = r;
+  jacobian = dr_da.transpose() * da * pointJacobian(ra) + dr_db.transpose() * db * pointJacobian(rb);
+  return true;
+}
 
 bool fitPoseToVertices(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation* obs,
                        int count, const LmOptions& options, double pixel_sigma_px, Pose& pose,

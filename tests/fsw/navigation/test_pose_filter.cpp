@@ -77,6 +77,65 @@ PoseFilter makeFilter(const PoseFilterParams& params = {}) {
   return f;
 }
 
+// The start covariances, entry by entry: the pose block as given (its symmetric part), the velocities at
+// their configured priors, nothing correlated across; a position start has a nominal pi^2 attitude; the first
+// attitude adopted later comes uncorrelated with the (by then correlated) position and velocity.
+TEST(PoseFilter, StartCovariancesHaveTheDocumentedLayout) {
+  PoseFilterParams params;
+  params.initial_velocity_sigma_m_s = 0.7;
+  params.initial_angular_velocity_sigma_deg_s = 3.0;
+  const double sv2 = 0.7 * 0.7;
+  const double sw2 = (3.0 * kRadPerDeg) * (3.0 * kRadPerDeg);
+  Mat6 pose_cov = trackerLikeCovariance();
+  pose_cov(0, 4) = 1e-6;  // asymmetric on purpose: the symmetric part is used
+  pose_cov(4, 0) = 3e-6;
+  PoseFilter f = makeFilter(params);
+  ASSERT_EQ(f.initialise(Pose::fromYpr({0.1, 0.2, 0.3}, Vec3(0.1, 0.2, 9.0)), pose_cov), Status::kOk);
+  Mat12 expected = Mat12::Zero();
+  expected.topLeftCorner<6, 6>() = 0.5 * (pose_cov + pose_cov.transpose());
+  expected.block<3, 3>(PoseFilter::kVelocity, PoseFilter::kVelocity) = Mat3::Identity() * sv2;
+  expected.block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kAngularVelocity) = Mat3::Identity() * sw2;
+  EXPECT_LT((f.covariance() - expected).cwiseAbs().maxCoeff(), 1e-15) << f.covariance();
+  EXPECT_DOUBLE_EQ(f.covariance()(0, 4), 2e-6);
+  EXPECT_TRUE(f.velocity().isZero());
+  EXPECT_TRUE(f.angularVelocity().isZero());
+
+  Mat3 pos_cov;
+  pos_cov << 4.0, 0.5, 0.0, 0.5, 2.0, 0.1, 0.0, 0.1, 9.0;
+  ASSERT_EQ(f.initialisePosition(Vec3(1.0, 2.0, 300.0), pos_cov), Status::kOk);
+  expected.setZero();
+  expected.block<3, 3>(PoseFilter::kAttitude, PoseFilter::kAttitude) = Mat3::Identity() * kPi * kPi;
+  expected.block<3, 3>(PoseFilter::kPosition, PoseFilter::kPosition) = pos_cov;
+  expected.block<3, 3>(PoseFilter::kVelocity, PoseFilter::kVelocity) = Mat3::Identity() * sv2;
+  expected.block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kAngularVelocity) = Mat3::Identity() * sw2;
+  EXPECT_LT((f.covariance() - expected).cwiseAbs().maxCoeff(), 1e-15) << f.covariance();
+
+  // Couple position and velocity, then adopt an attitude: its block is the measurement's, and it and the
+  // restarted angular velocity are uncorrelated with everything else.
+  ASSERT_EQ(f.predict(0.2), Status::kOk);
+  Mat6 meas = trackerLikeCovariance();
+  meas(0, 1) = meas(1, 0) = 1e-7;
+  const FilterUpdate up = f.update(Pose::fromYpr({0.0, 0.0, 0.0}, f.pose().t_c_m), meas);
+  ASSERT_TRUE(up.accepted);
+  ASSERT_TRUE(f.attitudeKnown());
+  const Mat12& p = f.covariance();
+  EXPECT_EQ(Mat3(p.block<3, 3>(PoseFilter::kAttitude, PoseFilter::kAttitude)),
+            Mat3(meas.topLeftCorner<3, 3>()));
+  EXPECT_EQ(Mat3(p.block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kAngularVelocity)),
+            Mat3(Mat3::Identity() * sw2));
+  for (const int block : {PoseFilter::kAttitude, PoseFilter::kAngularVelocity}) {
+    for (int i = 0; i < 12; ++i) {
+      if (i >= block && i < block + 3) continue;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(p(block + k, i), 0.0) << "row " << block + k << " col " << i;
+        EXPECT_EQ(p(i, block + k), 0.0) << "row " << i << " col " << block + k;
+      }
+    }
+  }
+  // Position and velocity stay correlated (the prediction coupled them).
+  EXPECT_NE(p(PoseFilter::kPosition, PoseFilter::kVelocity), 0.0);
+}
+
 TEST(PoseFilter, LeftJacobianMatchesFiniteDifferences) {
   const Vec3 phi(0.7, -1.9, 1.2);  // ~2.4 rad: far from the small-angle branch
   const Mat3 jl = leftJacobianSo3(phi);

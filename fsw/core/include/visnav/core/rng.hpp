@@ -25,7 +25,8 @@ class Pcg32 {
     const auto rot = static_cast<std::uint32_t>(old >> 59U);
     return (xorshifted >> rot) | (xorshifted << ((~rot + 1U) & 31U));
   }
-  /// Uniform integer in [0, bound) without modulo bias (Lemire's rejection; bounded: expected < 2 draws).
+  /// Uniform integer in [0, bound) without modulo bias: the reference pcg32_boundedrand_r (reject draws below
+  /// 2^32 mod bound, then take the remainder); bounded: expected < 2 draws, modulo after 64 rejections.
   std::uint32_t below(std::uint32_t bound) {
     if (bound == 0U) return 0U;
     const std::uint32_t threshold = (~bound + 1U) % bound;

@@ -16,6 +16,9 @@ enum class Status : std::uint8_t {
   kNotConverged,
   kDegenerate,
   kOutOfImage,
+  /// An iterative solver stopped without an accepted step and without meeting its convergence criteria
+  /// (e.g. Levenberg-Marquardt damping beyond max_lambda): the result is the last iterate, not a solution.
+  kGaveUp,
 };
 
 const char* toString(Status status);

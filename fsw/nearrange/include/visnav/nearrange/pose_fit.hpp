@@ -32,6 +32,8 @@ struct PoseFitResult {
 
 /// Eq. 7: minimise sum_i |c_i(p) - r_i|^2. `pose` is the start and receives the solution.
 /// `pixel_sigma_px` scales the covariance (a posteriori when <= 0: from the residual).
+/// Both fits return true only for a converged LM (result.lm.status kOk); kGaveUp, kNotConverged and
+/// kNotEnoughData are failed fits (`pose` is then the last iterate).
 bool fitPoseToVertices(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation* obs,
                        int count, const LmOptions& options, double pixel_sigma_px, Pose& pose,
                        PoseFitResult& result);
@@ -40,5 +42,16 @@ bool fitPoseToVertices(const PinholeCamera& camera, const PolygonModel& model, c
 bool fitPoseToEdgePoints(const PinholeCamera& camera, const PolygonModel& model,
                          const EdgePointObservation* obs, int count, const LmOptions& options,
                          double pixel_sigma_px, Pose& pose, PoseFitResult& result);
+
+/// One observation's residual, exactly as both fits linearise it, and its Jacobian over the pose delta
+/// (omega, dt) of Pose::boxPlus (CONVENTIONS.md). Vertex: projected minus measured position [ideal px].
+/// False when the vertex is not in front of the camera.
+bool vertexResidual(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation& obs,
+                    const Pose& pose, Vec2& residual, Mat26& jacobian);
+/// Point-to-line: signed distance [ideal px] of the edge point from its projected model edge. False when an
+/// edge end is not in front of the camera or the edge projects to (almost) a point.
+bool pointToLineResidual(const PinholeCamera& camera, const PolygonModel& model,
+                         const EdgePointObservation& obs, const Pose& pose, double& residual,
+                         Mat16& jacobian);
 
 }  // namespace visnav

@@ -14,7 +14,8 @@ namespace visnav {
 struct LmOptions {
   int max_iterations = 50;       ///< bounded loop
   double initial_lambda = 1e-4;  ///< damping relative to diag(H)
-  double max_lambda = 1e8;       ///< give up beyond this damping
+  /// Give up beyond this damping: when no step is accepted before lambda passes it, the result is kGaveUp.
+  double max_lambda = 1e8;
   /// Converged when |delta| < this. Parameters are radians and metres: 1e-8 is far below anything a camera
   /// can resolve, and still reachable in double precision on the ill-conditioned far end (25 m) of the range.
   double step_tolerance = 1e-8;
@@ -24,6 +25,10 @@ struct LmOptions {
 
 template <int N>
 struct LmSummary {
+  /// kOk: converged (step, cost decrease or gradient below its tolerance, or a rejected step already below
+  /// step_tolerance). kNotConverged: max_iterations reached. kGaveUp: the damping passed max_lambda without
+  /// an accepted step while the step was still above step_tolerance (no descent found: the iterate is not a
+  /// minimum). kNotEnoughData: fewer residuals than parameters, or the problem could not be linearised.
   Status status = Status::kNotConverged;
   int iterations = 0;
   int residual_count = 0;  ///< scalar residuals in the final linearisation
@@ -54,6 +59,7 @@ LmSummary<N> solveLevenbergMarquardt(Problem& problem, State& state, const LmOpt
   }
   summary.initial_cost = cost;
   double lambda = options.initial_lambda;
+  bool gave_up = false;
   if (jtr.template lpNorm<Eigen::Infinity>() < options.gradient_tolerance) summary.converged = true;
   for (int iteration = 0; iteration < options.max_iterations && !summary.converged; ++iteration) {
     summary.iterations = iteration + 1;
@@ -96,15 +102,21 @@ LmSummary<N> solveLevenbergMarquardt(Problem& problem, State& state, const LmOpt
       return summary;
     }
     if (jtr.template lpNorm<Eigen::Infinity>() < options.gradient_tolerance) summary.converged = true;
-    if (summary.converged || !accepted) {
-      if (!accepted && !summary.converged) summary.converged = lambda > options.max_lambda;
+    if (summary.converged) break;
+    if (!accepted) {
+      // Every damped step was rejected while still above step_tolerance: no descent direction was found.
+      gave_up = lambda > options.max_lambda;
       break;
     }
   }
   summary.final_cost = cost;
   summary.residual_count = residuals;
   summary.information = jtj;
-  summary.status = summary.converged ? Status::kOk : Status::kNotConverged;
+  if (summary.converged) {
+    summary.status = Status::kOk;
+  } else {
+    summary.status = gave_up ? Status::kGaveUp : Status::kNotConverged;
+  }
   return summary;
 }
 

@@ -33,7 +33,7 @@ struct FrameEnvelope {
   bool exhaustive = false;
   int vertex_count = 0;
   int combinations = 0;
-  int failed_solves = 0;  ///< LM runs that did not report convergence (their pose is still used)
+  int failed_solves = 0;  ///< LM runs not converged: max_iterations or kGaveUp (their pose is still used)
   AxisValues max_abs{};   ///< per-axis envelope: max |error| [m | deg]
   double max_angle_deg = 0.0;
 };
