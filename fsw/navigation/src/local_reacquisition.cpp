@@ -74,7 +74,8 @@ bool LocalReacquisition::trackFrom(NearRangeTracker& tracker, const MonoImage& i
     if (result.status == TrackStatus::kLost) return false;
     pose = result.pose;
   }
-  return result.status == TrackStatus::kTracking && imageEvidenceGood(result, m_params);
+  // Degraded is fine (a grazing face's line rejected): the evidence test judges what was used.
+  return imageEvidenceGood(result, m_params);
 }
 
 void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
@@ -88,10 +89,18 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
   NearRangeResult best;
   bool ambiguous = false;
   NearRangeResult r;
+  // The prediction and its first ring are tried on every frame (a target that reappears after an eclipse
+  // is most likely there); the rest of the budget walks the outer rings, continuing where the last frame
+  // stopped, so the whole widening grid is covered over the frames.
+  const int inner = std::min(hypothesesWithinRings(1), total);
   const int budget = std::min(m_params.reacquire_hypotheses_per_frame, total);
   for (int n = 0; n < budget; ++n) {
-    if (m_cursor >= total) m_cursor = 0;  // the grid is re-centred on each frame's prediction
-    const Pose start = hypothesis(predicted, m_cursor++);
+    int index = n;
+    if (n >= inner) {
+      if (m_cursor < inner || m_cursor >= total) m_cursor = inner;  // re-centred on each frame's prediction
+      index = m_cursor++;
+    }
+    const Pose start = hypothesis(predicted, index);
     ++out.hypotheses;
     if (!trackFrom(m_wide, image, start, frame_number, kPassesPerStart, r)) continue;
     if (!have_best) {
@@ -125,7 +134,7 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
 void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out) {
   NearRangeResult& r = m_result;
   m_flight.track(image, m_candidate, frame_number, r);
-  const bool good = r.status == TrackStatus::kTracking && imageEvidenceGood(r, m_params);
+  const bool good = imageEvidenceGood(r, m_params);
   const double moved_m = (r.pose.t_c_m - m_candidate.t_c_m).norm();
   const double turned_rad = rotationAngleRad(r.pose.R_c_m, m_candidate.R_c_m);
   const bool consistent = moved_m <= m_params.reacquire_max_motion_rel * m_candidate.t_c_m.z() &&

@@ -23,7 +23,7 @@ struct NavigationParams {
   double max_depth_m = 0.0;
   double max_frame_age_ms = 150.0;  ///< frame older than this when processed: fault
   // Image evidence that makes a near-range measurement win over the filter's prediction.
-  double evidence_min_line_fraction = 0.75;  ///< used lines / measured lines
+  double evidence_min_line_fraction = 0.6;   ///< used lines / measured lines
   double evidence_min_inlier_ratio = 0.7;    ///< inlier points / edge points of the used lines
   double evidence_max_rms_px = 0.8;          ///< pose-fit residual
   double evidence_min_edge_support = 0.5;    ///< inlier points / scanlines cast
