@@ -138,6 +138,11 @@ int main(int argc, char** argv) {
     writeJson(json, options, runs, groups, gates);
     std::ofstream csv(options.out_dir + "/scenes.csv");
     writeCsv(csv, runs);
+    if (options.frames_csv) {
+      std::ofstream frames(options.out_dir + "/frames.csv");
+      writeFramesCsv(frames, runs);
+      if (!frames) return fail(options.out_dir + "/frames.csv: write failed");
+    }
     if (!json || !csv) return fail(options.out_dir + ": write failed");
   }
   if (LoadError e =

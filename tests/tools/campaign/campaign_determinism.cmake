@@ -1,5 +1,5 @@
 # Runs a tiny campaign twice (one thread, then two; --no-timing) and requires campaign.json (without its
-# "timing" object) and scenes.csv to be bit-identical. -DCAMPAIGN=<visnav-campaign> -DOUT=<dir>
+# "timing" object), scenes.csv and campaign.png to be bit-identical. -DCAMPAIGN=<visnav-campaign> -DOUT=<dir>
 set(args --runs 1 --seed 7 --families plate,box,smallsat --max-frames 12 --no-timing --quiet)
 foreach(run 1 2)
   file(REMOVE_RECURSE ${OUT}/run${run})
@@ -11,6 +11,7 @@ foreach(run 1 2)
   file(READ ${OUT}/run${run}/campaign.json json)
   string(JSON json${run} REMOVE "${json}" timing)
   file(READ ${OUT}/run${run}/scenes.csv csv${run})
+  file(SHA256 ${OUT}/run${run}/campaign.png png${run})
 endforeach()
 if(NOT json1 STREQUAL json2)
   message(FATAL_ERROR "campaign.json differs between the two runs (outside \"timing\")")
@@ -18,4 +19,7 @@ endif()
 if(NOT csv1 STREQUAL csv2)
   message(FATAL_ERROR "scenes.csv differs between the two runs")
 endif()
-message(STATUS "campaign.json and scenes.csv identical over two runs")
+if(NOT png1 STREQUAL png2)
+  message(FATAL_ERROR "campaign.png differs between the two runs")
+endif()
+message(STATUS "campaign.json, scenes.csv and campaign.png identical over two runs")

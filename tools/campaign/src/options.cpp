@@ -41,7 +41,7 @@ bool parseDouble(const std::string& text, double& out) {
 std::string usageText() {
   return "usage: visnav-campaign --runs N [--seed S] [--families plate,octagon,box,smallsat,cao]\n"
          "                       [--model FILE.cao|.toml] [--config FILE] [--jobs J] [--out DIR]\n"
-         "                       [--max-frames N] [--no-timing] [--quiet]\n"
+         "                       [--max-frames N] [--no-timing] [--quiet] [--frames]\n"
          "                       [--require-tracked-fraction F] [--require-no-confident-wrong]\n"
          "                       [--require-recovery-frames K] [--require-max-mode-changes M]\n"
          "       visnav-campaign --case NAME|all [same options]   (tumbling_box, eclipse_box, slew_box,\n"
@@ -50,8 +50,9 @@ std::string usageText() {
          "run\n"
          "through the whole flight pipeline in memory and scored against its truth. Writes "
          "DIR/campaign.json,\n"
-         "DIR/scenes.csv, DIR/campaign.png (default DIR out/campaign). Exit 0: every gate holds; 1: a gate\n"
-         "failed (the worst scene and the command to rerun it are printed); 2: bad arguments or files.\n"
+         "DIR/scenes.csv and DIR/campaign.png (default DIR out/campaign; --frames adds DIR/frames.csv).\n"
+         "Exit 0: every gate holds; 1: a gate failed (the worst scene and the command to rerun it are\n"
+         "printed); 2: bad arguments or files.\n"
          "Details: tools/campaign/README.md\n";
 }
 
@@ -72,6 +73,8 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
       o.timing = false;
     } else if (a == "--quiet") {
       o.quiet = true;
+    } else if (a == "--frames") {
+      o.frames_csv = true;
     } else if (a == "--require-no-confident-wrong") {
       o.gates.no_confident_wrong = true;
     } else if (a == "--runs" || a == "--jobs" || a == "--max-frames" || a == "--require-recovery-frames" ||

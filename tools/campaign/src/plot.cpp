@@ -44,8 +44,8 @@ void centredText(Canvas& c, int cx, int y, const std::string& s, Rgb colour) {
 Area drawFrame(Canvas& c, int x0, int y0, const std::string& title, double y_lo, double y_hi,
                const std::string& ylabel) {
   const Area a{x0 + 90, y0 + 50, x0 + kPanelW - 30, y0 + kPanelH - 70, y_lo, y_hi};
-  centredText(c, (a.left + a.right) / 2, y0 + 14, title, kBlack);
-  c.text(x0 + 8, y0 + 30, ylabel, kBlack, kText);
+  centredText(c, (a.left + a.right) / 2, y0 + 6, title, kBlack);
+  c.text(x0 + 8, y0 + 26, ylabel, kBlack, kText);  // under the title, left of the plot
   int decimals = 0;
   for (double t : eval::niceTicks(y_lo, y_hi, 5, decimals)) {
     const double y = a.py(t);

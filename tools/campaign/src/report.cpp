@@ -241,39 +241,36 @@ std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vec
                          bool timing) {
   std::ostringstream o;
   char buf[512];
-  std::snprintf(buf, sizeof(buf), "%-9s %6s %6s %6s  %-24s %6s  %-18s %-22s %-13s %-19s\n", "group", "scenes",
-                "frames", "visibl", "tracked mean / worst", "accur", "conf.wrong (scenes)",
-                "recovery med/p95/max/never", "modes med/max", "nis mean/p95/>gate");
+  // Columns: see tools/campaign/README.md "Outputs".
+  const char* row = "%-8s %6s %6s %6s %6s  %-28s %6s %-9s %-15s %-11s %-15s %s\n";
+  std::snprintf(buf, sizeof(buf), row, "group", "scenes", "frames", "visibl", "expect",
+                "tracked mean, worst scene", "accur", "wrong(sc)", "recov md/95/max", "recov never",
+                "modes near|appr", "nis mean/95/>gate");
   o << buf;
+  auto whole = [](double v) { return num(v, "%.0f"); };
   for (const GroupSummary& g : groups) {
-    const std::string worst =
-        g.worst_tracked == nullptr
-            ? std::string("-")
-            : fraction(g.tracked_fraction_worst) + " (" +
-                  (g.worst_tracked->scene.is_case ? g.worst_tracked->scene.name
-                                                  : "seed " + seedText(g.worst_tracked->scene.seed)) +
-                  ")";
-    const std::string tracked =
-        (g.tracked_fraction.count > 0 ? num(g.tracked_fraction.mean, "%.3f") : "-") + " / " + worst;
+    std::string tracked = "-";
+    if (g.worst_tracked != nullptr)
+      tracked = num(g.tracked_fraction.mean, "%.3f") + ", " + fraction(g.tracked_fraction_worst) + " " +
+                g.worst_tracked->scene.name;
     const std::string wrong = std::to_string(g.wrong) + " (" + std::to_string(g.wrong_scenes) + ")";
-    const std::string rec = g.recovery_events == 0
-                                ? std::string("-")
-                                : num(g.recovery.median, "%.0f") + "/" + num(g.recovery.p95, "%.0f") + "/" +
-                                      num(g.recovery.max, "%.0f") + "/" + std::to_string(g.recovery_never);
-    std::vector<double> all_modes;
+    const std::string rec = g.recovery.count == 0 ? std::string("-")
+                                                  : whole(g.recovery.median) + "/" + whole(g.recovery.p95) +
+                                                        "/" + whole(g.recovery.max);
+    const std::string never = std::to_string(g.recovery_never) + " of " + std::to_string(g.recovery_events);
     const Distribution& mn = g.mode_changes_near;
-    const std::string modes =
-        (mn.count > 0 ? num(mn.median, "%.0f") + "/" + num(mn.max, "%.0f") : std::string("-")) +
-        (g.approach_scenes > 0 ? " a " + num(g.mode_changes_approach.median, "%.0f") + "/" +
-                                     num(g.mode_changes_approach.max, "%.0f")
-                               : std::string());
+    const Distribution& ma = g.mode_changes_approach;
+    const std::string modes = (mn.count > 0 ? whole(mn.median) + "/" + whole(mn.max) : std::string("-")) +
+                              " | " +
+                              (ma.count > 0 ? whole(ma.median) + "/" + whole(ma.max) : std::string("-"));
     const std::string nis = g.nis.count == 0 ? std::string("-")
                                              : num(g.nis.mean, "%.1f") + "/" + num(g.nis.p95, "%.1f") + "/" +
                                                    num(100.0 * g.nis_above_gate / g.nis.count, "%.1f") + "%";
-    std::snprintf(buf, sizeof(buf), "%-9s %6d %6d %6d  %-24s %6s  %-18s %-22s %-13s %-19s\n", g.name.c_str(),
-                  g.scenes, g.frames, g.visible, tracked.c_str(),
-                  g.accurate_fraction.count > 0 ? num(g.accurate_fraction.mean, "%.3f").c_str() : "-",
-                  wrong.c_str(), rec.c_str(), modes.c_str(), nis.c_str());
+    const std::string accurate = g.accurate_fraction.count > 0 ? num(g.accurate_fraction.mean, "%.3f") : "-";
+    std::snprintf(buf, sizeof(buf), row, g.name.c_str(), std::to_string(g.scenes).c_str(),
+                  std::to_string(g.frames).c_str(), std::to_string(g.visible).c_str(),
+                  std::to_string(g.expected).c_str(), tracked.c_str(), accurate.c_str(), wrong.c_str(),
+                  rec.c_str(), never.c_str(), modes.c_str(), nis.c_str());
     o << buf;
   }
   const GroupSummary& all = groups.front();
@@ -486,6 +483,22 @@ void writeCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
       << num(100.0 * r.max_position_error_rel) << "," << num(r.max_attitude_error_deg) << "," << r.nis_count
       << "," << num(r.nis_mean) << "," << csvField(r.error.message) << "," << num(r.wall_s) << ","
       << num(d.median) << "," << num(d.p95) << "\n";
+  }
+}
+
+void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
+  o << "scene,family,seed,frame,range_m,visible,expected,eclipsed,slew,mode,pose_valid,fault_bits,position_"
+       "error_m,"
+       "attitude_error_deg,wrong,tracked,accurate,nis,time_process_us\n";
+  for (const SceneRun& run : runs) {
+    for (const FrameOutcome& f : run.result.frames) {
+      o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
+        << "," << f.frame << "," << num(f.range_m) << "," << f.visible << "," << f.expected << ","
+        << f.eclipsed << "," << f.slew << "," << nav::toString(f.mode) << "," << f.pose_valid << ","
+        << f.fault_bits << "," << (f.pose_valid ? num(f.position_error_m) : "") << ","
+        << (f.pose_valid ? num(f.attitude_error_deg) : "") << "," << f.wrong << "," << f.tracked << ","
+        << f.accurate << "," << (f.has_nis ? num(f.nis) : "") << "," << num(f.process_us) << "\n";
+    }
   }
 }
 

@@ -33,6 +33,7 @@ struct CampaignOptions {
   int max_frames = 0;              ///< 0: no cap
   bool timing = true;              ///< --no-timing: no clock, timing fields 0
   bool quiet = false;              ///< --quiet: no per-scene progress lines on stderr
+  bool frames_csv = false;         ///< --frames: also DIR/frames.csv (one row per frame)
   Gates gates;
   bool help = false;
 };

@@ -87,6 +87,8 @@ std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vec
 void writeJson(std::ostream& out, const CampaignOptions& options, const std::vector<SceneRun>& runs,
                const std::vector<GroupSummary>& groups, const std::vector<GateResult>& gates);
 void writeCsv(std::ostream& out, const std::vector<SceneRun>& runs);
+/// --frames: one row per frame of every scene (verdicts, errors, mode; time_process_us last).
+void writeFramesCsv(std::ostream& out, const std::vector<SceneRun>& runs);
 eval::Canvas renderCampaignPlot(const std::vector<SceneRun>& runs, const std::vector<GroupSummary>& groups,
                                 const Gates& gates);
 
