@@ -206,7 +206,7 @@ SceneRun fakeRun(const std::string& name, std::uint64_t seed, const std::string&
   for (int i = 0; i < wrong_frames; ++i) r.result.frames[static_cast<std::size_t>(i)].wrong = true;
   for (FrameOutcome& f : r.result.frames) f.range_m = 10.0;
   r.result.mode_changes = mode_changes;
-  summariseScene(r.scene, 30.0, r.result);
+  summariseScene(r.scene, Thresholds{}, r.result);
   return r;
 }
 

@@ -44,7 +44,7 @@ std::string csvField(const std::string& s) {
 
 std::string seedText(std::uint64_t seed) { return std::to_string(static_cast<unsigned long long>(seed)); }
 
-const char* kindText(const Scene& s) { return s.is_case ? "case" : s.approach ? "approach" : "near"; }
+const char* kindText(const Scene& s) { return s.approach ? "approach" : "near"; }
 
 std::string fraction(double f) { return f < 0.0 ? std::string("-") : num(f, "%.3f"); }
 
@@ -225,9 +225,9 @@ std::string sceneLine(const SceneRun& run) {
                std::to_string(r.recovery_never);
   }
   std::snprintf(buf, sizeof(buf),
-                "%s (%s, %d frames): tracked %s (%d/%d expected), accurate %s, confidently wrong %d, "
+                "%s (%s%s, %d frames): tracked %s (%d/%d expected), accurate %s, confidently wrong %d, "
                 "recovery %s, mode changes %d%s",
-                s.name.c_str(), kindText(s), static_cast<int>(r.frames.size()),
+                s.name.c_str(), s.is_case ? "case, " : "", kindText(s), static_cast<int>(r.frames.size()),
                 fraction(r.tracked_fraction).c_str(), r.tracked, r.expected,
                 fraction(r.accurate_fraction).c_str(), r.wrong, recovery.c_str(), r.mode_changes,
                 r.acquisition_latency >= 0
@@ -338,7 +338,9 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
     << ", \"wrong_attitude_deg\": " << num(th.wrong_attitude_deg)
     << ", \"accurate_position_rel\": " << num(th.accurate_position_rel)
     << ", \"accurate_attitude_deg\": " << num(th.accurate_attitude_deg)
-    << ", \"min_visible_px\": " << num(th.min_visible_px) << ", \"nis_gate\": " << num(kNisGate) << "},\n";
+    << ", \"min_visible_px\": " << num(th.min_visible_px)
+    << ", \"near_range_max_m\": " << num(th.near_range_max_m) << ", \"nis_gate\": " << num(kNisGate)
+    << "},\n";
   bool passed = true;
   o << "  \"gates\": [";
   for (std::size_t i = 0; i < gates.size(); ++i) {
@@ -383,8 +385,8 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
     const SceneResult& r = runs[i].result;
     o << (i ? ",\n    " : "\n    ") << "{\"name\": " << quote(s.name)
       << ", \"family\": " << quote(toString(s.family)) << ", \"kind\": " << quote(kindText(s))
-      << ", \"seed\": " << seedText(s.seed) << ", \"rerun\": " << quote(rerunCommand(s, options))
-      << ",\n      \"parameters\": {";
+      << ", \"case\": " << (s.is_case ? "true" : "false") << ", \"seed\": " << seedText(s.seed)
+      << ", \"rerun\": " << quote(rerunCommand(s, options)) << ",\n      \"parameters\": {";
     const std::vector<SceneParam> params = sceneParameters(s);
     for (std::size_t k = 0; k < params.size(); ++k)
       o << (k ? ", " : "") << quote(params[k].key) << ": "
@@ -489,7 +491,7 @@ void writeCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
 void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
   o << "scene,family,seed,frame,range_m,visible,expected,eclipsed,slew,mode,pose_valid,fault_bits,position_"
        "error_m,"
-       "attitude_error_deg,wrong,tracked,accurate,nis,time_process_us\n";
+       "attitude_error_deg,wrong,tracked,accurate,nis,far_valid,far_distance_m,time_process_us\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)

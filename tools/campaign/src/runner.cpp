@@ -23,14 +23,15 @@ constexpr std::size_t kMaxTransitionRecords = 64;
 
 }  // namespace
 
-void summariseScene(const Scene& scene, double acquire_below_m, SceneResult& r) {
+void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& r) {
   r.visible = r.expected = r.tracked = r.accurate = r.wrong = r.pose_frames = 0;
   r.max_position_error_rel = r.max_attitude_error_deg = 0.0;
   r.nis_count = 0;
   double nis_sum = 0.0;
   int first_expected = -1;
   for (FrameOutcome& f : r.frames) {
-    f.expected = f.visible && (!scene.approach || scene.truth(f.frame).t_c_m.z() <= acquire_below_m);
+    // Approach scenes: a 6-DOF pose is due within the near band (truth depth <= th.near_range_max_m).
+    f.expected = f.visible && (!scene.approach || scene.truth(f.frame).t_c_m.z() <= th.near_range_max_m);
     r.visible += f.visible ? 1 : 0;
     if (f.expected) {
       if (first_expected < 0) first_expected = f.frame;
@@ -133,6 +134,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       f.nis = u.nis;
     }
     f.process_us = sol.timing.process_us;
+    f.far_valid = sol.far.valid;
+    f.far_distance_m = sol.far.distance_m;
     classifyFrame(f, th);
     if (pipeline->modes().transitionCount() != transitions_before &&
         res.transitions.size() < kMaxTransitionRecords) {
@@ -141,7 +144,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     }
   }
   res.mode_changes = static_cast<int>(pipeline->modes().transitionCount() - transitions_start);
-  summariseScene(scene, params.navigation.acquire_below_m, res);
+  summariseScene(scene, th, res);
   if (timing) res.wall_s = static_cast<double>(monotonicNs() - wall_start) * 1e-9;
   return res;
 }

@@ -18,6 +18,10 @@ struct Thresholds {
   double accurate_attitude_deg = 1.0;
   double min_visible_px = 20.0;              ///< projected bounding-sphere diameter 2 f R / z
   double min_facing_cos = 0.17364817766693;  ///< cos 80 deg: some surface must face the camera this much
+  /// Approach scenes expect a 6-DOF pose once the truth depth t_c_m.z is at most this: the near band of the
+  /// scenes (5-30 m). A fixed yardstick, not read from the configuration under test (the pipeline's own
+  /// hand-over distance is a parameter, derived by default from the target's size).
+  double near_range_max_m = 30.0;
 };
 
 /// The target can be seen: not eclipsed, in front of the camera, its bounding sphere's centre (the model
@@ -29,8 +33,7 @@ bool targetVisible(const PinholeCamera& camera, const PolygonModel& model, const
 struct FrameOutcome {
   int frame = 0;
   bool visible = false;
-  bool expected =
-      false;  ///< visible, and a 6-DOF pose is due (near scenes; approach scenes below acquire_below_m)
+  bool expected = false;  ///< visible, and a 6-DOF pose is due (near scenes; approach scenes: within 30 m)
   bool eclipsed = false;
   bool slew = false;                           ///< the line of sight jumped at this frame
   double range_m = 0.0;                        ///< |t| of the truth
@@ -42,6 +45,8 @@ struct FrameOutcome {
   bool has_nis = false;
   double nis = 0.0;
   double process_us = 0.0;
+  bool far_valid = false;  ///< far range's fix this frame (direction/distance)
+  double far_distance_m = 0.0;
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;

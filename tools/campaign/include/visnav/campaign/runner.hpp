@@ -44,10 +44,10 @@ struct SceneResult {
   double wall_s = 0.0;  ///< timing field
 };
 
-/// Counts, fractions, recovery events and acquisition latency from the classified frames. `acquire_below_m`:
-/// approach scenes expect a 6-DOF pose only where the truth distance t_c_m.z is at most this (far range
-/// delivers none above it by design).
-void summariseScene(const Scene& scene, double acquire_below_m, SceneResult& result);
+/// Counts, fractions, recovery events and acquisition latency from the classified frames. Approach scenes
+/// expect a 6-DOF pose only where t_c_m.z <= th.near_range_max_m (far range delivers none before the
+/// hand-over by design); near scenes on every visible frame.
+void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& result);
 
 /// Runs the scene. `base` is the pipeline configuration (defaults or --config); the scene sets its far-range
 /// gamma. `timing`: CLOCK_MONOTONIC step times (off: all timing fields 0).
