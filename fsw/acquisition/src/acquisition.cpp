@@ -289,10 +289,10 @@ bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image,
   // the first flight-tracker pass moves it by more than a target can turn in one frame.
   const double sigma_rad = std::sqrt(r.covariance.topLeftCorner<3, 3>().trace());
   const double sigma_m = std::sqrt(r.covariance.bottomRightCorner<3, 3>().trace());
-  const bool consistent =
-      (r.pose.t_c_m - pose.t_c_m).norm() <= m_params.confirm_max_motion_rel * pose.t_c_m.z() + 3.0 * sigma_m &&
-      rotationAngleRad(r.pose.R_c_m, pose.R_c_m) <=
-          m_params.confirm_max_rotation_deg * kRadPerDeg + 3.0 * sigma_rad;
+  const bool consistent = (r.pose.t_c_m - pose.t_c_m).norm() <=
+                              m_params.confirm_max_motion_rel * pose.t_c_m.z() + 3.0 * sigma_m &&
+                          rotationAngleRad(r.pose.R_c_m, pose.R_c_m) <=
+                              m_params.confirm_max_rotation_deg * kRadPerDeg + 3.0 * sigma_rad;
   agreement = m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1;
   pose = r.pose;
   return consistent && agreement >= m_params.min_confirm_agreement;

@@ -7,6 +7,9 @@ namespace visnav::nav {
 LoadError ModeManager::init(const NavigationParams& params) {
   if (const char* problem = params.crossCheck())
     return LoadError::failure(std::string("navigation: ") + problem);
+  if (!(params.acquire_below_m > 0.0 && params.far_range_above_m > params.acquire_below_m))
+    return LoadError::failure(
+        "navigation: hand-over distances not set (NavigationParams::withDerivedHandover derives them)");
   m_params = params;
   reset();
   return LoadError::success();

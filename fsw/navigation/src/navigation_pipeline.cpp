@@ -10,14 +10,18 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
                                    const PipelineParams& params) {
   m_camera = camera;
   m_params = params;
-  LoadError e = m_modes.init(params.navigation);
+  m_params.navigation =
+      params.navigation.withDerivedHandover(model.boundingRadius(), camera.intrinsics().fx_px);
+  if (!(m_params.navigation.far_range_above_m > m_params.navigation.acquire_below_m))
+    return LoadError::failure("navigation: far_range_above_m must exceed acquire_below_m (hysteresis)");
+  LoadError e = m_modes.init(m_params.navigation);
   if (e.ok) e = m_filter.init(params.filter);
   if (e.ok) e = m_near.init(camera, model, params.nearrange);
   if (e.ok) e = m_far.init(camera, params.farrange);
   if (e.ok) e = m_acquisition.init(camera, model, params.acquisition, params.nearrange);
-  if (e.ok) e = m_reacquisition.init(camera, model, params.navigation, params.nearrange);
+  if (e.ok) e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange);
   if (!e.ok) return e;
-  m_fdir.init(params.navigation, model.boundingRadius(), camera.intrinsics().fx_px);
+  m_fdir.init(m_params.navigation, model.boundingRadius(), camera.intrinsics().fx_px);
   m_last_command = CommandAck{};
   copyBounded("none", m_last_command.reason.data(), m_last_command.reason.size());
   return LoadError::success();
@@ -84,7 +88,8 @@ void NavigationPipeline::runFarRange(const MonoImage& image, NavSolution& out, M
   // updateFarRange scales the uncertainty with the predicted range (the measured one would trust short
   // readings more and bias the range low).
   if (!m_filter.updateFarRange(out.far.direction_c, out.far.distance_m).accepted &&
-      m_filter.consecutiveRejections() >= static_cast<std::uint32_t>(m_params.navigation.far_filter_reset_rejections))
+      m_filter.consecutiveRejections() >=
+          static_cast<std::uint32_t>(m_params.navigation.far_filter_reset_rejections))
     m_filter.reset();  // the filter lost the target: the next fix restarts it
 }
 
@@ -160,8 +165,8 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
   runReacquisition(image, frame_number, out, in);
 }
 
-void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
-                                          ModeInputs& in) {
+void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t frame_number,
+                                          NavSolution& out, ModeInputs& in) {
   ReacquisitionStep step;
   m_reacquisition.step(image, predictedPose(), frame_number, step);
   m_last_reacquisition = step;

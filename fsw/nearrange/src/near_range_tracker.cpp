@@ -101,11 +101,13 @@ bool NearRangeTracker::outwardReference(const ModelEdge& edge, const Pose& predi
   int owner = owns(edge.surface_left, m_surface_tracked) ? edge.surface_left : -1;
   if (owner < 0) owner = owns(edge.surface_right, m_surface_tracked) ? edge.surface_right : -1;
   if (owner < 0) owner = owns(edge.surface_left, m_surface_front) ? edge.surface_left : edge.surface_right;
-  return owner >= 0 && m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px);
+  return owner >= 0 &&
+         m_camera.project(predicted.transform(m_model.surfaces()[owner].centroid_m), centroid_px);
 }
 
-bool NearRangeTracker::measureScanline(const MonoImage& image, int model_edge, const Vec3& a_c, const Vec3& b_c,
-                                       double t, int index, const Vec2& centroid_px, ScanPoint& sp) {
+bool NearRangeTracker::measureScanline(const MonoImage& image, int model_edge, const Vec3& a_c,
+                                       const Vec3& b_c, double t, int index, const Vec2& centroid_px,
+                                       ScanPoint& sp) {
   const Vec3 p_c = a_c + t * (b_c - a_c);
   const Vec3 q_c = p_c + 1e-3 * (b_c - a_c);
   Vec2 ahead;
@@ -153,8 +155,9 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
   const double length_px = (slot.predicted_b_px - slot.predicted_a_px).norm();
   if (length_px >= m_params.min_edge_length_px) {
     const double usable_px = length_px - 2.0 * m_params.vertex_margin_px;
-    const int count = std::min(usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0,
-                               m_params.max_scanlines_per_edge);
+    const int count =
+        std::min(usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0,
+                 m_params.max_scanlines_per_edge);
     out.scanlines += count;
     for (int i = 0; i < count; ++i) {
       const double along_px =

@@ -23,9 +23,26 @@ ModeInputs nearAt(double d) {
   return in;
 }
 
+// The derived hand-over for a 1.5 m target seen at f = 1000 px: acquire below 30 m, fall back above 40 m.
+NavigationParams plateHandover() { return NavigationParams{}.withDerivedHandover(1.5, 1000.0); }
+
+TEST(ModeManager, HandOverDistancesAreDerivedFromTheTargetsApparentSize) {
+  const NavigationParams plate = plateHandover();
+  EXPECT_DOUBLE_EQ(plate.acquire_below_m, 30.0);
+  EXPECT_DOUBLE_EQ(plate.far_range_above_m, 40.0);
+  const NavigationParams sat = NavigationParams{}.withDerivedHandover(5.87, 1000.0);  // panels: 117 m
+  EXPECT_NEAR(sat.acquire_below_m, 117.4, 1e-9);
+  NavigationParams fixed;
+  fixed.acquire_below_m = 20.0;
+  fixed.far_range_above_m = 25.0;
+  EXPECT_DOUBLE_EQ(fixed.withDerivedHandover(5.87, 1000.0).acquire_below_m, 20.0);  // set: kept
+  ModeManager m;
+  EXPECT_FALSE(m.init(NavigationParams{}).ok) << "underived zero thresholds must not reach the mode manager";
+}
+
 TEST(ModeManager, FarRangeHandsOverOnlyAfterEnterFramesBelowTheThreshold) {
   ModeManager m;
-  ASSERT_TRUE(m.init(NavigationParams{}).ok);
+  ASSERT_TRUE(m.init(plateHandover()).ok);
   EXPECT_EQ(m.mode(), NavMode::kFarRange);
   EXPECT_FALSE(m.step(farAt(29.0), 1));
   EXPECT_FALSE(m.step(farAt(29.0), 2));
@@ -43,7 +60,7 @@ TEST(ModeManager, NoiseAroundAThresholdNeverChatters) {
   // A range estimate oscillating with +-3 m noise around 35 m, between the two thresholds' midpoint:
   // after the first hand-over no further transition may happen.
   ModeManager m;
-  ASSERT_TRUE(m.init(NavigationParams{}).ok);
+  ASSERT_TRUE(m.init(plateHandover()).ok);
   Pcg32 rng(3);
   for (int i = 0; i < 10; ++i) m.step(farAt(25.0), static_cast<std::uint64_t>(i));
   ModeInputs ok;
@@ -59,7 +76,7 @@ TEST(ModeManager, NoiseAroundAThresholdNeverChatters) {
 
 TEST(ModeManager, NearRangeFallsBackOnPersistentFaultAndOnDistance) {
   ModeManager m;
-  NavigationParams p;
+  NavigationParams p = plateHandover();
   p.start_mode = static_cast<int>(NavMode::kNearRange);
   ASSERT_TRUE(m.init(p).ok);
   ModeInputs fault = nearAt(10.0);
@@ -76,7 +93,7 @@ TEST(ModeManager, NearRangeFallsBackOnPersistentFaultAndOnDistance) {
 
 TEST(ModeManager, AcquisitionTimesOut) {
   ModeManager m;
-  NavigationParams p;
+  NavigationParams p = plateHandover();
   p.start_mode = static_cast<int>(NavMode::kAcquisition);
   p.acquisition_timeout_frames = 4;
   ASSERT_TRUE(m.init(p).ok);
@@ -88,7 +105,7 @@ TEST(ModeManager, AcquisitionTimesOut) {
 
 TEST(ModeManager, CommandsAreValidatedAndAcknowledged) {
   ModeManager m;
-  ASSERT_TRUE(m.init(NavigationParams{}).ok);
+  ASSERT_TRUE(m.init(plateHandover()).ok);
   CommandAck ack;
   EXPECT_FALSE(m.command(ModeCommandKind::kResume, 7, false, 1, ack));
   EXPECT_EQ(ack.command_id, 7U);
@@ -111,7 +128,7 @@ TEST(ModeManager, CommandsAreValidatedAndAcknowledged) {
 
 TEST(ModeManager, InitRejectsThresholdsWithoutHysteresis) {
   ModeManager m;
-  NavigationParams p;
+  NavigationParams p = plateHandover();
   p.far_range_above_m = p.acquire_below_m;
   EXPECT_FALSE(m.init(p).ok);
 }
@@ -190,8 +207,8 @@ TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
 TEST(Fdir, DepthBandIsDerivedFromModelAndCameraUnlessSet) {
   FdirMonitor f;
   f.init(NavigationParams{}, 0.25, 800.0);  // a 0.5 m lab object, f = 800 px
-  EXPECT_DOUBLE_EQ(f.minDepthM(), 0.25);     // inside the bounding sphere: impossible
-  EXPECT_DOUBLE_EQ(f.maxDepthM(), 100.0);    // 0.5 m spans 4 px at 100 m
+  EXPECT_DOUBLE_EQ(f.minDepthM(), 0.25);    // inside the bounding sphere: impossible
+  EXPECT_DOUBLE_EQ(f.maxDepthM(), 100.0);   // 0.5 m spans 4 px at 100 m
   NearRangeResult r = goodNear();
   r.pose.t_c_m.z() = 0.6;  // the lab sequence's depth: plausible, where a fixed 1 m band flagged it
   NearRangeCheck c;
@@ -238,7 +255,7 @@ TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
   c.innovation_accepted = false;
   c.evidence_good = true;
   for (int i = 0; i < 10; ++i) EXPECT_EQ(f.checkNearRange(c), kFaultInnovation);  // flagged every frame...
-  EXPECT_FALSE(f.faultPersisted());                                                // ...never persisting
+  EXPECT_FALSE(f.faultPersisted());                                               // ...never persisting
   c.evidence_good = false;  // the same innovation on weak evidence counts
   for (int i = 0; i < 3; ++i) f.checkNearRange(c);
   EXPECT_TRUE(f.faultPersisted());

@@ -127,8 +127,8 @@ class Acquisition {
   AttitudeGrid m_grid;
   WorkingImage m_window;
   EdgeScorer m_scorer;
-  NearRangeTracker m_verifier;   ///< wide scanlines: larger capture range on a candidate
-  NearRangeTracker m_confirmer;  ///< the flight tracker's settings: what the hand-over will meet
+  NearRangeTracker m_verifier;         ///< wide scanlines: larger capture range on a candidate
+  NearRangeTracker m_confirmer;        ///< the flight tracker's settings: what the hand-over will meet
   NearRangeTracker m_rival_confirmer;  ///< tracks the best distinct rival alongside
   ModelSymmetries m_symmetries;
   double m_bounding_radius_m = 0.0;

@@ -40,14 +40,16 @@ class LocalReacquisition {
   const ModelSymmetries& symmetries() const { return m_symmetries; }
 
   /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
-  void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number, ReacquisitionStep& out);
+  void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
+            ReacquisitionStep& out);
 
  private:
   Pose hypothesis(const Pose& predicted, int index) const;
   static int hypothesesWithinRings(int rings) { return 1 + 3 * rings * (rings + 1); }
   bool trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
                  std::uint64_t frame_number, int passes, NearRangeResult& result) const;
-  void search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number, ReacquisitionStep& out);
+  void search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
+              ReacquisitionStep& out);
   void confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out);
 
   PinholeCamera m_camera;

@@ -8,10 +8,12 @@ namespace visnav::nav {
 
 struct NavigationParams {
   // Mode hysteresis (distances along the boresight, counts of consecutive frames).
-  int start_mode = 1;                   ///< NavMode index the pipeline starts in (1 = far range)
-  double acquire_below_m = 30.0;        ///< far range -> acquisition when the far-range distance is below
-  double far_range_above_m = 40.0;      ///< near range -> far range when the estimated distance is above
-  int enter_frames = 3;                 ///< consecutive frames a distance condition must hold
+  int start_mode = 1;                ///< NavMode index the pipeline starts in (1 = far range)
+  double acquire_below_m = 0.0;      ///< far range -> acquisition below this distance (0: derived, see below)
+  double far_range_above_m = 0.0;    ///< near range -> far range above this distance (0: derived)
+  double handover_radius_px = 50.0;  ///< derived hand-over: where the target's bounding radius spans this
+  double handover_hysteresis = 4.0 / 3.0;  ///< derived: far_range_above_m = this x acquire_below_m
+  int enter_frames = 3;                    ///< consecutive frames a distance condition must hold
   int acquisition_timeout_frames = 25;  ///< acquisition gives up (back to far range) after this many frames
   int fault_persistence_frames = 5;     ///< a near-range fault held this long falls back to far range
   int coast_frames = 3;                 ///< frames the filter may propagate without a usable measurement
@@ -19,23 +21,23 @@ struct NavigationParams {
   double min_inlier_ratio = 0.5;  ///< edge-point inliers / points over the used lines, below: fault
   int min_usable_lines = 3;       ///< fewer used lines: fault
   double max_rms_px = 1.0;        ///< LM residual above: fault
-  double min_depth_m = 0.0;  ///< plausible depth band (t_c_m.z); 0: derived from the model and camera
+  double min_depth_m = 0.0;       ///< plausible depth band (t_c_m.z); 0: derived from the model and camera
   double max_depth_m = 0.0;
   double max_frame_age_ms = 150.0;  ///< frame older than this when processed: fault
   // Image evidence that makes a near-range measurement win over the filter's prediction.
-  double evidence_min_line_fraction = 0.6;   ///< used lines / measured lines
-  double evidence_min_inlier_ratio = 0.7;    ///< inlier points / edge points of the used lines
-  double evidence_max_rms_px = 0.8;          ///< pose-fit residual
-  double evidence_min_edge_support = 0.5;    ///< inlier points / scanlines cast
-  int filter_diverged_rejections = 2;        ///< consecutive rejections of a clean track: restart the filter
-  int far_filter_reset_rejections = 3;       ///< consecutive far-range rejections: restart the filter
+  double evidence_min_line_fraction = 0.6;  ///< used lines / measured lines
+  double evidence_min_inlier_ratio = 0.7;   ///< inlier points / edge points of the used lines
+  double evidence_max_rms_px = 0.8;         ///< pose-fit residual
+  double evidence_min_edge_support = 0.5;   ///< inlier points / scanlines cast
+  int filter_diverged_rejections = 2;       ///< consecutive rejections of a clean track: restart the filter
+  int far_filter_reset_rejections = 3;      ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;
-  double reacquire_step_rel = 0.8;             ///< lateral grid step / the wide tracker's capture range
+  double reacquire_step_rel = 0.8;              ///< lateral grid step / the wide tracker's capture range
   double reacquire_growth_px_per_frame = 40.0;  ///< the searched radius widens this much per frame
   int reacquire_confirm_frames = 1;
-  double reacquire_max_motion_rel = 0.05;  ///< confirmation: position change / range per frame
+  double reacquire_max_motion_rel = 0.05;   ///< confirmation: position change / range per frame
   double reacquire_max_rotation_deg = 5.0;  ///< confirmation: attitude change per frame
   int reacquire_timeout_frames = 300;       ///< searching longer: hand over to far range
 
@@ -44,10 +46,17 @@ struct NavigationParams {
     v.enumeration(
         {"navigation", "start_mode", "-", 0, 3, "mode after start (standby waits for a resume command)"},
         "standby|far_range|acquisition|near_range", start_mode);
-    v.real({"navigation", "acquire_below_m", "m", 1.0, 10000.0,
+    v.real({"navigation", "handover_radius_px", "px", 5.0, 10000.0,
+            "where acquire_below_m is 0 it is derived as f x bounding radius / this: the hand-over happens "
+            "at the same apparent size for every target and camera (plate 2.3 x 1.8 m, f 1000 px: 29 m)"},
+           handover_radius_px);
+    v.real({"navigation", "handover_hysteresis", "-", 1.01, 100.0,
+            "where far_range_above_m is 0 it is derived as this x acquire_below_m"},
+           handover_hysteresis);
+    v.real({"navigation", "acquire_below_m", "m", 0.0, 10000.0,
             "far range hands over to acquisition when its distance stays below this for enter_frames"},
            acquire_below_m);
-    v.real({"navigation", "far_range_above_m", "m", 1.0, 10000.0,
+    v.real({"navigation", "far_range_above_m", "m", 0.0, 10000.0,
             "near range falls back to far range when the distance stays above this for enter_frames "
             "(must exceed acquire_below_m: the gap is the hysteresis)"},
            far_range_above_m);
@@ -129,8 +138,17 @@ struct NavigationParams {
               reacquire_timeout_frames);
   }
 
+  /// The hand-over distances with the derived ones filled in (0 = derive) for a target of
+  /// `bounding_radius_m` seen with focal length `focal_px`.
+  NavigationParams withDerivedHandover(double bounding_radius_m, double focal_px) const {
+    NavigationParams p = *this;
+    if (!(p.acquire_below_m > 0.0)) p.acquire_below_m = focal_px * bounding_radius_m / handover_radius_px;
+    if (!(p.far_range_above_m > 0.0)) p.far_range_above_m = handover_hysteresis * p.acquire_below_m;
+    return p;
+  }
+
   const char* crossCheck() const {
-    if (!(far_range_above_m > acquire_below_m))
+    if (acquire_below_m > 0.0 && far_range_above_m > 0.0 && !(far_range_above_m > acquire_below_m))
       return "far_range_above_m must exceed acquire_below_m (hysteresis)";
     if (max_depth_m > 0.0 && !(max_depth_m > min_depth_m)) return "max_depth_m must exceed min_depth_m";
     return nullptr;

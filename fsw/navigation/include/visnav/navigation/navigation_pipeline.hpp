@@ -73,8 +73,7 @@ class NavigationPipeline {
   bool fuseNearRange(const NearRangeResult& r, NearRangeCheck& check);
   void startReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                           ModeInputs& in);
-  void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
-                        ModeInputs& in);
+  void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
 

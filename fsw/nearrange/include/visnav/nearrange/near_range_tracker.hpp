@@ -64,7 +64,8 @@ struct NearRangeResult {
   int lines_total = 0;
   int lines_used = 0;
   int silhouette_lines = 0;  ///< measured edges selected as outline only (not of a tracked surface)
-  int scanlines = 0;  ///< scanlines cast across the predicted edges (edge support = inlier_points / scanlines)
+  int scanlines =
+      0;  ///< scanlines cast across the predicted edges (edge support = inlier_points / scanlines)
   int edge_points = 0;
   int inlier_points = 0;
   int texture_points = 0;
@@ -74,7 +75,8 @@ struct NearRangeResult {
   NearRangeTiming timing;
 };
 
-/// The tracker's working state for one measured model edge this frame (also what overlays draw, paper fig. 3).
+/// The tracker's working state for one measured model edge this frame (also what overlays draw, paper fig.
+/// 3).
 struct EdgeMeasurement {
   int model_edge = -1;
   int first_point = 0;  ///< range [first_point, first_point + point_count) in the point arrays
