@@ -76,6 +76,10 @@ int main(int argc, char** argv) {
     params = config.pipeline;
   }
 
+  std::error_code ec;  // before the scenes run: a bad --out fails at once
+  std::filesystem::create_directories(options.out_dir, ec);
+  if (ec) return fail(options.out_dir + ": cannot create: " + ec.message());
+
   std::vector<SceneRun> runs;
   if (!options.cases.empty()) {
     for (const std::string& name : options.cases) {
@@ -130,9 +134,6 @@ int main(int argc, char** argv) {
     for (const SceneRun& r : runs) std::printf("%s\n", sceneLine(r).c_str());
   std::fputs(summaryTable(groups, runs, options.timing).c_str(), stdout);
 
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  if (ec) return fail(options.out_dir + ": cannot create: " + ec.message());
   {
     std::ofstream json(options.out_dir + "/campaign.json");
     writeJson(json, options, runs, groups, gates);

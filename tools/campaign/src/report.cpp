@@ -275,12 +275,15 @@ std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vec
   }
   const GroupSummary& all = groups.front();
   if (all.approach_scenes > 0) {
-    std::snprintf(buf, sizeof(buf),
-                  "approach scenes: %d, acquired in %d (frames from the first expected frame: median %.0f, "
-                  "max %.0f), never %d\n",
-                  all.approach_scenes, all.acquisition_latency.count, all.acquisition_latency.median,
-                  all.acquisition_latency.max, all.acquisition_never);
+    const Distribution& acq = all.acquisition_latency;
+    std::snprintf(buf, sizeof(buf), "approach scenes: %d; acquired in %d", all.approach_scenes, acq.count);
     o << buf;
+    if (acq.count > 0) {
+      std::snprintf(buf, sizeof(buf), " (frames from the first expected frame: median %.0f, max %.0f)",
+                    acq.median, acq.max);
+      o << buf;
+    }
+    o << "; never in " << all.acquisition_never << "\n";
   }
   if (timing) {
     o << "step time [us] median/p95 per mode:";
