@@ -85,8 +85,8 @@ class Executive {
   int taskCount() const { return m_task_count; }
   /// Statistics of a task addTask() registered (an invalid id: an empty record).
   const TaskStats& taskStats(TaskId task) const {
-    return task.valid() && task.index() < m_task_count ? m_stats[static_cast<std::size_t>(task.index())]
-                                                       : m_no_stats;
+    if (task.valid() && task.index() < m_task_count) return m_stats[static_cast<std::size_t>(task.index())];
+    return m_no_stats;
   }
   const DurationStats& releaseJitter() const { return m_jitter; }  ///< wake minus ideal release [ns]
   const DurationStats& cycleBusy() const { return m_busy; }        ///< wake to end of the last task [ns]
