@@ -263,13 +263,11 @@ void Acquisition::chooseRival() {
   const Verified& best = m_verified[static_cast<std::size_t>(m_current)];
   for (std::size_t i = static_cast<std::size_t>(m_current) + 1; i < m_verified.size(); ++i) {
     const Verified& v = m_verified[i];
-    // Distinct means beyond what the tracker can resolve: the tolerances grow by three of its sigmas (a
-    // near-frontal plate far out has two tilts within its noise: one hypothesis, not two).
-    const double tol_m = m_params.confirm_max_motion_rel * best.pose.t_c_m.z() +
-                         3.0 * std::sqrt(best.covariance.bottomRightCorner<3, 3>().trace());
-    const double tol_rad = m_params.confirm_max_rotation_deg * kRadPerDeg +
-                           3.0 * std::sqrt(best.covariance.topLeftCorner<3, 3>().trace());
-    if (m_symmetries.equivalent(v.pose, best.pose, tol_m, tol_rad)) continue;
+    // Distinct means beyond what the tracker can resolve (PoseTolerance::widened).
+    const PoseTolerance same =
+        PoseTolerance::widened(m_params.confirm_max_motion_rel * best.pose.t_c_m.z(),
+                               m_params.confirm_max_rotation_deg * kRadPerDeg, best.covariance);
+    if (m_symmetries.equivalent(v.pose, best.pose, same)) continue;
     if (v.score >= best.score - m_params.rival_margin) {
       m_rival_alive = true;
       m_rival_pose = v.pose;
@@ -285,14 +283,11 @@ bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image,
   // between two frames, and keeps explaining the window's edges both ways.
   tracker.track(image, pose, frame_number, r);
   if (!acceptable(r)) return false;
-  // The allowance adds three of the tracker's own sigmas: far out the tilt of a plate is weakly observed and
-  // the first flight-tracker pass moves it by more than a target can turn in one frame.
-  const double sigma_rad = std::sqrt(r.covariance.topLeftCorner<3, 3>().trace());
-  const double sigma_m = std::sqrt(r.covariance.bottomRightCorner<3, 3>().trace());
-  const bool consistent = (r.pose.t_c_m - pose.t_c_m).norm() <=
-                              m_params.confirm_max_motion_rel * pose.t_c_m.z() + 3.0 * sigma_m &&
-                          rotationAngleRad(r.pose.R_c_m, pose.R_c_m) <=
-                              m_params.confirm_max_rotation_deg * kRadPerDeg + 3.0 * sigma_rad;
+  // What a target can move in one frame, plus what the tracker cannot resolve: the first flight-tracker pass
+  // moves a far plate's weakly observed tilt by more than a target can turn.
+  const bool consistent = PoseTolerance::widened(m_params.confirm_max_motion_rel * pose.t_c_m.z(),
+                                                 m_params.confirm_max_rotation_deg * kRadPerDeg, r.covariance)
+                              .holds(r.pose, pose);
   agreement = m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1;
   pose = r.pose;
   return consistent && agreement >= m_params.min_confirm_agreement;

@@ -7,17 +7,6 @@ namespace visnav {
 
 namespace {
 
-bool mapsOntoItself(const PolygonModel& model, const Mat3& s, double tol_m) {
-  const auto& vertices = model.vertices();
-  for (const Vec3& v : vertices) {
-    const Vec3 w = s * v;
-    const bool found = std::any_of(vertices.begin(), vertices.end(),
-                                   [&](const Vec3& u) { return (u - w).squaredNorm() <= tol_m * tol_m; });
-    if (!found) return false;
-  }
-  return true;
-}
-
 bool alreadyListed(const std::array<Mat3, ModelSymmetries::kCapacity>& list, int count, const Mat3& s) {
   for (int i = 0; i < count; ++i)
     if ((list[static_cast<std::size_t>(i)] - s).cwiseAbs().maxCoeff() < 1e-9) return true;
@@ -26,18 +15,39 @@ bool alreadyListed(const std::array<Mat3, ModelSymmetries::kCapacity>& list, int
 
 }  // namespace
 
+bool ModelSymmetries::isSymmetry(const PolygonModel& model, const Mat3& rotation, double tolerance_m) {
+  const auto& vertices = model.vertices();
+  for (const Vec3& v : vertices) {
+    const Vec3 w = rotation * v;
+    if (std::none_of(vertices.begin(), vertices.end(),
+                     [&](const Vec3& u) { return (u - w).norm() <= tolerance_m; }))
+      return false;
+  }
+  const auto& surfaces = model.surfaces();
+  for (const ModelSurface& s : surfaces) {
+    const Vec3 c = rotation * s.centroid_m;
+    const Vec3 n = rotation * s.normal_m;
+    if (std::none_of(surfaces.begin(), surfaces.end(), [&](const ModelSurface& u) {
+          return u.vertex_indices.size() == s.vertex_indices.size() &&
+                 (u.centroid_m - c).norm() <= tolerance_m && (u.normal_m - n).norm() <= 1e-6;
+        }))
+      return false;
+  }
+  return true;
+}
+
 double rotationAngleRad(const Mat3& a, const Mat3& b) {
-  const double c = 0.5 * ((a.transpose() * b).trace() - 1.0);
-  return std::acos(std::clamp(c, -1.0, 1.0));
+  // |log(a^T b)|: exact near 0, where acos((trace - 1) / 2) loses half the digits.
+  return logSo3(a.transpose() * b).norm();
 }
 
 void ModelSymmetries::find(const PolygonModel& model, double tolerance_rel) {
   m_count = 0;
   m_rotations[0] = Mat3::Identity();
   m_count = 1;
-  const double tol_m = std::max(1e-12, tolerance_rel * model.boundingRadius());
+  const double tol_m = tolerance_rel * std::max(1.0, model.boundingRadius());
   auto offer = [&](const Mat3& s) {
-    if (m_count < kCapacity && !alreadyListed(m_rotations, m_count, s) && mapsOntoItself(model, s, tol_m))
+    if (m_count < kCapacity && !alreadyListed(m_rotations, m_count, s) && isSymmetry(model, s, tol_m))
       m_rotations[static_cast<std::size_t>(m_count++)] = s;
   };
   // The cube group: products of quarter turns about x, y and z (4 x 4 x 4 products cover all 24).
@@ -74,10 +84,20 @@ double ModelSymmetries::attitudeDistanceRad(const Mat3& a_R_c_m, const Mat3& b_R
   return best;
 }
 
-bool ModelSymmetries::equivalent(const Pose& a, const Pose& b, double position_tol_m,
-                                 double attitude_tol_rad) const {
-  return (a.t_c_m - b.t_c_m).norm() <= position_tol_m &&
-         attitudeDistanceRad(a.R_c_m, b.R_c_m) <= attitude_tol_rad;
+bool ModelSymmetries::equivalent(const Pose& a, const Pose& b, const PoseTolerance& tolerance) const {
+  return (a.t_c_m - b.t_c_m).norm() <= tolerance.position_m &&
+         attitudeDistanceRad(a.R_c_m, b.R_c_m) <= tolerance.attitude_rad;
+}
+
+PoseTolerance PoseTolerance::widened(double position_m, double attitude_rad, const Mat6& covariance) {
+  PoseTolerance t;
+  t.attitude_rad = attitude_rad + kUnresolvedSigmas * std::sqrt(covariance.topLeftCorner<3, 3>().trace());
+  t.position_m = position_m + kUnresolvedSigmas * std::sqrt(covariance.bottomRightCorner<3, 3>().trace());
+  return t;
+}
+
+bool PoseTolerance::holds(const Pose& a, const Pose& b) const {
+  return (a.t_c_m - b.t_c_m).norm() <= position_m && rotationAngleRad(a.R_c_m, b.R_c_m) <= attitude_rad;
 }
 
 }  // namespace visnav

@@ -47,6 +47,11 @@ void LocalReacquisition::start() {
   m_confirmed = 0;
 }
 
+PoseTolerance LocalReacquisition::tolerance(const NearRangeResult& r) const {
+  return PoseTolerance::widened(m_params.reacquire_max_motion_rel * r.pose.t_c_m.z(),
+                                m_params.reacquire_max_rotation_deg * kRadPerDeg, r.covariance);
+}
+
 Pose LocalReacquisition::hypothesis(const Pose& predicted, int index) const {
   // Index 0: the prediction. Ring k >= 1 holds 6k starts at radius k * step, evenly spaced.
   if (index == 0) return predicted;
@@ -108,9 +113,7 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
       have_best = true;
       continue;
     }
-    const double tol_m = m_params.reacquire_max_motion_rel * best.pose.t_c_m.z();
-    const double tol_rad = m_params.reacquire_max_rotation_deg * kRadPerDeg;
-    if (m_symmetries.equivalent(r.pose, best.pose, tol_m, tol_rad)) {
+    if (m_symmetries.equivalent(r.pose, best.pose, tolerance(best))) {
       if (r.quality > best.quality) best = r;
       continue;
     }
@@ -132,13 +135,10 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
 }
 
 void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out) {
-  NearRangeResult& r = m_result;
+  NearRangeResult r;
   m_flight.track(image, m_candidate, frame_number, r);
   const bool good = imageEvidenceGood(r, m_params);
-  const double moved_m = (r.pose.t_c_m - m_candidate.t_c_m).norm();
-  const double turned_rad = rotationAngleRad(r.pose.R_c_m, m_candidate.R_c_m);
-  const bool consistent = moved_m <= m_params.reacquire_max_motion_rel * m_candidate.t_c_m.z() &&
-                          turned_rad <= m_params.reacquire_max_rotation_deg * kRadPerDeg;
+  const bool consistent = tolerance(r).holds(r.pose, m_candidate);
   if (!good || !consistent) {
     m_confirming = false;  // back to searching on the next frame
     return;
@@ -147,6 +147,7 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
   out.candidate = true;
   if (++m_confirmed < m_params.reacquire_confirm_frames) return;
   out.found = true;
+  out.status = r.status;
   out.pose = r.pose;
   out.covariance = r.covariance;
   out.quality = r.quality;

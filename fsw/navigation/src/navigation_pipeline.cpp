@@ -104,13 +104,8 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
   }
   if (result.state != acq::AcquisitionState::kSucceeded) return;
   in.acquisition_succeeded = true;
-  m_last_pose = result.pose;
-  m_have_pose = true;
   m_filter.initialise(result.pose, result.covariance);
-  out.pose_valid = true;
-  out.pose = result.pose;
-  out.covariance = result.covariance;
-  out.quality = result.quality;
+  deliver(result.pose, result.covariance, result.quality, out);
 }
 
 Pose NavigationPipeline::predictedPose() const {
@@ -150,7 +145,6 @@ bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck&
                             static_cast<std::uint32_t>(m_params.navigation.filter_diverged_rejections);
   if (check.evidence_good || diverged) {
     m_filter.initialise(r.pose, r.covariance);
-    ++m_filter_restarts;
     return true;
   }
   return false;  // weak evidence the filter also disputes: not delivered
@@ -160,7 +154,6 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
                                             NavSolution& out, ModeInputs& in) {
   m_near_result.status = TrackStatus::kLost;
   m_reacquisition.start();
-  ++m_reacquisitions_started;
   m_fdir.resetPersistence();
   runReacquisition(image, frame_number, out, in);
 }
@@ -169,9 +162,8 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
                                           NavSolution& out, ModeInputs& in) {
   ReacquisitionStep step;
   m_reacquisition.step(image, predictedPose(), frame_number, step);
-  m_last_reacquisition = step;
   if (step.found) {
-    ++m_reacquisitions_found;
+    m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
     m_near.reset();
     m_filter.initialise(step.pose, step.covariance);
     m_fdir.resetPersistence();
@@ -187,7 +179,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
                                       ModeInputs& in) {
   in.depth_known = m_have_pose;
   if (m_reacquisition.active()) {
-    m_near_result = NearRangeResult{};
+    m_near_result = NearRangeResult{};  // the main tracker did not run (status lost)
     runReacquisition(image, frame_number, out, in);
     in.depth_m = m_last_pose.t_c_m.z();
     return;

@@ -19,8 +19,9 @@
 namespace visnav::nav {
 
 struct ReacquisitionStep {
-  bool found = false;      ///< confirmed: pose and covariance below are the delivered measurement
-  bool candidate = false;  ///< a candidate is being confirmed
+  bool found = false;  ///< confirmed: pose and covariance below are the delivered measurement
+  TrackStatus status = TrackStatus::kLost;  ///< the confirming tracker's verdict (found)
+  bool candidate = false;                   ///< a candidate is being confirmed
   bool ambiguous = false;  ///< two distinct poses tracked equally well this frame: none was taken
   Pose pose;
   Mat6 covariance = Mat6::Zero();
@@ -45,6 +46,8 @@ class LocalReacquisition {
 
  private:
   Pose hypothesis(const Pose& predicted, int index) const;
+  /// One hypothesis: within one frame's motion plus what the tracker cannot resolve around `r`.
+  PoseTolerance tolerance(const NearRangeResult& r) const;
   static int hypothesesWithinRings(int rings) { return 1 + 3 * rings * (rings + 1); }
   bool trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
                  std::uint64_t frame_number, int passes, NearRangeResult& result) const;
@@ -64,7 +67,6 @@ class LocalReacquisition {
   int m_cursor = 0;
   int m_confirmed = 0;
   Pose m_candidate;
-  NearRangeResult m_result;
 };
 
 }  // namespace visnav::nav

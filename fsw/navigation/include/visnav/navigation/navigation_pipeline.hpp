@@ -54,13 +54,8 @@ class NavigationPipeline {
   /// This frame's 6-DOF measurement update of the filter (near range): `dof` 0 when there was none (no pose,
   /// or the filter was (re)started from it). Its `nis` is what the innovation gate judged.
   const FilterUpdate& lastPoseUpdate() const { return m_last_pose_update; }
-  /// Close-range reacquisition: whether it is searching, and what it did on the last frame.
+  /// Close-range reacquisition (searching while active()).
   const LocalReacquisition& reacquisition() const { return m_reacquisition; }
-  const ReacquisitionStep& lastReacquisition() const { return m_last_reacquisition; }
-  /// Counters since init: filter restarts from a measurement the image supported, reacquisitions.
-  std::uint64_t filterRestarts() const { return m_filter_restarts; }
-  std::uint64_t reacquisitionsStarted() const { return m_reacquisitions_started; }
-  std::uint64_t reacquisitionsFound() const { return m_reacquisitions_found; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -87,10 +82,6 @@ class NavigationPipeline {
   far::FarRangeEstimator m_far;
   acq::Acquisition m_acquisition;
   LocalReacquisition m_reacquisition;
-  ReacquisitionStep m_last_reacquisition;
-  std::uint64_t m_filter_restarts = 0;
-  std::uint64_t m_reacquisitions_started = 0;
-  std::uint64_t m_reacquisitions_found = 0;
 
   NearRangeResult m_near_result;
   FilterUpdate m_last_pose_update;

@@ -1,0 +1,120 @@
+// Close-range reacquisition on rendered frames: a slewed target is found on the widening grid and delivered
+// only after confirmation; an empty image never yields a pose; the per-frame budget holds; nothing
+// allocates after init.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "../../support/alloc_counter.hpp"
+#include "../nearrange/tracker_fixture.hpp"
+#include "visnav/navigation/local_reacquisition.hpp"
+
+namespace visnav::nav {
+namespace {
+
+class ReacquisitionTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    model = makeBox(0.8, 0.6, 0.5);
+    synthetic::RenderOptions render;
+    render.shading.enabled = true;  // one flat brightness would hide the inner edges
+    render.shading.sun_dir_c = Vec3(0.3, 0.5, 1.0);
+    ASSERT_TRUE(renderer.init(test::vgaCamera(), model, render).ok);
+    ASSERT_TRUE(reacquisition.init(test::vgaCamera(), model, params, NearRangeParams{}).ok);
+    truth = Pose::fromYpr({0.6, 0.4, 2.8}, Vec3(0.1, -0.05, 10.0));
+  }
+  /// The prediction the filter would give after the camera slewed by `deg` about its y axis: the truth
+  /// before the slew.
+  Pose slewed(double deg) const {
+    const Mat3 r = expSo3(Vec3::UnitY() * (deg * kRadPerDeg));
+    Pose p;
+    p.R_c_m = r * truth.R_c_m;
+    p.t_c_m = r * truth.t_c_m;
+    return p;
+  }
+  NavigationParams params;
+  PolygonModel model;
+  synthetic::Renderer renderer;
+  LocalReacquisition reacquisition;
+  Pose truth;
+};
+
+TEST_F(ReacquisitionTest, InactiveStepDoesNothing) {
+  const test::RenderedFrame frame = test::renderFrame(renderer, truth, 1);
+  ReacquisitionStep step;
+  reacquisition.step(frame.image(), truth, 0, step);
+  EXPECT_FALSE(reacquisition.active());
+  EXPECT_EQ(step.hypotheses, 0);
+  EXPECT_FALSE(step.found);
+}
+
+TEST_F(ReacquisitionTest, FindsASlewedTargetAndDeliversItOnlyAfterConfirmation) {
+  // 3.5 deg at f = 1000 px: the target is 61 px away from where the prediction puts it, beyond the flight
+  // tracker's 10 px scanlines.
+  const Pose predicted = slewed(-3.5);
+  reacquisition.start();
+  int found_at = -1;
+  bool candidate_before_found = false;
+  for (int i = 0; i < 8 && found_at < 0; ++i) {
+    const test::RenderedFrame frame = test::renderFrame(renderer, truth, 10U + i);
+    ReacquisitionStep step;
+    reacquisition.step(frame.image(), predicted, static_cast<std::uint64_t>(i), step);
+    EXPECT_LE(step.hypotheses, params.reacquire_hypotheses_per_frame);
+    EXPECT_FALSE(step.ambiguous) << "frame " << i;
+    if (step.found) {
+      found_at = i;
+      EXPECT_LT((step.pose.t_c_m - truth.t_c_m).norm(), 0.01 * truth.t_c_m.norm());
+      EXPECT_LT(rotationAngleRad(step.pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0);
+      EXPECT_NE(step.status, TrackStatus::kLost);
+    } else {
+      candidate_before_found = candidate_before_found || step.candidate;
+    }
+  }
+  ASSERT_GE(found_at, 0) << "a 61 px slew was not recovered in 8 frames";
+  EXPECT_LE(found_at, 3) << "recovery within 5 frames is the target";
+  EXPECT_TRUE(candidate_before_found) << "a pose is delivered only after a confirming frame";
+  EXPECT_FALSE(reacquisition.active());
+}
+
+TEST_F(ReacquisitionTest, AnEmptyImageNeverYieldsAPoseAndTheSearchWidens) {
+  synthetic::Renderer empty;
+  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  Pose behind = truth;
+  behind.t_c_m.z() = -10.0;  // not drawn: background and noise only (an eclipse)
+  reacquisition.start();
+  int last_radius = 0;
+  for (int i = 0; i < 20; ++i) {
+    const test::RenderedFrame frame = test::renderFrame(empty, behind, 50U + i);
+    ReacquisitionStep step;
+    reacquisition.step(frame.image(), truth, static_cast<std::uint64_t>(i), step);
+    EXPECT_FALSE(step.found) << "frame " << i;
+    EXPECT_FALSE(step.candidate) << "frame " << i;
+    // The first frame's grid holds the prediction and one ring (7 starts); later ones the full budget.
+    EXPECT_EQ(step.hypotheses, i == 0 ? 7 : params.reacquire_hypotheses_per_frame);
+    EXPECT_GE(step.search_radius_px, last_radius);
+    last_radius = step.search_radius_px;
+  }
+  EXPECT_GT(last_radius, 200) << "the searched radius grows with the frames";
+  EXPECT_TRUE(reacquisition.active());
+  EXPECT_EQ(reacquisition.framesSearching(), 20);
+}
+
+TEST_F(ReacquisitionTest, SearchingAndConfirmingAllocateNothing) {
+  std::vector<test::RenderedFrame> frames;
+  for (int i = 0; i < 6; ++i) frames.push_back(test::renderFrame(renderer, truth, 80U + i));
+  const Pose predicted = slewed(3.0);
+  ReacquisitionStep step;
+  reacquisition.step(frames[0].image(), predicted, 0, step);  // warm-up of anything lazy
+  const std::uint64_t before = test::allocationCount();
+  for (int round = 0; round < 3; ++round) {
+    reacquisition.start();
+    for (int i = 0; i < 6; ++i)
+      reacquisition.step(frames[static_cast<std::size_t>(i)].image(), predicted,
+                         static_cast<std::uint64_t>(i), step);
+  }
+  EXPECT_EQ(test::allocationCount() - before, 0U);
+}
+
+}  // namespace
+}  // namespace visnav::nav
