@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numeric>
 #include <sstream>
 
-#include "visnav/eval/metrics.hpp"
+#include "visnav/eval/report.hpp"
 
 namespace visnav::campaign {
 namespace {
@@ -16,23 +15,6 @@ std::string num(double v, const char* format = "%.6g") {
   char buf[64];
   std::snprintf(buf, sizeof(buf), format, v + 0.0);  // + 0.0: no "-0"
   return buf;
-}
-
-std::string quote(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 std::string csvField(const std::string& s) {
@@ -53,165 +35,11 @@ std::string distributionJson(const Distribution& d) {
          ", \"median\": " + num(d.median) + ", \"p95\": " + num(d.p95) + ", \"max\": " + num(d.max) + "}";
 }
 
-std::string sceneRef(const SceneRun* r) { return r == nullptr ? std::string("null") : quote(r->scene.name); }
+std::string sceneRef(const SceneRun* r) {
+  return r == nullptr ? std::string("null") : eval::jsonString(r->scene.name);
+}
 
 }  // namespace
-
-Distribution distribution(std::vector<double> values) {
-  Distribution d;
-  if (values.empty()) return d;
-  std::sort(values.begin(), values.end());
-  d.count = static_cast<int>(values.size());
-  d.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
-  d.median = eval::percentileSorted(values, 0.5);
-  d.p95 = eval::percentileSorted(values, 0.95);
-  d.max = values.back();
-  return d;
-}
-
-GroupSummary summarise(const std::string& name, const std::vector<const SceneRun*>& runs) {
-  GroupSummary g;
-  g.name = name;
-  std::vector<double> tracked_fractions, accurate_fractions, latencies, modes_near, modes_approach,
-      acquisition, nis;
-  std::array<std::vector<double>, kModeCount> steps;
-  int worst_wrong = 0;
-  int worst_latency = -1;
-  bool worst_never = false;
-  int worst_modes = -1;
-  for (const SceneRun* run : runs) {
-    const Scene& s = run->scene;
-    const SceneResult& r = run->result;
-    ++g.scenes;
-    (s.approach ? g.approach_scenes : g.near_scenes) += 1;
-    g.frames += static_cast<int>(r.frames.size());
-    g.visible += r.visible;
-    g.expected += r.expected;
-    g.tracked += r.tracked;
-    g.accurate += r.accurate;
-    g.wrong += r.wrong;
-    if (r.wrong > 0) ++g.wrong_scenes;
-    if (r.wrong > worst_wrong) {
-      worst_wrong = r.wrong;
-      g.worst_wrong = run;
-    }
-    if (r.tracked_fraction >= 0.0) {
-      tracked_fractions.push_back(r.tracked_fraction);
-      accurate_fractions.push_back(r.accurate_fraction);
-      if (g.worst_tracked == nullptr || r.tracked_fraction < g.tracked_fraction_worst) {
-        g.tracked_fraction_worst = r.tracked_fraction;
-        g.worst_tracked = run;
-      }
-    }
-    for (const RecoveryEvent& e : r.events) {
-      ++g.recovery_events;
-      if (e.latency < 0) {
-        ++g.recovery_never;
-        if (!worst_never) {
-          worst_never = true;
-          g.worst_recovery = run;
-        }
-      } else {
-        latencies.push_back(e.latency);
-        if (!worst_never && e.latency > worst_latency) {
-          worst_latency = e.latency;
-          g.worst_recovery = run;
-        }
-      }
-    }
-    (s.approach ? modes_approach : modes_near).push_back(r.mode_changes);
-    if (r.mode_changes > worst_modes) {
-      worst_modes = r.mode_changes;
-      g.worst_modes = run;
-    }
-    if (r.acquisition_latency >= 0) acquisition.push_back(r.acquisition_latency);
-    if (r.acquisition_latency == -1) ++g.acquisition_never;
-    for (const FrameOutcome& f : r.frames) {
-      if (f.has_nis) {
-        nis.push_back(f.nis);
-        if (f.nis > kNisGate) ++g.nis_above_gate;
-      }
-      steps[static_cast<std::size_t>(f.mode)].push_back(f.process_us);
-    }
-  }
-  g.tracked_fraction = distribution(tracked_fractions);
-  g.accurate_fraction = distribution(accurate_fractions);
-  g.recovery = distribution(latencies);
-  g.mode_changes_near = distribution(modes_near);
-  g.mode_changes_approach = distribution(modes_approach);
-  g.acquisition_latency = distribution(acquisition);
-  g.nis = distribution(nis);
-  for (std::size_t m = 0; m < steps.size(); ++m) g.step_us[m] = distribution(steps[m]);
-  return g;
-}
-
-std::vector<GroupSummary> summariseAll(const std::vector<SceneRun>& runs) {
-  std::vector<GroupSummary> groups;
-  std::vector<const SceneRun*> all;
-  for (const SceneRun& r : runs) all.push_back(&r);
-  groups.push_back(summarise("overall", all));
-  for (int f = 0; f < kFamilyCount; ++f) {
-    std::vector<const SceneRun*> some;
-    for (const SceneRun& r : runs)
-      if (static_cast<int>(r.scene.family) == f) some.push_back(&r);
-    if (!some.empty()) groups.push_back(summarise(toString(static_cast<Family>(f)), some));
-  }
-  return groups;
-}
-
-std::vector<GateResult> checkGates(const std::vector<SceneRun>& runs, const Gates& gates) {
-  std::vector<GateResult> out;
-  std::vector<const SceneRun*> all;
-  for (const SceneRun& r : runs) all.push_back(&r);
-  const GroupSummary g = summarise("overall", all);
-  char buf[256];
-  if (gates.tracked_fraction) {
-    GateResult r;
-    r.name = "tracked fraction";
-    r.passed = g.worst_tracked == nullptr || g.tracked_fraction_worst >= gates.min_tracked_fraction;
-    r.worst = g.worst_tracked;
-    int below = 0;
-    for (const SceneRun& run : runs)
-      below += run.result.tracked_fraction >= 0.0 && run.result.tracked_fraction < gates.min_tracked_fraction;
-    std::snprintf(buf, sizeof(buf), "worst scene %.4f, required >= %.4f; %d of %d scenes below",
-                  g.tracked_fraction_worst, gates.min_tracked_fraction, below, g.tracked_fraction.count);
-    r.detail = buf;
-    out.push_back(r);
-  }
-  if (gates.no_confident_wrong) {
-    GateResult r;
-    r.name = "no confidently wrong pose";
-    r.passed = g.wrong == 0;
-    r.worst = g.worst_wrong;
-    std::snprintf(buf, sizeof(buf), "%d confidently wrong frames in %d scenes", g.wrong, g.wrong_scenes);
-    r.detail = buf;
-    out.push_back(r);
-  }
-  if (gates.recovery) {
-    GateResult r;
-    r.name = "recovery frames";
-    int over = 0;
-    for (const SceneRun& run : runs)
-      for (const RecoveryEvent& e : run.result.events) over += e.latency > gates.max_recovery_frames ? 1 : 0;
-    r.passed = g.recovery_never == 0 && over == 0;
-    r.worst = g.worst_recovery;
-    std::snprintf(buf, sizeof(buf), "%d events: %d never recovered, %d took more than %d frames (max %.0f)",
-                  g.recovery_events, g.recovery_never, over, gates.max_recovery_frames, g.recovery.max);
-    r.detail = buf;
-    out.push_back(r);
-  }
-  if (gates.mode_changes) {
-    GateResult r;
-    r.name = "mode changes";
-    const int worst = g.worst_modes == nullptr ? 0 : g.worst_modes->result.mode_changes;
-    r.passed = worst <= gates.max_mode_changes;
-    r.worst = g.worst_modes;
-    std::snprintf(buf, sizeof(buf), "worst scene %d, allowed <= %d", worst, gates.max_mode_changes);
-    r.detail = buf;
-    out.push_back(r);
-  }
-  return out;
-}
 
 std::string sceneLine(const SceneRun& run) {
   const Scene& s = run.scene;
@@ -332,11 +160,13 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
   o << "  \"command\": {\"runs\": " << options.runs << ", \"seed\": " << seedText(options.seed)
     << ", \"families\": [";
   for (std::size_t i = 0; i < options.families.size() && options.cases.empty(); ++i)
-    o << (i ? ", " : "") << quote(toString(options.families[i]));
+    o << (i ? ", " : "") << eval::jsonString(toString(options.families[i]));
   o << "], \"cases\": [";
-  for (std::size_t i = 0; i < options.cases.size(); ++i) o << (i ? ", " : "") << quote(options.cases[i]);
-  o << "], \"model\": " << quote(options.model_path) << ", \"config\": " << quote(options.config_path)
-    << ", \"max_frames\": " << options.max_frames << "},\n";
+  for (std::size_t i = 0; i < options.cases.size(); ++i)
+    o << (i ? ", " : "") << eval::jsonString(options.cases[i]);
+  o << "], \"model\": " << eval::jsonString(options.model_path)
+    << ", \"config\": " << eval::jsonString(options.config_path) << ", \"max_frames\": " << options.max_frames
+    << "},\n";
   o << "  \"definitions\": {\"wrong_position_rel\": " << num(th.wrong_position_rel)
     << ", \"wrong_attitude_deg\": " << num(th.wrong_attitude_deg)
     << ", \"accurate_position_rel\": " << num(th.accurate_position_rel)
@@ -349,17 +179,18 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
   for (std::size_t i = 0; i < gates.size(); ++i) {
     const GateResult& g = gates[i];
     passed = passed && g.passed;
-    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << quote(g.name)
-      << ", \"passed\": " << (g.passed ? "true" : "false") << ", \"detail\": " << quote(g.detail)
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << eval::jsonString(g.name)
+      << ", \"passed\": " << (g.passed ? "true" : "false") << ", \"detail\": " << eval::jsonString(g.detail)
       << ", \"worst_scene\": " << sceneRef(g.worst) << ", \"rerun\": "
-      << (g.worst == nullptr ? std::string("null") : quote(rerunCommand(g.worst->scene, options))) << "}";
+      << (g.worst == nullptr ? std::string("null") : eval::jsonString(rerunCommand(g.worst->scene, options)))
+      << "}";
   }
   o << (gates.empty() ? "],\n" : "\n  ],\n");
   o << "  \"passed\": " << (passed ? "true" : "false") << ",\n";
   o << "  \"summary\": {";
   for (std::size_t i = 0; i < groups.size(); ++i) {
     const GroupSummary& g = groups[i];
-    o << (i ? ",\n    " : "\n    ") << quote(g.name) << ": {\"scenes\": " << g.scenes
+    o << (i ? ",\n    " : "\n    ") << eval::jsonString(g.name) << ": {\"scenes\": " << g.scenes
       << ", \"near_scenes\": " << g.near_scenes << ", \"approach_scenes\": " << g.approach_scenes
       << ", \"frames\": " << g.frames << ", \"visible\": " << g.visible << ", \"expected\": " << g.expected
       << ", \"tracked\": " << g.tracked << ", \"accurate\": " << g.accurate
@@ -386,17 +217,18 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const Scene& s = runs[i].scene;
     const SceneResult& r = runs[i].result;
-    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << quote(s.name)
-      << ", \"family\": " << quote(toString(s.family)) << ", \"kind\": " << quote(kindText(s))
-      << ", \"case\": " << (s.is_case ? "true" : "false") << ", \"seed\": " << seedText(s.seed)
-      << ", \"rerun\": " << quote(rerunCommand(s, options)) << ",\n      \"parameters\": {";
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << eval::jsonString(s.name)
+      << ", \"family\": " << eval::jsonString(toString(s.family))
+      << ", \"kind\": " << eval::jsonString(kindText(s)) << ", \"case\": " << (s.is_case ? "true" : "false")
+      << ", \"seed\": " << seedText(s.seed) << ", \"rerun\": " << eval::jsonString(rerunCommand(s, options))
+      << ",\n      \"parameters\": {";
     const std::vector<SceneParam> params = sceneParameters(s);
     for (std::size_t k = 0; k < params.size(); ++k)
-      o << (k ? ", " : "") << quote(params[k].key) << ": "
-        << (params[k].is_number ? params[k].value : quote(params[k].value));
+      o << (k ? ", " : "") << eval::jsonString(params[k].key) << ": "
+        << (params[k].is_number ? params[k].value : eval::jsonString(params[k].value));
     o << "},\n      \"results\": {";
     if (!r.error.ok) {
-      o << "\"error\": " << quote(r.error.message) << "}}";
+      o << "\"error\": " << eval::jsonString(r.error.message) << "}}";
       continue;
     }
     o << "\"frames\": " << r.frames.size() << ", \"visible\": " << r.visible
@@ -413,14 +245,16 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
       << ", \"nis_count\": " << r.nis_count << ", \"nis_mean\": " << num(r.nis_mean) << "},\n";
     o << "      \"events\": [";
     for (std::size_t k = 0; k < r.events.size(); ++k)
-      o << (k ? ", " : "") << "{\"kind\": " << quote(toString(r.events[k].kind))
+      o << (k ? ", " : "") << "{\"kind\": " << eval::jsonString(toString(r.events[k].kind))
         << ", \"frame\": " << r.events[k].frame << ", \"latency\": "
         << (r.events[k].latency < 0 ? std::string("\"never\"") : std::to_string(r.events[k].latency)) << "}";
     o << "],\n      \"transitions\": [";
     for (std::size_t k = 0; k < r.transitions.size(); ++k) {
       const TransitionRecord& t = r.transitions[k];
-      o << (k ? ", " : "") << "{\"frame\": " << t.frame << ", \"from\": " << quote(nav::toString(t.from))
-        << ", \"to\": " << quote(nav::toString(t.to)) << ", \"reason\": " << quote(t.reason) << "}";
+      o << (k ? ", " : "") << "{\"frame\": " << t.frame
+        << ", \"from\": " << eval::jsonString(nav::toString(t.from))
+        << ", \"to\": " << eval::jsonString(nav::toString(t.to))
+        << ", \"reason\": " << eval::jsonString(t.reason) << "}";
     }
     o << "]}";
   }
@@ -430,11 +264,11 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       if (!f.wrong) continue;
-      o << (first ? "\n    " : ",\n    ") << "{\"scene\": " << quote(run.scene.name)
-        << ", \"family\": " << quote(toString(run.scene.family)) << ", \"seed\": " << seedText(run.scene.seed)
-        << ", \"frame\": " << f.frame << ", \"mode\": " << quote(nav::toString(f.mode))
-        << ", \"fault_bits\": " << f.fault_bits << ", \"range_m\": " << num(f.range_m)
-        << ", \"position_error_m\": " << num(f.position_error_m)
+      o << (first ? "\n    " : ",\n    ") << "{\"scene\": " << eval::jsonString(run.scene.name)
+        << ", \"family\": " << eval::jsonString(toString(run.scene.family))
+        << ", \"seed\": " << seedText(run.scene.seed) << ", \"frame\": " << f.frame
+        << ", \"mode\": " << eval::jsonString(nav::toString(f.mode)) << ", \"fault_bits\": " << f.fault_bits
+        << ", \"range_m\": " << num(f.range_m) << ", \"position_error_m\": " << num(f.position_error_m)
         << ", \"position_error_pct\": " << num(100.0 * f.position_error_m / f.range_m)
         << ", \"attitude_error_deg\": " << num(f.attitude_error_deg) << "}";
       first = false;
@@ -445,9 +279,9 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
   o << "  \"timing\": {\"enabled\": " << (options.timing ? "true" : "false") << ", \"jobs\": " << options.jobs
     << ", \"step_us\": {";
   for (std::size_t i = 0; i < groups.size(); ++i) {
-    o << (i ? ", " : "") << quote(groups[i].name) << ": {";
+    o << (i ? ", " : "") << eval::jsonString(groups[i].name) << ": {";
     for (int m = 0; m < kModeCount; ++m)
-      o << (m ? ", " : "") << quote(nav::toString(static_cast<nav::NavMode>(m))) << ": "
+      o << (m ? ", " : "") << eval::jsonString(nav::toString(static_cast<nav::NavMode>(m))) << ": "
         << distributionJson(groups[i].step_us[static_cast<std::size_t>(m)]);
     o << "}";
   }
@@ -456,7 +290,7 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
     std::vector<double> steps;
     for (const FrameOutcome& f : runs[i].result.frames) steps.push_back(f.process_us);
     const Distribution d = distribution(steps);
-    o << (i ? ", " : "") << "{\"name\": " << quote(runs[i].scene.name)
+    o << (i ? ", " : "") << "{\"name\": " << eval::jsonString(runs[i].scene.name)
       << ", \"wall_s\": " << num(runs[i].result.wall_s) << ", \"step_median_us\": " << num(d.median)
       << ", \"step_p95_us\": " << num(d.p95) << "}";
   }

@@ -4,20 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <memory>
 
 #include "visnav/core/frame.hpp"
+#include "visnav/executive/clock.hpp"
 #include "visnav/synthetic/renderer.hpp"
 
 namespace visnav::campaign {
 namespace {
-
-std::int64_t monotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
-}
 
 constexpr std::size_t kMaxTransitionRecords = 64;
 
@@ -75,7 +69,7 @@ void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& r) {
 
 SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing, const Thresholds& th) {
   SceneResult res;
-  const std::int64_t wall_start = timing ? monotonicNs() : 0;
+  const std::int64_t wall_start = timing ? exec::monotonicNowNs() : 0;
   const PinholeCamera camera(scene.camera);
   synthetic::Renderer renderer;
   if (LoadError e = renderer.init(camera, scene.model, scene.render); !e.ok) {
@@ -89,7 +83,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     res.error = LoadError::failure(scene.name + ": pipeline: " + e.message);
     return res;
   }
-  if (timing) pipeline->setClock(&monotonicNs);
+  if (timing) pipeline->setClock(&exec::monotonicNowNs);
   if (!scene.approach) pipeline->startNearRange(scene.truth(0), 0);
   const std::uint64_t transitions_start = pipeline->modes().transitionCount();
 
@@ -145,7 +139,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
   }
   res.mode_changes = static_cast<int>(pipeline->modes().transitionCount() - transitions_start);
   summariseScene(scene, th, res);
-  if (timing) res.wall_s = static_cast<double>(monotonicNs() - wall_start) * 1e-9;
+  if (timing) res.wall_s = static_cast<double>(exec::monotonicNowNs() - wall_start) * 1e-9;
   return res;
 }
 

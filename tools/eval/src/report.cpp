@@ -18,23 +18,6 @@ std::string num(double v) {
 
 std::string jnum(double v) { return std::isfinite(v) ? num(v) : "null"; }
 
-std::string jstr(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (static_cast<unsigned char>(ch) < 0x20U) {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(ch)));
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
 std::string axisColumn(int a) { return std::string(axisName(a)) + "_" + axisUnit(a); }
 
 // "median 0.0312 deg over 120 far_valid frames, required <= 0.1"; fails when nothing was scored.
@@ -53,6 +36,23 @@ std::string transitionText(const ModeChange& t) {
 }
 
 }  // namespace
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (static_cast<unsigned char>(ch) < 0x20U) {
+      char buf[8];
+      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(ch)));
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
 
 std::vector<RequirementResult> checkRequirements(const Evaluation& ev, const Requirements& req) {
   std::vector<RequirementResult> out;
@@ -145,14 +145,14 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
   const EvaluationSummary& s = ev.summary;
   bool passed = true;
   for (const RequirementResult& r : req) passed = passed && r.passed;
-  out << "{\n  \"sequence\": " << jstr(sequence) << ",\n  \"replay\": " << jstr(replay) << ",\n";
+  out << "{\n  \"sequence\": " << jsonString(sequence) << ",\n  \"replay\": " << jsonString(replay) << ",\n";
   out << "  \"frames\": {\"evaluated\": " << s.frames_evaluated << ", \"tracking\": " << s.frames_tracking
       << ", \"degraded\": " << s.frames_degraded << ", \"lost\": " << s.frames_lost
       << ", \"missing\": " << s.frames_missing << ", \"init\": " << s.frames_init
       << ", \"track_loss\": " << s.track_loss_count
       << ", \"unmatched_replay_rows\": " << s.unmatched_replay_rows << "},\n  \"errors\": {\n";
   auto stats = [&out](const std::string& name, const ErrorStats& e, bool last) {
-    out << "    " << jstr(name) << ": {\"count\": " << e.count << ", \"median\": " << jnum(e.median)
+    out << "    " << jsonString(name) << ": {\"count\": " << e.count << ", \"median\": " << jnum(e.median)
         << ", \"p95\": " << jnum(e.p95) << ", \"max\": " << jnum(e.max) << "}" << (last ? "\n" : ",\n");
   };
   for (int a = 0; a < kAxisCount; ++a) stats(axisColumn(a), s.axes[a], false);
@@ -165,7 +165,7 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
         << ", \"inside_count\": " << e.inside_count << ", \"inside_fraction\": " << jnum(e.inside_fraction)
         << ", \"failed_solves\": " << e.failed_solves << ", \"max_envelope\": {";
     for (int a = 0; a < kAxisCount; ++a)
-      out << (a ? ", " : "") << jstr(axisColumn(a)) << ": " << jnum(e.max_envelope[a]);
+      out << (a ? ", " : "") << jsonString(axisColumn(a)) << ": " << jnum(e.max_envelope[a]);
     out << "}}";
   }
   out << (s.envelopes.empty() ? "],\n" : "\n  ],\n") << "  \"far_range\": {\n";
@@ -179,18 +179,19 @@ void writeSummaryJson(std::ostream& out, const Evaluation& ev, const std::vector
   }
   out << "  \"modes\": {\"frames\": {";
   for (int m = 0; m < kReplayModeCount; ++m)
-    out << (m ? ", " : "") << jstr(toString(static_cast<ReplayMode>(m))) << ": " << s.mode_frames[m];
-  out << "}, \"final\": " << (s.has_modes ? jstr(toString(s.final_mode)) : "null") << ", \"transitions\": [";
+    out << (m ? ", " : "") << jsonString(toString(static_cast<ReplayMode>(m))) << ": " << s.mode_frames[m];
+  out << "}, \"final\": " << (s.has_modes ? jsonString(toString(s.final_mode)) : "null")
+      << ", \"transitions\": [";
   for (std::size_t i = 0; i < s.transitions.size(); ++i) {
     const ModeChange& t = s.transitions[i];
-    out << (i ? ", " : "") << "{\"frame\": " << t.frame << ", \"from\": " << jstr(toString(t.from))
-        << ", \"to\": " << jstr(toString(t.to)) << "}";
+    out << (i ? ", " : "") << "{\"frame\": " << t.frame << ", \"from\": " << jsonString(toString(t.from))
+        << ", \"to\": " << jsonString(toString(t.to)) << "}";
   }
   out << "]},\n  \"requirements\": [";
   for (std::size_t i = 0; i < req.size(); ++i) {
-    out << (i ? ",\n" : "\n") << "    {\"name\": " << jstr(req[i].name)
-        << ", \"passed\": " << (req[i].passed ? "true" : "false") << ", \"detail\": " << jstr(req[i].detail)
-        << "}";
+    out << (i ? ",\n" : "\n") << "    {\"name\": " << jsonString(req[i].name)
+        << ", \"passed\": " << (req[i].passed ? "true" : "false")
+        << ", \"detail\": " << jsonString(req[i].detail) << "}";
   }
   out << (req.empty() ? "],\n" : "\n  ],\n") << "  \"passed\": " << (passed ? "true" : "false") << "\n}\n";
 }

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <sstream>
 #include <vector>
 
 #include "visnav/app/visnav_config.hpp"
+#include "visnav/executive/clock.hpp"
 #include "visnav/io/camera_io.hpp"
 #include "visnav/io/config_io.hpp"
 #include "visnav/io/model_io.hpp"
@@ -20,12 +20,6 @@
 
 namespace visnav::replay_tool {
 namespace {
-
-std::int64_t monotonicNs() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
-}
 
 void writeHeader(std::FILE* f) {
   std::fputs(
@@ -132,7 +126,7 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
 
   nav::NavigationPipeline pipeline;
   if (LoadError e = pipeline.init(PinholeCamera(intrinsics), model, params); !e.ok) return e;
-  if (options.timing) pipeline.setClock(&monotonicNs);
+  if (options.timing) pipeline.setClock(&exec::monotonicNowNs);
   using Start = ReplayOptions::Start;
   if (options.start == Start::kInitialPose) {
     pipeline.startNearRange(options.initial_pose, 0);

@@ -25,6 +25,10 @@ struct Requirements {
 
 std::vector<RequirementResult> checkRequirements(const Evaluation& evaluation, const Requirements& req);
 
+/// A JSON string literal of `s` (quotes, backslashes and control characters escaped): the one escaper of
+/// the ground tools' JSON outputs.
+std::string jsonString(const std::string& s);
+
 /// Column-name tag of an envelope size: 1 -> "1px", 0.25 -> "0p25px".
 std::string envelopeTag(double delta_px);
 
