@@ -394,6 +394,47 @@ TEST(PoseFilter, RunsThroughFarRangeOnPositionsAndAdoptsTheFirstAttitude) {
   EXPECT_EQ(f.update(measure(truth.pose, r, rng), r).dof, 6);
 }
 
+// Adaptive process noise: a target that starts to tumble (angular acceleration the constant-velocity model
+// does not expect) raises the noise within a few frames, the filter follows, and the noise decays back once
+// the motion is steady again; with adaptive_noise_max_scale = 1 it never moves.
+TEST(PoseFilter, ProcessNoiseFollowsATumbleThatStartsAndDecaysBack) {
+  for (const double max_scale : {100.0, 1.0}) {
+    PoseFilterParams params;
+    params.adaptive_noise_max_scale = max_scale;
+    PoseFilter f = makeFilter(params);
+    Pcg32 rng(7, 3);
+    const Mat6 cov = trackerLikeCovariance();
+    Truth truth;
+    truth.pose = Pose::fromYpr({0.2, 0.1, kPi}, Vec3(0.0, 0.0, 10.0));
+    ASSERT_EQ(f.initialise(truth.pose, cov), Status::kOk);
+    double peak = 1.0;
+    int rejected_late = 0;
+    for (int k = 1; k <= 120; ++k) {
+      if (k == 20) truth.w = Vec3(0.0, 6.0, 2.0) * kRadPerDeg;  // a 6.3 deg/s tumble starts at once
+      truth.step(kDt, 0.0, 0.0, rng);
+      ASSERT_EQ(f.predict(kDt), Status::kOk);
+      const FilterUpdate u = f.update(measure(truth.pose, cov, rng), cov);
+      if (k < 20) {
+        EXPECT_DOUBLE_EQ(f.processNoiseScale(), 1.0) << "steady target, frame " << k;
+      }
+      if (k >= 20 && k < 30) peak = std::max(peak, f.processNoiseScale());
+      if (k >= 30 && k < 60 && !u.accepted) ++rejected_late;
+    }
+    std::printf(
+        "adaptive noise up to %.0f: peak scale %.1f, rejected 2-8 s after the start %d, final scale %.2f\n",
+        max_scale, peak, rejected_late, f.processNoiseScale());
+    if (max_scale > 1.0) {
+      EXPECT_GE(peak, 4.0) << "the noise was raised when the tumble started";
+      EXPECT_EQ(rejected_late, 0) << "the filter followed the tumble";
+      EXPECT_LT(f.processNoiseScale(), 2.0) << "and decayed back on the steady tumble";
+    } else {
+      EXPECT_DOUBLE_EQ(peak, 1.0);
+      EXPECT_DOUBLE_EQ(f.processNoiseScale(), 1.0);
+      EXPECT_GT(rejected_late, 10) << "control: with fixed noise the filter does not follow the tumble";
+    }
+  }
+}
+
 TEST(PoseFilter, RejectsInvalidInputs) {
   PoseFilter f = makeFilter();
   const Mat6 r = trackerLikeCovariance();
