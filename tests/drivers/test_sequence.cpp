@@ -119,6 +119,33 @@ TEST(Pgm, RejectsSmallBufferAndBadFiles) {
   EXPECT_FALSE(readPgm(dir.str("missing.pgm"), buf, sizeof buf, w, h, maxval).ok);
 }
 
+// Issue 13 item 14: the sizes in the message, trailing bytes, the sequence's max_code, non-regular files.
+TEST(Pgm, SaysTheSizesAndRejectsTrailingBytesForeignMaxvalAndDevices) {
+  TempDir dir("pgmstrict");
+  const std::vector<std::uint8_t> img(20, 5);
+  ASSERT_TRUE(writePgm8(dir.str("c.pgm"), ImageView8(img.data(), 5, 4)).ok);
+  std::uint8_t buf[64];
+  int w = -1;
+  int h = -1;
+  int maxval = -1;
+  LoadError e = readPgm(dir.str("c.pgm"), buf, 19, w, h, maxval);
+  EXPECT_NE(e.message.find("image 5x4 with 1-byte samples needs 20 bytes, the buffer holds 19"),
+            std::string::npos)
+      << e.message;
+  EXPECT_TRUE(readPgm(dir.str("c.pgm"), buf, sizeof buf, w, h, maxval, 255).ok);
+  e = readPgm(dir.str("c.pgm"), buf, sizeof buf, w, h, maxval, 1023);
+  EXPECT_NE(e.message.find("PGM maxval 255 differs from the sequence's max_code 1023"), std::string::npos)
+      << e.message;
+  spit(dir.str("tail.pgm"), slurp(dir.str("c.pgm")) + "x");
+  e = readPgm(dir.str("tail.pgm"), buf, sizeof buf, w, h, maxval);
+  EXPECT_NE(e.message.find("trailing bytes"), std::string::npos) << e.message;
+  e = readPgm("/dev/zero", buf, sizeof buf, w, h, maxval);
+  EXPECT_NE(e.message.find("not a regular file"), std::string::npos) << e.message;
+  e = readPgm(dir.str("missing.pgm"), buf, sizeof buf, w, h, maxval);
+  EXPECT_NE(e.message.find("No such file or directory"), std::string::npos) << e.message;
+  EXPECT_EQ(w, 5);  // from the one good read
+}
+
 // Writes a 4-frame sequence with truth; returns its directory.
 void writeSequence(const TempDir& dir, std::vector<Pose>& poses) {
   SequenceWriter writer;
@@ -182,6 +209,13 @@ TEST(Sequence, BadFilesAreRejectedWithFileLineAndProblem) {
       {"frames.csv", "\n4,", "\n1,", "frames.csv:4: frame numbers must increase"},
       {"truth.csv", "\n0,1000,", "\n0,1000,1,", "truth.csv:2: expected 12 fields"},
       {"truth.csv", "\n2,200001000,", "\n3,200001000,", "truth.csv:3: frame 3 is not in frames.csv"},
+      // Issue 13 item 14: frame files stay inside the sequence directory, and a sequence has frames.
+      {"frames.csv", "frames/000004.pgm", "frames/../../seq/frames/000004.pgm", "frames.csv:4: frame file"},
+      {"frames.csv", "frames/000004.pgm", "/etc/passwd",
+       "frames.csv:4: frame file '/etc/passwd' is an absolute"},
+      {"sequence.toml", "frame_count = 4", "frame_count = 0", "frame_count"},
+      // Item 12: non-ASCII where toml++ expects a key never reaches toml++.
+      {"sequence.toml", "rate_hz", "\xc3\xa9 = 1\nrate_hz", "sequence.toml:"},
   };
   for (const Corruption& c : cases) {
     TempDir dir("bad");

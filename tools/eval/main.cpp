@@ -177,6 +177,10 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const eval::Evaluation ev = eval::evaluate(PinholeCamera(seq.camera), seq.model, truth, rows, args.eval);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (const char* problem = eval::nothingToScore(ev.summary)) {
+    std::cerr << "visnav-eval: " << args.replay << ": " << problem << '\n';
+    return kExitBadInput;
+  }
   const std::vector<eval::RequirementResult> req = eval::checkRequirements(ev, args.req);
 
   std::cout << "sequence " << (seq.name.empty() ? args.sequence : seq.name) << ", replay " << args.replay

@@ -2,11 +2,14 @@
 // (the replay camera's acquire()): its success path builds no strings and allocates nothing, so it reads
 // through a file descriptor and a small stack buffer (fopen would malloc its FILE).
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <string>
+#include <system_error>
 
 #include "visnav/replay/sequence.hpp"
 
@@ -23,13 +26,18 @@ struct File {
 // Buffered reading from a descriptor without heap: the header byte by byte, the raster in bulk.
 class FdReader {
  public:
-  explicit FdReader(const char* path) : m_fd(::open(path, O_RDONLY | O_CLOEXEC)) {}
+  // O_NONBLOCK: a FIFO without a writer must not block the open; the type is checked by regularFile().
+  explicit FdReader(const char* path) : m_fd(::open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK)) {}
   ~FdReader() {
     if (m_fd >= 0) ::close(m_fd);
   }
   FdReader(const FdReader&) = delete;
   FdReader& operator=(const FdReader&) = delete;
   bool ok() const { return m_fd >= 0; }
+  bool regularFile() const {
+    struct stat st {};
+    return ::fstat(m_fd, &st) == 0 && S_ISREG(st.st_mode);
+  }
 
   int get() {
     if (m_pos == m_len && !refill()) return EOF;
@@ -103,9 +111,11 @@ LoadError fail(const std::string& path, const char* problem) {
 }  // namespace
 
 LoadError readPgm(const std::string& path, std::uint8_t* buffer, std::size_t capacity_bytes, int& width,
-                  int& height, int& maxval) {
+                  int& height, int& maxval, int expected_maxval) {
   FdReader in(path.c_str());
-  if (!in.ok()) return fail(path, "cannot open file");
+  if (!in.ok())
+    return LoadError::failure(path + ": cannot open file: " + std::generic_category().message(errno));
+  if (!in.regularFile()) return fail(path, "not a regular file");
   if (in.get() != 'P' || in.get() != '5') return fail(path, "not a binary PGM (P5)");
   long w = 0;
   long h = 0;
@@ -115,11 +125,20 @@ LoadError readPgm(const std::string& path, std::uint8_t* buffer, std::size_t cap
   }
   if (w <= 0 || h <= 0 || w > 65536 || h > 65536) return fail(path, "invalid PGM width/height");
   if (m <= 0 || m > 65535) return fail(path, "PGM maxval must be in [1, 65535]");
+  if (expected_maxval > 0 && m != expected_maxval)
+    return LoadError::failure(path + ": PGM maxval " + std::to_string(m) +
+                              " differs from the sequence's max_code " + std::to_string(expected_maxval));
   const std::size_t bytes_per_sample = m > 255 ? 2U : 1U;
   const std::size_t samples = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   const std::size_t bytes = samples * bytes_per_sample;
-  if (buffer == nullptr || bytes > capacity_bytes) return fail(path, "image does not fit the buffer");
+  if (buffer == nullptr || bytes > capacity_bytes)
+    return LoadError::failure(path + ": image " + std::to_string(w) + "x" + std::to_string(h) + " with " +
+                              std::to_string(bytes_per_sample) + "-byte samples needs " +
+                              std::to_string(bytes) + " bytes, the buffer holds " +
+                              std::to_string(buffer == nullptr ? 0 : capacity_bytes) +
+                              " (is the frame bigger than the camera?)");
   if (!in.read(buffer, bytes)) return fail(path, "truncated PGM raster");
+  if (in.get() != EOF) return fail(path, "trailing bytes after the PGM raster");
   if (bytes_per_sample == 2U) {
     // Big-endian on disk -> host order, in place, via memcpy to stay alignment- and aliasing-safe.
     for (std::size_t i = 0; i < samples; ++i) {

@@ -71,7 +71,7 @@ camera::AcquireResult ReplayCamera::acquire(std::int64_t timeout_ns, Frame& fram
   int width = 0;
   int height = 0;
   int maxval = 0;
-  const LoadError e = readPgm(entry.file, pixels, m_slot_bytes, width, height, maxval);
+  const LoadError e = readPgm(entry.file, pixels, m_slot_bytes, width, height, maxval, m_sequence.max_code);
   const bool wrong_size = e.ok && (width != m_sequence.camera.width_px ||
                                    height != m_sequence.camera.height_px || maxval != m_sequence.max_code);
   if (!e.ok || wrong_size) {

@@ -16,6 +16,7 @@
 
 #include "visnav/io/camera_io.hpp"
 #include "visnav/io/model_io.hpp"
+#include "visnav/io/text_file.hpp"
 #include "visnav/replay/toml_reader.hpp"
 
 namespace visnav::replay {
@@ -31,6 +32,15 @@ std::string absolutePath(const fs::path& p) { return fs::absolute(p).lexically_n
 
 LoadError lineError(const std::string& path, int line, const std::string& problem) {
   return LoadError::failure(path + ":" + std::to_string(line) + ": " + problem);
+}
+
+// Frame files stay inside the sequence directory: a relative path without any ".." component.
+const char* pathEscapes(const std::string& file) {
+  const fs::path p(file);
+  if (p.is_absolute()) return "is an absolute path (frame files are relative to the sequence directory)";
+  for (const fs::path& part : p)
+    if (part == "..") return "contains '..' (frame files stay inside the sequence directory)";
+  return nullptr;
 }
 
 bool parseInt64(const std::string& s, std::int64_t& out) {
@@ -66,8 +76,9 @@ void splitCsv(const std::string& line, std::vector<std::string>& fields) {
 // Reads a CSV with an exact header; calls row(fields, line_number) for every data row.
 template <typename RowFn>
 LoadError readCsv(const std::string& path, const char* header, RowFn row) {
-  std::ifstream in(path);
-  if (!in) return LoadError::failure(path + ": cannot open file");
+  std::string text;
+  if (LoadError e = io::readTextFile(path, text); !e.ok) return e;
+  std::istringstream in(text);
   std::string line;
   int line_no = 0;
   std::vector<std::string> fields;
@@ -141,7 +152,7 @@ LoadError loadSequence(const std::string& directory, Sequence& out) {
   if (r.good() && version != 1) r.fail("version", "unsupported version (this reader knows 1)");
   r.getString("name", seq.name, true);
   r.getInt("frame_count", frame_count, true);
-  r.checkRange("frame_count", static_cast<double>(frame_count), 0.0, 1e9);
+  r.checkRange("frame_count", static_cast<double>(frame_count), 1.0, 1e9);  // nothing to replay in 0 frames
   r.getInt("bit_depth", seq.bit_depth, true);
   if (r.good() && seq.bit_depth != 8 && seq.bit_depth != 16) r.fail("bit_depth", "must be 8 or 16");
   r.getInt("max_code", max_code, true);
@@ -172,6 +183,8 @@ LoadError loadSequence(const std::string& directory, Sequence& out) {
     if (!parseInt64(f[1], fe.timestamp_ns))
       return lineError(frames_path, line, "bad timestamp_ns '" + f[1] + "'");
     if (f[2].empty()) return lineError(frames_path, line, "empty file name");
+    if (const char* problem = pathEscapes(f[2]))
+      return lineError(frames_path, line, "frame file '" + f[2] + "' " + problem);
     if (!seq.frames.empty()) {
       if (fe.frame <= seq.frames.back().frame)
         return lineError(frames_path, line, "frame numbers must increase");
@@ -187,6 +200,8 @@ LoadError loadSequence(const std::string& directory, Sequence& out) {
     return LoadError::success();
   });
   if (!e.ok) return e;
+  if (seq.frames.empty())
+    return LoadError::failure(frames_path + ": no frames (a sequence needs at least one)");
   if (static_cast<std::int64_t>(seq.frames.size()) != frame_count) {
     return LoadError::failure(frames_path + ": has " + std::to_string(seq.frames.size()) +
                               " frames but sequence.toml says frame_count = " + std::to_string(frame_count));

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "visnav/io/text_file.hpp"
+
 namespace visnav::replay {
 
 struct TomlReader::Impl {
@@ -50,8 +52,11 @@ LoadError TomlReader::open(const std::string& path) {
   m_path = path;
   m_used.clear();
   m_error = LoadError::success();
+  std::string text;
+  if (LoadError e = io::readTextFile(path, text, io::kMaxTomlFileBytes); !e.ok) return m_error = e;
+  if (LoadError e = io::checkTomlAscii(path, text); !e.ok) return m_error = e;
   try {
-    m_impl->table = toml::parse_file(path);
+    m_impl->table = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream s;
     s << path << ":" << e.source().begin.line << ": " << e.description();

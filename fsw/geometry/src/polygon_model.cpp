@@ -19,9 +19,18 @@ LoadError PolygonModel::build(const std::vector<Vec3>& vertices, std::vector<Mod
                               PolygonModel& out) {
   if (vertices.size() < 3) return LoadError::failure("model needs at least 3 vertices");
   if (surfaces.empty()) return LoadError::failure("model needs at least 1 surface");
+  if (vertices.size() > kMaxVertices)
+    return LoadError::failure("model has " + std::to_string(vertices.size()) +
+                              " vertices, more than the limit " + std::to_string(kMaxVertices));
+  if (surfaces.size() > kMaxSurfaces)
+    return LoadError::failure("model has " + std::to_string(surfaces.size()) +
+                              " surfaces, more than the limit " + std::to_string(kMaxSurfaces));
   double radius = 0.0;
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     if (!vertices[i].allFinite()) return LoadError::failure("vertex " + std::to_string(i) + " is not finite");
+    if (vertices[i].cwiseAbs().maxCoeff() > kMaxCoordinateM)
+      return LoadError::failure("vertex " + std::to_string(i) + " has a coordinate beyond +-" +
+                                std::to_string(static_cast<int>(kMaxCoordinateM)) + " m");
     radius = std::max(radius, vertices[i].norm());
   }
   const double tol = 1e-6 * std::max(1.0, radius);
@@ -32,13 +41,19 @@ LoadError PolygonModel::build(const std::vector<Vec3>& vertices, std::vector<Mod
     const auto& idx = surf.vertex_indices;
     const std::string label = surfaceLabel(surf, s);
     if (idx.size() < 3) return LoadError::failure(label + " has fewer than 3 vertices");
+    if (idx.size() > kMaxSurfaceVertices)
+      return LoadError::failure(label + " has " + std::to_string(idx.size()) +
+                                " vertices, more than the limit " + std::to_string(kMaxSurfaceVertices));
     for (std::size_t k = 0; k < idx.size(); ++k) {
       if (idx[k] < 0 || static_cast<std::size_t>(idx[k]) >= vertices.size())
         return LoadError::failure(label + " refers to vertex " + std::to_string(idx[k]) +
                                   ", which does not exist");
-      for (std::size_t j = 0; j < k; ++j)
-        if (idx[j] == idx[k]) return LoadError::failure(label + " repeats vertex " + std::to_string(idx[k]));
     }
+    std::vector<int> sorted = idx;  // n log n: a long face must not cost n^2
+    std::sort(sorted.begin(), sorted.end());
+    const auto repeat = std::adjacent_find(sorted.begin(), sorted.end());
+    if (repeat != sorted.end())
+      return LoadError::failure(label + " repeats vertex " + std::to_string(*repeat));
     // Newell's method: robust normal of a (nearly) planar polygon; its direction follows the vertex order.
     Vec3 newell = Vec3::Zero();
     Vec3 centroid = Vec3::Zero();
@@ -49,20 +64,31 @@ LoadError PolygonModel::build(const std::vector<Vec3>& vertices, std::vector<Mod
       centroid += a;
     }
     centroid /= static_cast<double>(idx.size());
+    if (!newell.allFinite()) return LoadError::failure(label + " has a normal that is not finite");
     if (newell.norm() < tol * tol) return LoadError::failure(label + " has zero area");
     const Vec3 n = newell.normalized();
+    if (!n.allFinite()) return LoadError::failure(label + " has a normal that is not finite");
     for (int v : idx)
       if (std::fabs(n.dot(vertices[v] - centroid)) > tol)
         return LoadError::failure(label + " is not planar (vertex " + std::to_string(v) +
                                   " is off its plane)");
+    // Convex and simple: no turn against the normal, and the exterior angles add up to exactly one turn.
+    // Turning the same way at every vertex alone lets a star through (its turns add up to 2 pi per loop).
+    double turning_rad = 0.0;
     for (std::size_t k = 0; k < idx.size(); ++k) {
       const Vec3& a = vertices[idx[k]];
       const Vec3& b = vertices[idx[(k + 1) % idx.size()]];
       const Vec3& c = vertices[idx[(k + 2) % idx.size()]];
-      if ((b - a).cross(c - b).dot(n) < -tol * tol)
+      const Vec3 turn = (b - a).cross(c - b);
+      if (turn.dot(n) < -tol * tol)
         return LoadError::failure(label + " is not convex at vertex " +
                                   std::to_string(idx[(k + 1) % idx.size()]));
+      turning_rad += std::atan2(turn.dot(n), (b - a).dot(c - b));
     }
+    if (std::fabs(turning_rad - 2.0 * kPi) > 1e-6)
+      return LoadError::failure(label + " is not a simple polygon (its edges turn " +
+                                std::to_string(turning_rad / (2.0 * kPi)) +
+                                " times around: self-intersecting, e.g. a star)");
     if (surf.normal_m.squaredNorm() == 0.0) {
       surf.normal_m = n;
     } else {

@@ -203,12 +203,17 @@ class YamlReader {
     data.resize(close);
     // Split on commas; each value gets the line it started on.
     std::size_t pos = 0;
-    while (pos <= data.size() && !trim(data).empty()) {
+    std::size_t line_index = 0;  // moves forward with pos: linear in the number of lines
+    const bool any_data = !trim(data).empty();
+    while (pos <= data.size() && any_data) {
+      if (static_cast<int>(m.data.size()) >= m.rows * m.cols)
+        return fail(last_line, name + " data has more than rows x cols = " + std::to_string(m.rows * m.cols) +
+                                   " values");
       std::size_t comma = data.find(',', pos);
       if (comma == std::string::npos) comma = data.size();
-      int line = data_line_starts[0].second;
-      for (const auto& s : data_line_starts)
-        if (s.first <= pos) line = s.second;
+      while (line_index + 1 < data_line_starts.size() && data_line_starts[line_index + 1].first <= pos)
+        ++line_index;
+      const int line = data_line_starts[line_index].second;
       const std::string token = trim(data.substr(pos, comma - pos));
       char* end = nullptr;
       const double v = std::strtod(token.c_str(), &end);
@@ -285,7 +290,7 @@ bool distortionFrom(YamlReader& r, const Matrix& m, const std::vector<int>& line
 
 LoadError loadCameraOpenCvYaml(const std::string& path, CameraIntrinsics& out) {
   std::string text;
-  if (!detail::readFile(path, text)) return LoadError::failure(path + ": cannot open file for reading");
+  if (LoadError e = readTextFile(path, text); !e.ok) return e;
   YamlReader r(path);
   std::map<std::string, Entry> entries;
   CameraIntrinsics k;
@@ -302,7 +307,7 @@ LoadError loadCameraOpenCvYaml(const std::string& path, CameraIntrinsics& out) {
                   distortionFrom(r, dm, d_lines, entries["distortion_coefficients"].line, k.distortion);
   if (!ok) return r.error();
   std::string problem;
-  if (!detail::checkIntrinsics(k, problem)) return LoadError::failure(path + ": " + problem);
+  if (!checkIntrinsics(k, problem)) return LoadError::failure(path + ": " + problem);
   out = k;
   return LoadError::success();
 }

@@ -10,7 +10,7 @@ namespace {
 
 using detail::TomlChecker;
 
-constexpr std::int64_t kMaxImageSidePx = 1 << 20;  // far beyond any sensor; keeps int arithmetic safe
+constexpr std::int64_t kMaxImageSidePx = IntrinsicsLimits::kMaxImageSidePx;
 
 bool imageSide(TomlChecker& check, const toml::table& cam, const char* key, int& out) {
   std::int64_t v = 0;
@@ -101,6 +101,11 @@ LoadError loadCameraToml(const std::string& path, CameraIntrinsics& out) {
   // Default principal point: the image centre, which with pixel centres at +0.5 is exactly (w/2, h/2).
   if (!has_cx) k.cx_px = 0.5 * k.width_px;
   if (!has_cy) k.cy_px = 0.5 * k.height_px;
+  std::string problem;
+  if (!checkIntrinsics(k, problem)) {
+    check.fail(*cam, "[camera]: " + problem);
+    return check.error();
+  }
   out = k;
   return LoadError::success();
 }
@@ -115,8 +120,7 @@ LoadError loadCamera(const std::string& path, CameraIntrinsics& out) {
 
 LoadError writeCameraToml(const std::string& path, const CameraIntrinsics& camera) {
   std::string problem;
-  if (!detail::checkIntrinsics(camera, problem))
-    return LoadError::failure(path + ": refusing to write: " + problem);
+  if (!checkIntrinsics(camera, problem)) return LoadError::failure(path + ": refusing to write: " + problem);
   const auto f = [](double v) { return detail::formatDouble(v); };
   const Distortion& d = camera.distortion;
   std::string text = "# visnav camera, format: fsw/io/README.md. Written by writeCameraToml.\n[camera]\n";

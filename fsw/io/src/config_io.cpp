@@ -8,6 +8,8 @@
 #include <sstream>
 #include <utility>
 
+#include "visnav/io/text_file.hpp"
+
 namespace visnav::io {
 
 struct ConfigFile::Impl {
@@ -20,8 +22,11 @@ ConfigFile::~ConfigFile() = default;
 
 LoadError ConfigFile::open(const std::string& path) {
   m_path = path;
+  std::string text;
+  if (LoadError e = readTextFile(path, text, kMaxTomlFileBytes); !e.ok) return e;
+  if (LoadError e = checkTomlAscii(path, text); !e.ok) return e;
   try {
-    m_impl->root = toml::parse_file(path);
+    m_impl->root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": " << e.description();
@@ -34,6 +39,12 @@ namespace {
 
 std::string where(const std::string& path, const toml::node& node) {
   return path + ":" + std::to_string(node.source().begin.line);
+}
+
+// file:line:col of a key (where a typo is), falling back to its value.
+std::string whereKey(const std::string& path, const toml::key& key, const toml::node& node) {
+  const toml::source_position at = key.source().begin.line > 0 ? key.source().begin : node.source().begin;
+  return path + ":" + std::to_string(at.line) + ":" + std::to_string(at.column);
 }
 
 class TomlReader final : public ParamVisitor {
@@ -127,16 +138,25 @@ LoadError ConfigFile::applyErased(void (*call)(void*, ParamVisitor&), void* fn) 
   return reader.error();
 }
 
+// Every parameter lives in a [section] one level deep. Anything else is a typo the reader would never look
+// at (a key above the first table, [[section]], [section.sub]), so it is an error, never skipped.
 LoadError ConfigFile::checkNoUnknownKeys() const {
   for (const auto& [section_key, section_node] : m_impl->root) {
     const std::string section(section_key.str());
     const toml::table* table = section_node.as_table();
-    if (table == nullptr) continue;
+    if (section_node.is_array_of_tables())
+      return LoadError::failure(whereKey(m_path, section_key, section_node) + ": [[" + section +
+                                "]] is an array of tables; the config has only plain [sections]");
+    if (table == nullptr)
+      return LoadError::failure(whereKey(m_path, section_key, section_node) + ": key '" + section +
+                                "' outside any [section] (keys before the first table belong to none)");
     for (const auto& [key, node] : *table) {
-      if (node.is_table()) continue;
-      if (m_impl->claimed.count(section + "." + std::string(key.str())) == 0U)
-        return LoadError::failure(where(m_path, node) + ": unknown key [" + section + "] " +
-                                  std::string(key.str()));
+      const std::string name(key.str());
+      if (node.is_table() || node.is_array_of_tables())
+        return LoadError::failure(whereKey(m_path, key, node) + ": unknown table [" + section + "." + name +
+                                  "] (sections do not nest)");
+      if (m_impl->claimed.count(section + "." + name) == 0U)
+        return LoadError::failure(whereKey(m_path, key, node) + ": unknown key [" + section + "] " + name);
     }
   }
   return LoadError::success();
@@ -146,6 +166,19 @@ std::string ConfigFile::stringValue(const char* section, const char* key) const 
   m_impl->claimed.insert(std::string(section) + "." + key);
   const auto v = m_impl->root[section][key].value<std::string>();
   return v ? *v : std::string();
+}
+
+LoadError ConfigFile::stringValue(const char* section, const char* key, std::string& out,
+                                  bool& present) const {
+  m_impl->claimed.insert(std::string(section) + "." + key);
+  present = false;
+  const toml::node* node = m_impl->root[section][key].node();
+  if (node == nullptr) return LoadError::success();
+  if (!node->is_string())
+    return LoadError::failure(where(m_path, *node) + ": [" + section + "] " + key + " must be a string");
+  present = true;
+  out = *node->value<std::string>();
+  return LoadError::success();
 }
 
 }  // namespace visnav::io

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <utility>
 
 namespace visnav::io::detail {
@@ -19,16 +18,6 @@ std::string extensionOf(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
-}
-
-bool readFile(const std::string& path, std::string& text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) return false;
-  text = buffer.str();
-  return true;
 }
 
 std::string formatDouble(double value) {
@@ -66,27 +55,10 @@ LoadError buildError(const std::string& path, const std::string& message,
   return LoadError::failure(path + ": " + message);
 }
 
-bool checkIntrinsics(const CameraIntrinsics& k, std::string& problem) {
-  const Distortion& d = k.distortion;
-  if (k.width_px <= 0 || k.height_px <= 0) {
-    problem =
-        "image size " + std::to_string(k.width_px) + "x" + std::to_string(k.height_px) + " out of range";
-  } else if (!(k.fx_px > 0.0 && std::isfinite(k.fx_px)) || !(k.fy_px > 0.0 && std::isfinite(k.fy_px))) {
-    problem = "fx_px, fy_px must be > 0 and finite";
-  } else if (!std::isfinite(k.skew) || !std::isfinite(k.cx_px) || !std::isfinite(k.cy_px)) {
-    problem = "skew or principal point is not finite";
-  } else if (!std::isfinite(d.k1) || !std::isfinite(d.k2) || !std::isfinite(d.k3) || !std::isfinite(d.p1) ||
-             !std::isfinite(d.p2)) {
-    problem = "distortion coefficient is not finite";
-  } else {
-    return true;
-  }
-  return false;
-}
-
 LoadError parseTomlFile(const std::string& path, toml::table& root) {
   std::string text;
-  if (!readFile(path, text)) return LoadError::failure(path + ": cannot open file for reading");
+  if (LoadError e = readTextFile(path, text, kMaxTomlFileBytes); !e.ok) return e;
+  if (LoadError e = checkTomlAscii(path, text); !e.ok) return e;
   try {
     root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {

@@ -13,13 +13,12 @@
 #include "visnav/core/status.hpp"
 #include "visnav/core/types.hpp"
 #include "visnav/geometry/camera.hpp"
+#include "visnav/io/text_file.hpp"
 
 namespace visnav::io::detail {
 
 /// Lower-case extension with its dot ("".toml"), empty if none.
 std::string extensionOf(const std::string& path);
-/// Whole file into `text`; false if it cannot be opened or read.
-bool readFile(const std::string& path, std::string& text);
 /// Shortest of 15..17 significant digits that reads back to the same double; always a TOML/YAML float
 /// (has a '.' or an exponent). Only for finite values.
 std::string formatDouble(double value);
@@ -31,10 +30,8 @@ LoadError writeTextFile(const std::string& path, const std::string& text);
 LoadError buildError(const std::string& path, const std::string& message,
                      const std::vector<int>& surface_lines);
 
-/// Range checks shared by the camera writers: sizes > 0, fx, fy > 0, everything finite. False + `problem`.
-bool checkIntrinsics(const CameraIntrinsics& k, std::string& problem);
-
-/// Reads and parses a TOML file; a syntax error becomes "<path>:<line>:<column>: <problem>".
+/// Reads (bounded, regular files only), checks (checkTomlAscii) and parses a TOML file; a syntax error
+/// becomes "<path>:<line>:<column>: <problem>".
 LoadError parseTomlFile(const std::string& path, toml::table& root);
 
 /// First-error collector for TOML semantic checks. Every getter returns false after recording an error.

@@ -1,10 +1,12 @@
 // ViSP .cao polygon model import, format V1 (subset documented in fsw/io/README.md).
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -19,49 +21,72 @@ struct Token {
   int line = 0;
 };
 
-// Whitespace-separated tokens with their line; '#' starts a comment anywhere. A double-quoted part of a token
-// (name="rear panel") may contain spaces.
-std::vector<Token> tokenize(const std::string& text) {
-  std::vector<Token> tokens;
-  int line = 1;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      ++i;
-    } else if (c == '#') {
-      while (i < text.size() && text[i] != '\n') ++i;
-    } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
-      ++i;
-    } else {
-      Token t;
-      t.line = line;
-      while (i < text.size() && text[i] != '\n' && text[i] != '#' && text[i] != ' ' && text[i] != '\t' &&
-             text[i] != '\r') {
-        if (text[i] == '"') {
-          t.text += text[i++];
-          while (i < text.size() && text[i] != '"' && text[i] != '\n') t.text += text[i++];
-          if (i < text.size() && text[i] == '"') t.text += text[i++];
-        } else {
-          t.text += text[i++];
+// Whitespace-separated tokens with their line, read one at a time (a 16 MiB file of one-character tokens
+// must not become millions of strings at once); '#' starts a comment anywhere. A double-quoted part of a
+// token (name="rear panel") may contain spaces.
+class Tokenizer {
+ public:
+  explicit Tokenizer(const std::string& text) : m_text(text) { advance(); }
+
+  bool atEnd() const { return !m_has_next; }
+  const Token& peek() const { return m_next; }
+  int lastLine() const { return m_last_line; }
+  Token take() {
+    Token t = std::move(m_next);
+    advance();
+    return t;
+  }
+
+ private:
+  void advance() {
+    const std::string& text = m_text;
+    m_has_next = false;
+    while (m_pos < text.size()) {
+      const char c = text[m_pos];
+      if (c == '\n') {
+        ++m_line;
+        ++m_pos;
+      } else if (c == '#') {
+        while (m_pos < text.size() && text[m_pos] != '\n') ++m_pos;
+      } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+        ++m_pos;
+      } else {
+        m_next.text.clear();
+        m_next.line = m_line;
+        std::size_t& i = m_pos;
+        while (i < text.size() && text[i] != '\n' && text[i] != '#' && text[i] != ' ' && text[i] != '\t' &&
+               text[i] != '\r') {
+          if (text[i] == '"') {
+            m_next.text += text[i++];
+            while (i < text.size() && text[i] != '"' && text[i] != '\n') m_next.text += text[i++];
+            if (i < text.size() && text[i] == '"') m_next.text += text[i++];
+          } else {
+            m_next.text += text[i++];
+          }
         }
+        m_has_next = true;
+        m_last_line = m_line;
+        return;
       }
-      tokens.push_back(std::move(t));
     }
   }
-  return tokens;
-}
+
+  const std::string& m_text;
+  std::size_t m_pos = 0;
+  int m_line = 1;
+  int m_last_line = 1;
+  Token m_next;
+  bool m_has_next = false;
+};
 
 class CaoParser {
  public:
-  CaoParser(std::string path, std::vector<Token> tokens)
-      : m_path(std::move(path)), m_tokens(std::move(tokens)) {}
+  CaoParser(std::string path, const std::string& text) : m_path(std::move(path)), m_tokens(text) {}
 
   const LoadError& error() const { return m_error; }
-  bool atEnd() const { return m_pos >= m_tokens.size(); }
-  int lastLine() const { return m_tokens.empty() ? 1 : m_tokens.back().line; }
-  const Token& peek() const { return m_tokens[m_pos]; }
+  bool atEnd() const { return m_tokens.atEnd(); }
+  int lastLine() const { return m_tokens.lastLine(); }
+  const Token& peek() const { return m_tokens.peek(); }
 
   bool fail(int line, const std::string& problem) {
     if (m_error.ok) m_error = LoadError::failure(m_path + ":" + std::to_string(line) + ": " + problem);
@@ -70,7 +95,7 @@ class CaoParser {
 
   bool next(const std::string& what, Token& out) {
     if (atEnd()) return fail(lastLine(), "unexpected end of file, expected " + what);
-    out = m_tokens[m_pos++];
+    out = m_tokens.take();
     return true;
   }
 
@@ -107,7 +132,7 @@ class CaoParser {
   // any other leftover on that line is an error rather than silently misread data.
   bool trailingParams(int line, std::string* name) {
     while (!atEnd() && peek().line == line) {
-      const Token& t = m_tokens[m_pos];
+      const Token t = m_tokens.take();
       const std::size_t eq = t.text.find('=');
       if (eq == std::string::npos || eq == 0) return fail(t.line, "unexpected extra value '" + t.text + "'");
       if (name != nullptr && t.text.compare(0, eq, "name") == 0) {
@@ -116,41 +141,60 @@ class CaoParser {
           value = value.substr(1, value.size() - 2);
         *name = value;
       }
-      ++m_pos;
     }
     return true;
   }
 
  private:
   std::string m_path;
-  std::vector<Token> m_tokens;
-  std::size_t m_pos = 0;
+  Tokenizer m_tokens;
   LoadError m_error;
 };
 
-constexpr long kMaxCount = 1000000;  // sanity bound: a corrupt count must not trigger a huge allocation
+// Count bounds (fsw/io/README.md, "Limits"): the model's own bounds, and lines at most two per surface
+// side. A corrupt count fails at once instead of driving an allocation or a loop.
+constexpr long kMaxPoints = static_cast<long>(PolygonModel::kMaxVertices);
+constexpr long kMaxLines = 2 * static_cast<long>(PolygonModel::kMaxVertices);
+constexpr long kMaxFaces = static_cast<long>(PolygonModel::kMaxSurfaces);
+constexpr long kMaxFaceEntries = static_cast<long>(PolygonModel::kMaxSurfaceVertices);
 
-// Lines -> ordered vertex loop: start with the first line, then repeatedly follow the unused line that
-// shares the current end point (ViSP files list a face's lines in any order and direction).
+// Lines -> ordered vertex loop (ViSP files list a face's lines in any order and direction). A simple
+// polygon meets every one of its points exactly twice, so each point keeps its two lines and the walk is
+// linear in the number of lines (the search for the next line had made a long face quadratic).
 bool chainLines(CaoParser& p, int line, std::size_t face, const std::vector<std::pair<int, int>>& segments,
                 std::vector<int>& loop) {
-  std::vector<bool> used(segments.size(), false);
+  const std::string label = "lines of face " + std::to_string(face);
+  std::unordered_map<int, std::array<int, 2>> touching;  // point -> the (up to) two segments that meet it
+  touching.reserve(2 * segments.size());
+  for (std::size_t j = 0; j < segments.size(); ++j) {
+    for (const int point : {segments[j].first, segments[j].second}) {
+      auto [it, added] = touching.try_emplace(point, std::array<int, 2>{-1, -1});
+      std::array<int, 2>& slots = it->second;
+      if (!added && slots[1] >= 0)
+        return p.fail(line, label + " meet at point " + std::to_string(point) +
+                                " more than twice (not one closed loop)");
+      slots[added ? 0 : 1] = static_cast<int>(j);
+    }
+  }
+  for (const auto& [point, slots] : touching)
+    if (slots[1] < 0)
+      return p.fail(line,
+                    label + " are not connected at point " + std::to_string(point) + " (not a closed loop)");
   const int start = segments[0].first;
   int cur = segments[0].second;
-  used[0] = true;
+  int via = 0;
   loop.push_back(start);
   for (std::size_t step = 1; step < segments.size(); ++step) {
+    if (cur == start)
+      return p.fail(line, label + " form more than one loop (" + std::to_string(step) + " of " +
+                              std::to_string(segments.size()) + " lines closed the first)");
     loop.push_back(cur);
-    std::size_t j = 0;
-    while (j < segments.size() && (used[j] || (segments[j].first != cur && segments[j].second != cur))) ++j;
-    if (j == segments.size())
-      return p.fail(line, "lines of face " + std::to_string(face) + " are not connected at point " +
-                              std::to_string(cur) + " (not a closed loop)");
-    used[j] = true;
-    cur = segments[j].first == cur ? segments[j].second : segments[j].first;
+    const std::array<int, 2>& slots = touching.at(cur);
+    via = slots[0] == via ? slots[1] : slots[0];
+    const auto& seg = segments[static_cast<std::size_t>(via)];
+    cur = seg.first == cur ? seg.second : seg.first;
   }
-  if (cur != start)
-    return p.fail(line, "lines of face " + std::to_string(face) + " do not form a closed loop");
+  if (cur != start) return p.fail(line, label + " do not form a closed loop");
   return true;
 }
 
@@ -189,7 +233,7 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
 
   long count = 0;
   int line = 0;
-  if (!p.integer("number of 3D points", 3, kMaxCount, count, &line) || !p.trailingParams(line, nullptr))
+  if (!p.integer("number of 3D points", 3, kMaxPoints, count, &line) || !p.trailingParams(line, nullptr))
     return false;
   for (long k = 0; k < count; ++k) {
     Vec3 v;
@@ -201,7 +245,7 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
   }
 
   long num_lines = 0;
-  if (!p.integer("number of 3D lines", 0, kMaxCount, num_lines, &line) || !p.trailingParams(line, nullptr))
+  if (!p.integer("number of 3D lines", 0, kMaxLines, num_lines, &line) || !p.trailingParams(line, nullptr))
     return false;
   std::vector<std::pair<int, int>> segments;
   const long last_point = static_cast<long>(points.size()) - 1;
@@ -217,12 +261,13 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
   }
 
   long num_faces = 0;
-  if (!p.integer("number of faces from lines", 0, kMaxCount, num_faces, &line) ||
+  if (!p.integer("number of faces from lines", 0, kMaxFaces, num_faces, &line) ||
       !p.trailingParams(line, nullptr))
     return false;
   for (long f = 0; f < num_faces; ++f) {
     long n = 0;
-    if (!p.integer("number of lines of face " + std::to_string(f), 3, kMaxCount, n, &line)) return false;
+    if (!p.integer("number of lines of face " + std::to_string(f), 3, kMaxFaceEntries, n, &line))
+      return false;
     const int face_line = line;
     std::vector<std::pair<int, int>> face_segments;
     for (long k = 0; k < n; ++k) {
@@ -237,12 +282,14 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
     surface_lines.push_back(face_line);
   }
 
-  if (!p.integer("number of faces from points", 0, kMaxCount, num_faces, &line) ||
+  if (!p.integer("number of faces from points", 0, kMaxFaces - static_cast<long>(surfaces.size()), num_faces,
+                 &line) ||
       !p.trailingParams(line, nullptr))
     return false;
   for (long f = 0; f < num_faces; ++f) {
     long n = 0;
-    if (!p.integer("number of points of face " + std::to_string(f), 3, kMaxCount, n, &line)) return false;
+    if (!p.integer("number of points of face " + std::to_string(f), 3, kMaxFaceEntries, n, &line))
+      return false;
     surface_lines.push_back(line);
     ModelSurface s;
     for (long k = 0; k < n; ++k) {
@@ -257,7 +304,7 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
   // ViSP treats the cylinder and circle sections as optional at the end of the file.
   for (const char* shape : {"cylinders", "circles"}) {
     if (p.atEnd()) break;
-    if (!p.integer(std::string("number of ") + shape, 0, kMaxCount, count, &line)) return false;
+    if (!p.integer(std::string("number of ") + shape, 0, kMaxFaces, count, &line)) return false;
     if (count != 0) return p.fail(line, std::string(shape) + " are not polygons, not supported");
     if (!p.trailingParams(line, nullptr)) return false;
   }
@@ -270,8 +317,8 @@ bool parseCao(CaoParser& p, std::vector<Vec3>& points, std::vector<ModelSurface>
 
 LoadError loadModelCao(const std::string& path, PolygonModel& out) {
   std::string text;
-  if (!detail::readFile(path, text)) return LoadError::failure(path + ": cannot open file for reading");
-  CaoParser parser(path, tokenize(text));
+  if (LoadError e = readTextFile(path, text); !e.ok) return e;
+  CaoParser parser(path, text);
   std::vector<Vec3> points;
   std::vector<ModelSurface> surfaces;
   std::vector<int> surface_lines;

@@ -45,6 +45,10 @@ bool readVertices(TomlChecker& check, const toml::table& model, std::vector<Vec3
   const toml::array* arr = nullptr;
   if (!check.array(model, "[model]", "vertices", true, arr)) return false;
   if (arr->empty()) return check.fail(*arr, "[model] vertices is empty");
+  if (arr->size() > PolygonModel::kMaxVertices)
+    return check.fail(*arr, "[model] vertices has " + std::to_string(arr->size()) +
+                                " entries, more than the limit " +
+                                std::to_string(PolygonModel::kMaxVertices));
   for (std::size_t i = 0; i < arr->size(); ++i) {
     Vec3 v;
     if (!check.vec3((*arr)[i], "vertex " + std::to_string(i), v)) return false;
@@ -60,6 +64,10 @@ bool readSurface(TomlChecker& check, const toml::table& table, std::size_t index
   if (!check.string(table, label, "name", false, surface.name)) return false;
   const toml::array* idx = nullptr;
   if (!check.array(table, label, "vertices", true, idx)) return false;
+  if (idx->size() > PolygonModel::kMaxSurfaceVertices)
+    return check.fail(*idx, label + " vertices has " + std::to_string(idx->size()) +
+                                " entries, more than the limit " +
+                                std::to_string(PolygonModel::kMaxSurfaceVertices));
   for (std::size_t k = 0; k < idx->size(); ++k) {
     std::int64_t v = 0;
     if (!check.integer((*idx)[k], label + " vertices[" + std::to_string(k) + "]", v)) return false;
@@ -113,6 +121,10 @@ LoadError loadModelToml(const std::string& path, PolygonModel& out) {
       ok = check.fail(*list, "'surface' has the wrong type: expected an array of tables [[surface]]");
     } else {
       const toml::array& arr = *list->as_array();
+      if (arr.size() > PolygonModel::kMaxSurfaces)
+        ok = check.fail(*list, "[[surface]] has " + std::to_string(arr.size()) +
+                                   " entries, more than the limit " +
+                                   std::to_string(PolygonModel::kMaxSurfaces));
       for (std::size_t s = 0; ok && s < arr.size(); ++s) {
         ModelSurface surface;
         ok = readSurface(check, *arr[s].as_table(), s, vertices.size(), surface);

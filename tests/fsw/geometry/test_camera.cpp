@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "visnav/geometry/camera.hpp"
 
 namespace visnav {
@@ -75,6 +78,56 @@ TEST(Camera, IdealProjectionJacobianMatchesCentralDifferences) {
     const Vec2 numeric = (plus - minus) / (2 * h);
     EXPECT_NEAR((numeric - j.col(c)).norm(), 0.0, 1e-5) << "column " << c;
   }
+}
+
+// Issue 13 item 11: intrinsics outside a physical range and a fold-over distortion are not a camera.
+TEST(CameraCheck, AcceptsRealCameras) {
+  std::string problem;
+  EXPECT_TRUE(checkIntrinsics(distortedVga(), problem)) << problem;
+  CameraIntrinsics plain = distortedVga();
+  plain.distortion = Distortion{};
+  EXPECT_TRUE(checkIntrinsics(plain, problem)) << problem;
+}
+
+TEST(CameraCheck, RejectsIntrinsicsOutsideThePhysicalRange) {
+  const auto rejected = [](void (*edit)(CameraIntrinsics&), const char* word) {
+    CameraIntrinsics k = distortedVga();
+    edit(k);
+    std::string problem;
+    EXPECT_FALSE(checkIntrinsics(k, problem)) << word;
+    EXPECT_NE(problem.find(word), std::string::npos) << problem << " (expected '" << word << "')";
+  };
+  rejected([](CameraIntrinsics& k) { k.fx_px = 1e308; }, "fx_px");
+  rejected([](CameraIntrinsics& k) { k.fy_px = 1e-308; }, "fy_px");
+  rejected([](CameraIntrinsics& k) { k.fx_px = 0.5; }, "fx_px");
+  rejected([](CameraIntrinsics& k) { k.fx_px = 20.0 * k.fy_px; }, "fx_px / fy_px");
+  rejected([](CameraIntrinsics& k) { k.skew = 1e300; }, "skew");
+  rejected([](CameraIntrinsics& k) { k.cx_px = 1e300; }, "principal point");
+  rejected([](CameraIntrinsics& k) { k.cy_px = -481.0; }, "principal point");
+  rejected([](CameraIntrinsics& k) { k.width_px = 0; }, "image size");
+  rejected([](CameraIntrinsics& k) { k.distortion.k2 = std::nan(""); }, "not finite");
+}
+
+TEST(CameraCheck, RejectsFoldOverDistortion) {
+  CameraIntrinsics k = distortedVga();
+  k.distortion = {-50.0, 0.0, 0.0, 0.0,
+                  0.0};  // r (1 - 50 r^2) turns back at r = 0.08; the corners sit at 0.4
+  std::string problem;
+  EXPECT_FALSE(checkIntrinsics(k, problem));
+  EXPECT_NE(problem.find("folds over"), std::string::npos) << problem;
+  // Mild pincushion and barrel lenses are fine; a strong k2 that turns the map back inside the image is not.
+  k.distortion = {0.3, 0.0, 0.0, 0.0, 0.0};
+  EXPECT_TRUE(checkIntrinsics(k, problem)) << problem;
+  k.distortion = {0.0, -8.0, 0.0, 0.0, 0.0};
+  EXPECT_FALSE(checkIntrinsics(k, problem));
+}
+
+TEST(CameraCheck, RejectsDistortionTheUndistortionCannotInvert) {
+  CameraIntrinsics k = distortedVga();
+  k.distortion = {0.0, 0.0, 0.0, 2.0, 0.0};  // tangential only: passes the radial test
+  std::string problem;
+  EXPECT_FALSE(checkIntrinsics(k, problem));
+  EXPECT_NE(problem.find("cannot be inverted"), std::string::npos) << problem;
 }
 
 }  // namespace

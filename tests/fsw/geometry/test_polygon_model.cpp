@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "visnav/geometry/polygon_model.hpp"
 
 namespace visnav {
@@ -66,6 +68,46 @@ TEST(PolygonModel, FailedBuildLeavesOutputUntouched) {
   EXPECT_FALSE(PolygonModel::build(square(), {surface({0, 1, 9})}, m).ok);
   EXPECT_EQ(m.vertices().size(), 4U);
   EXPECT_NEAR(m.vertices()[1].x(), 1.15, 1e-12);
+}
+
+// Issue 13 item 11: a star passes "every turn the same way"; its turns add up to two full turns.
+TEST(PolygonModel, RejectsSelfIntersectingStar) {
+  std::vector<Vec3> v;
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2.0 * kPi * k / 5.0;
+    v.emplace_back(std::cos(a), std::sin(a), 0.0);
+  }
+  PolygonModel m;
+  EXPECT_TRUE(PolygonModel::build(v, {surface({0, 1, 2, 3, 4})}, m).ok);
+  const LoadError e = PolygonModel::build(v, {surface({0, 2, 4, 1, 3})}, m);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("not a simple polygon"), std::string::npos) << e.message;
+}
+
+TEST(PolygonModel, RejectsCoordinatesBeyondThePhysicalRange) {
+  PolygonModel m;
+  const std::vector<Vec3> huge = {{0, 0, 0}, {1e300, 0, 0}, {0, 1e300, 0}};  // gave a NaN normal
+  LoadError e = PolygonModel::build(huge, {surface({0, 1, 2})}, m);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("coordinate beyond"), std::string::npos) << e.message;
+  const double edge = PolygonModel::kMaxCoordinateM;
+  e = PolygonModel::build({{-edge, -edge, 0}, {edge, -edge, 0}, {edge, edge, 0}}, {surface({0, 1, 2})}, m);
+  EXPECT_TRUE(e.ok) << e.message;
+}
+
+TEST(PolygonModel, RejectsSurfacesWithTooManyVertices) {
+  const std::size_t n = PolygonModel::kMaxSurfaceVertices + 1;
+  std::vector<Vec3> v;
+  std::vector<int> idx;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double a = 2.0 * kPi * static_cast<double>(k) / static_cast<double>(n);
+    v.emplace_back(std::cos(a), std::sin(a), 0.0);
+    idx.push_back(static_cast<int>(k));
+  }
+  PolygonModel m;
+  const LoadError e = PolygonModel::build(v, {surface(idx)}, m);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("more than the limit 1000"), std::string::npos) << e.message;
 }
 
 }  // namespace

@@ -36,10 +36,10 @@ CameraIntrinsics sentinel() {
   k.height_px = 7;
   k.fx_px = 3.0;
   k.fy_px = 4.0;
-  k.skew = 0.5;
+  k.skew = 0.0625;
   k.cx_px = 1.25;
   k.cy_px = 2.5;
-  k.distortion.k1 = 0.125;
+  k.distortion.k1 = 0.015625;
   return k;
 }
 
@@ -118,7 +118,7 @@ TEST(CameraToml, RoundTripIsExact) {
   k.skew = 1e-3 / 3.0;
   k.cx_px = 0.1;
   k.cy_px = 511.99999999999994;
-  k.distortion = {-0.1 / 3.0, 2e-17, 1e300, -3e-8, 0.7};
+  k.distortion = {-0.1 / 3.0, 2e-17, 1e-3 / 7.0, -3e-8, 7e-4};  // awkward digits, a possible lens
   const std::string path = makeTempDir() + "rt.toml";
   for (const CameraIntrinsics& original : {k, sentinel()}) {
     const LoadError w = writeCameraToml(path, original);
@@ -227,7 +227,7 @@ TEST(CameraOpenCvYaml, OrderSkewAndShift) {
   const std::string dir = makeTempDir();
   CameraIntrinsics k;
   const LoadError e =
-      loadCameraOpenCvYaml(writeFile(dir, "c.yml", yaml(kK, k1x5, "0.1, 0.2, 0.3, 0.4, 0.5")), k);
+      loadCameraOpenCvYaml(writeFile(dir, "c.yml", yaml(kK, k1x5, "0.01, 0.02, 0.003, 0.004, 0.05")), k);
   ASSERT_TRUE(e.ok) << e.message;
   EXPECT_EQ(k.width_px, 800);
   EXPECT_EQ(k.fx_px, 900.0);
@@ -236,29 +236,29 @@ TEST(CameraOpenCvYaml, OrderSkewAndShift) {
   EXPECT_EQ(k.cx_px, 400.0);
   EXPECT_EQ(k.cy_px, 300.0);
   // OpenCV order k1, k2, p1, p2, k3.
-  EXPECT_EQ(k.distortion.k1, 0.1);
-  EXPECT_EQ(k.distortion.k2, 0.2);
-  EXPECT_EQ(k.distortion.p1, 0.3);
-  EXPECT_EQ(k.distortion.p2, 0.4);
-  EXPECT_EQ(k.distortion.k3, 0.5);
+  EXPECT_EQ(k.distortion.k1, 0.01);
+  EXPECT_EQ(k.distortion.k2, 0.02);
+  EXPECT_EQ(k.distortion.p1, 0.003);
+  EXPECT_EQ(k.distortion.p2, 0.004);
+  EXPECT_EQ(k.distortion.k3, 0.05);
 }
 
 TEST(CameraOpenCvYaml, AcceptsAllCoefficientCounts) {
   const std::string dir = makeTempDir();
   const std::vector<std::pair<std::string, std::string>> shapes = {
-      {"   rows: 1\n   cols: 4\n", "0.1, 0.2, 0.3, 0.4"},
-      {"   rows: 5\n   cols: 1\n", "0.1, 0.2, 0.3, 0.4, 0.5"},
-      {"   rows: 1\n   cols: 8\n", "0.1, 0.2, 0.3, 0.4, 0.5, 0., 0., 0."},
-      {"   rows: 12\n   cols: 1\n", "0.1, 0.2, 0.3, 0.4, 0.5,\n 0., 0., 0., 0.,\n 0., 0., 0."},
-      {"   rows: 1\n   cols: 14\n", "0.1, 0.2, 0.3, 0.4, 0.5, 0, 0, 0, 0, 0, 0, 0, 0, 0"},
+      {"   rows: 1\n   cols: 4\n", "0.01, 0.02, 0.003, 0.004"},
+      {"   rows: 5\n   cols: 1\n", "0.01, 0.02, 0.003, 0.004, 0.05"},
+      {"   rows: 1\n   cols: 8\n", "0.01, 0.02, 0.003, 0.004, 0.05, 0., 0., 0."},
+      {"   rows: 12\n   cols: 1\n", "0.01, 0.02, 0.003, 0.004, 0.05,\n 0., 0., 0., 0.,\n 0., 0., 0."},
+      {"   rows: 1\n   cols: 14\n", "0.01, 0.02, 0.003, 0.004, 0.05, 0, 0, 0, 0, 0, 0, 0, 0, 0"},
   };
   for (const auto& [dims, data] : shapes) {
     SCOPED_TRACE(dims);
     CameraIntrinsics k;
     const LoadError e = loadCamera(writeFile(dir, "c.yaml", yaml(kK, dims, data, "f")), k);
     ASSERT_TRUE(e.ok) << e.message;
-    EXPECT_EQ(k.distortion.p2, 0.4);
-    EXPECT_EQ(k.distortion.k3, dims.find("cols: 4") != std::string::npos ? 0.0 : 0.5);
+    EXPECT_EQ(k.distortion.p2, 0.004);
+    EXPECT_EQ(k.distortion.k3, dims.find("cols: 4") != std::string::npos ? 0.0 : 0.05);
   }
 }
 

@@ -1,9 +1,14 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "io_test_util.hpp"
+#include "visnav/io/camera_io.hpp"
 #include "visnav/io/model_io.hpp"
 
 namespace visnav::io {
@@ -279,6 +284,115 @@ TEST(ModelCao, BadFilesNameFileLineAndProblem) {
     EXPECT_FALSE(e.ok);
     expectError(e.message, path, c.line, c.word);
     expectSameModel(m, plate);
+  }
+}
+
+// Issue 13 item 10: the loader's work and memory are bounded. One face listing the same line a million
+// times took over 60 s (quadratic chaining); now the count is bounded and chaining is linear.
+TEST(ModelCao, RepeatedLineInAFaceIsRejectedFast) {
+  const std::string dir = makeTempDir();
+  std::string text = "V1\n3\n0 0 0\n1 0 0\n0 1 0\n3\n0 1\n1 2\n2 0\n1\n1000000";
+  for (int k = 0; k < 1000000; ++k) text += " 0";
+  text += "\n0\n";
+  const std::string path = writeFile(dir, "repeat.cao", text);
+  PolygonModel m;
+  const auto t0 = std::chrono::steady_clock::now();
+  const LoadError e = loadModel(path, m);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_FALSE(e.ok);
+  expectError(e.message, path, 11, "out of range [3, 1000]");
+  EXPECT_LT(seconds, 2.0);
+  // Within the bound, a face that repeats a line fails at once in the linear walk.
+  const std::string within =
+      writeFile(dir, "repeat_within.cao", "V1\n3\n0 0 0\n1 0 0\n0 1 0\n3\n0 1\n1 2\n2 0\n1\n4 0 1 2 0\n0\n");
+  EXPECT_NE(loadModel(within, m).message.find("more than twice"), std::string::npos);
+}
+
+TEST(ModelCao, LongFaceChainsInLinearTime) {
+  // A 1000-gon (the per-face bound) listed as lines in scrambled order: the walk must find them all.
+  constexpr int kN = 1000;
+  std::string text = "V1\n" + std::to_string(kN) + "\n";
+  for (int k = 0; k < kN; ++k) {
+    const double a = 2.0 * kPi * k / kN;
+    text += std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+  }
+  text += std::to_string(kN) + "\n";
+  for (int k = 0; k < kN; ++k) text += std::to_string(k) + " " + std::to_string((k + 1) % kN) + "\n";
+  text += "1\n" + std::to_string(kN);
+  for (int k = 0; k < kN; ++k) text += " " + std::to_string((k * 7) % kN);  // 7 is coprime with 1000
+  text += "\n0\n";
+  PolygonModel m;
+  const LoadError e = loadModel(writeFile(makeTempDir(), "ngon.cao", text), m);
+  ASSERT_TRUE(e.ok) << e.message;
+  EXPECT_EQ(m.surfaces()[0].vertex_indices.size(), static_cast<std::size_t>(kN));
+}
+
+TEST(ModelCao, CountsAreBounded) {
+  const std::string dir = makeTempDir();
+  PolygonModel m;
+  const std::string pts = "V1\n3\n0 0 0\n1 0 0\n0 1 0\n";
+  LoadError e = loadModel(writeFile(dir, "points.cao", "V1\n100000000\n"), m);
+  expectError(e.message, dir + "points.cao", 2, "out of range [3, 100000]");
+  e = loadModel(writeFile(dir, "lines.cao", pts + "99999999\n"), m);
+  expectError(e.message, dir + "lines.cao", 6, "out of range [0, 200000]");
+  e = loadModel(writeFile(dir, "faces.cao", pts + "0\n99999999\n"), m);
+  expectError(e.message, dir + "faces.cao", 7, "out of range [0, 100000]");
+}
+
+TEST(ModelIo, NonRegularFilesAreRejectedWithoutHanging) {
+  const std::string dir = makeTempDir();
+  PolygonModel m;
+  ASSERT_EQ(::symlink("/dev/zero", (dir + "zero.cao").c_str()), 0);
+  LoadError e = loadModel(dir + "zero.cao", m);  // was std::bad_alloc (abort)
+  expectError(e.message, dir + "zero.cao", 0, "not a regular file");
+  ASSERT_EQ(::mkfifo((dir + "fifo.toml").c_str(), 0600), 0);
+  e = loadModel(dir + "fifo.toml", m);  // was a hang
+  expectError(e.message, dir + "fifo.toml", 0, "not a regular file (a FIFO)");
+  e = loadModel(dir + "absent.cao", m);
+  expectError(e.message, dir + "absent.cao", 0, "cannot open: No such file or directory");
+}
+
+TEST(ModelToml, NonAsciiKeyIsRejectedBeforeToml) {
+  PolygonModel m;
+  const std::string path = writeFile(makeTempDir(), "key.toml", "\xc3\xa9 = 1\n");
+  const LoadError e = loadModel(path, m);
+  expectError(e.message, path, 1, "non-ASCII character outside a string");
+}
+
+TEST(ModelToml, HugeCoordinatesAndStarFacesAreRejected) {
+  const std::string dir = makeTempDir();
+  PolygonModel m;
+  const std::string huge =
+      writeFile(dir, "huge.toml",
+                "[model]\nunits = \"m\"\nvertices = [[0, 0, 0], [1e300, 0, 0], [0, 1e300, 0]]\n"
+                "[[surface]]\nvertices = [0, 1, 2]\n");
+  LoadError e = loadModel(huge, m);
+  expectError(e.message, huge, 0, "coordinate beyond");
+  std::string star = "[model]\nunits = \"m\"\nvertices = [";
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2.0 * kPi * k / 5.0;
+    star += (k == 0 ? "" : ", ") + std::string("[") + std::to_string(std::cos(a)) + ", " +
+            std::to_string(std::sin(a)) + ", 0]";
+  }
+  star += "]\n[[surface]]\nvertices = [0, 2, 4, 1, 3]\n";
+  const std::string star_path = writeFile(dir, "star.toml", star);
+  e = loadModel(star_path, m);
+  expectError(e.message, star_path, 4, "not a simple polygon");
+}
+
+// The physical-range checks (issue 13 item 11) must not reject anything the project ships.
+TEST(ShippedFiles, EveryShippedCameraAndModelLoads) {
+  for (const char* camera : {"config/cameras/vga_6mm.toml", "config/cameras/vga_6mm_distorted.toml",
+                             "config/cameras/example_opencv.yaml"}) {
+    CameraIntrinsics k;
+    const LoadError e = loadCamera(sourcePath(camera), k);
+    EXPECT_TRUE(e.ok) << e.message;
+  }
+  for (const char* model : {"config/models/box_1600x1200x1000.toml", "config/models/plate_2300x1800.cao",
+                            "config/models/plate_2300x1800.toml", "config/models/smallsat_panels.toml"}) {
+    PolygonModel m;
+    const LoadError e = loadModel(sourcePath(model), m);
+    EXPECT_TRUE(e.ok) << e.message;
   }
 }
 

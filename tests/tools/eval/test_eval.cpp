@@ -423,5 +423,20 @@ TEST(Evaluation, FarRangeErrorsModesAndTransitions) {
   EXPECT_NE(json.str().find("\"distance_pct\": {\"count\": 3, \"median\": 5"), std::string::npos);
 }
 
+// Issue 13 item 14: an empty replay scored medians of 0 and exit 0; now there is "nothing to score".
+TEST(Evaluation, EmptyReplayHasNothingToScore) {
+  const std::vector<TruthPose> truth = trajectory(5);
+  const Evaluation empty = evaluate(vga(), makeRectanglePlate(2.3, 1.8), truth, {}, fastOptions());
+  ASSERT_NE(nothingToScore(empty.summary), nullptr);
+  EXPECT_NE(std::string(nothingToScore(empty.summary)).find("nothing to score"), std::string::npos);
+  std::vector<ReplayRow> rows = perfectReplay(truth);
+  for (ReplayRow& r : rows) r.frame += 1000;  // rows on no truth frame
+  const Evaluation elsewhere = evaluate(vga(), makeRectanglePlate(2.3, 1.8), truth, rows, fastOptions());
+  EXPECT_NE(nothingToScore(elsewhere.summary), nullptr);
+  const Evaluation scored =
+      evaluate(vga(), makeRectanglePlate(2.3, 1.8), truth, perfectReplay(truth), fastOptions());
+  EXPECT_EQ(nothingToScore(scored.summary), nullptr);
+}
+
 }  // namespace
 }  // namespace visnav::eval

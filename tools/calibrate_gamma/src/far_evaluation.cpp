@@ -34,7 +34,8 @@ LoadError runSequence(const replay::Sequence& sequence, const far::FarRangeParam
     int fw = 0;
     int fh = 0;
     int maxval = 0;
-    e = replay::readPgm(entry.file, reinterpret_cast<std::uint8_t*>(buffer.data()), bytes, fw, fh, maxval);
+    e = replay::readPgm(entry.file, reinterpret_cast<std::uint8_t*>(buffer.data()), bytes, fw, fh, maxval,
+                        sequence.max_code);
     if (!e.ok) return e;
     if (fw != w || fh != h) return LoadError::failure(entry.file + ": image size differs from the camera");
     const MonoImage image =

@@ -143,6 +143,13 @@ Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
   return ev;
 }
 
+const char* nothingToScore(const EvaluationSummary& summary) {
+  if (summary.frames_evaluated == 0) return "the sequence has no truth frame to score against";
+  if (summary.frames_missing == summary.frames_evaluated)
+    return "the replay has no row for any truth frame (empty replay?): nothing to score";
+  return nullptr;
+}
+
 int envelopeIndex(const Evaluation& evaluation, double delta_px) {
   for (std::size_t d = 0; d < evaluation.envelope_px.size(); ++d)
     if (std::fabs(evaluation.envelope_px[d] - delta_px) < 1e-12) return static_cast<int>(d);

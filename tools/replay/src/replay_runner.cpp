@@ -153,7 +153,8 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
   for (int i = 0; i < total; ++i) {
     const replay::FrameEntry& entry = sequence.frames[static_cast<std::size_t>(i)];
     int w = 0, h = 0, maxval = 0;
-    if (LoadError e = replay::readPgm(entry.file, buffer.get(), capacity, w, h, maxval); !e.ok) {
+    if (LoadError e = replay::readPgm(entry.file, buffer.get(), capacity, w, h, maxval, sequence.max_code);
+        !e.ok) {
       failure = e;
       break;
     }

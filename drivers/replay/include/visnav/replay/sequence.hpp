@@ -52,10 +52,12 @@ LoadError loadSequence(const std::string& directory, Sequence& out);
 /// Reads truth.csv-format rows (also used by visnav-eval).
 LoadError loadTruthCsv(const std::string& path, std::vector<TruthRow>& out);
 
-/// PGM I/O. `readPgm` fills a caller-owned buffer of capacity `capacity_bytes` (no allocation); 16-bit
-/// samples are converted to host order. Reports width, height, maxval.
+/// PGM I/O. `readPgm` fills a caller-owned buffer of capacity `capacity_bytes` (no allocation on success);
+/// 16-bit samples are converted to host order. Reports width, height, maxval. Rejects a file that is not
+/// regular, has bytes after the raster, or (expected_maxval > 0) whose maxval differs from expected_maxval
+/// (the sequence's max_code).
 LoadError readPgm(const std::string& path, std::uint8_t* buffer, std::size_t capacity_bytes, int& width,
-                  int& height, int& maxval);
+                  int& height, int& maxval, int expected_maxval = 0);
 LoadError writePgm8(const std::string& path, const ImageView8& image);
 LoadError writePgm16(const std::string& path, const ImageView16& image, std::uint16_t maxval);
 

@@ -2,6 +2,8 @@
 // fsw/geometry/CONVENTIONS.md (the one place they are written down).
 #pragma once
 
+#include <string>
+
 #include "visnav/core/types.hpp"
 
 namespace visnav {
@@ -27,6 +29,26 @@ struct CameraIntrinsics {
   static CameraIntrinsics fromSi(int width, int height, double focal_length_m, double pixel_pitch_x_m,
                                  double pixel_pitch_y_m, double skew, double cx_px, double cy_px);
 };
+
+/// Physical range of a camera (fsw/io/README.md, "Limits"). Not parameters: they separate a camera from a
+/// corrupt or mistyped calibration (fx = 1e308, k1 = -50) and every real navigation camera is far inside.
+struct IntrinsicsLimits {
+  static constexpr int kMaxImageSidePx = 1 << 20;
+  static constexpr double kMinFocalPx = 1.0;
+  static constexpr double kMaxFocalPx = 1e6;
+  static constexpr double kMaxAspect = 10.0;  ///< fx / fy and fy / fx
+  static constexpr double kMaxSkew = 0.1;     ///< |s| (K(0,1) = s * fx): about 6 degrees of shear
+  /// Largest round-trip error of the iterative undistortion at any checked pixel [px].
+  static constexpr double kMaxUndistortErrorPx = 0.01;
+};
+
+/// True when `k` is a usable camera: image size in [1, kMaxImageSidePx], fx and fy in [kMinFocalPx,
+/// kMaxFocalPx] with fx/fy within [1/kMaxAspect, kMaxAspect], |skew| <= kMaxSkew, principal point within
+/// [-width, 2 width] x [-height, 2 height], all finite, and a distortion that is one-to-one over the image:
+/// the radial map r -> r (1 + k1 r^2 + k2 r^4 + k3 r^6) strictly increasing (sampled densely) from 0 to the
+/// image corners' radius, and the iterative undistortion converging on a 17 x 17 grid of pixels.
+/// Otherwise false with the reason in `problem`. Init-time (allocates the message).
+bool checkIntrinsics(const CameraIntrinsics& k, std::string& problem);
 
 class PinholeCamera {
  public:

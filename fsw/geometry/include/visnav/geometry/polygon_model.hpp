@@ -3,6 +3,7 @@
 // afterwards.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -28,10 +29,22 @@ struct ModelEdge {
 
 class PolygonModel {
  public:
-  /// Validates and builds. Checks: >= 3 vertices per surface, indices in range, no repeated vertex, planarity
-  /// (tolerance 1e-6 relative to size), convex polygon, stored normal within 1 degree of the one implied by
-  /// the vertex order (a zero stored normal means "compute it"), each edge shared by at most two surfaces
-  /// and traversed in opposite directions by them. On error `out` is left untouched.
+  /// Bounds on a model (fsw/io/README.md, "Limits"). Not parameters: they bound the work and memory of
+  /// loading a wrong or hostile file, and a real target is orders of magnitude inside them.
+  static constexpr std::size_t kMaxVertices = 100000;
+  static constexpr std::size_t kMaxSurfaces = 100000;
+  static constexpr std::size_t kMaxSurfaceVertices = 1000;
+  /// |coordinate| bound [m]: a spacecraft target is metres across; 10 km leaves room for any unit slip
+  /// while keeping every cross product far from overflow (1e300 gave NaN normals).
+  static constexpr double kMaxCoordinateM = 1e4;
+
+  /// Validates and builds. Checks: counts within the bounds above, finite coordinates within
+  /// kMaxCoordinateM, >= 3 vertices per surface, indices in range, no repeated vertex, planarity
+  /// (tolerance 1e-6 relative to size), convex simple polygon (every turn the same way and the turns add
+  /// up to one full turn: a star, whose turns add up to two or more, is rejected), finite normal, stored
+  /// normal within 1 degree of the one implied by the vertex order (a zero stored normal means "compute
+  /// it"), each edge shared by at most two surfaces and traversed in opposite directions by them. On error
+  /// `out` is left untouched.
   static LoadError build(const std::vector<Vec3>& vertices, std::vector<ModelSurface> surfaces,
                          PolygonModel& out);
 

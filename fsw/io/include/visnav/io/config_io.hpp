@@ -33,6 +33,8 @@ class ConfigFile {
   LoadError checkNoUnknownKeys() const;
   /// Raw access for non-parameter settings (file names and the like): empty string when absent.
   std::string stringValue(const char* section, const char* key) const;
+  /// Same, telling an absent key (present = false) from an empty string; a non-string value is an error.
+  LoadError stringValue(const char* section, const char* key, std::string& out, bool& present) const;
 
  private:
   template <typename F>

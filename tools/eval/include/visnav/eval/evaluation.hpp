@@ -98,6 +98,10 @@ Evaluation evaluate(const PinholeCamera& camera, const PolygonModel& model,
                     const std::vector<TruthPose>& truth, const std::vector<ReplayRow>& replay,
                     const EvaluationOptions& options);
 
+/// Nullptr when the replay scored something; otherwise why there is nothing to score (an empty replay, or
+/// none of its rows on a truth frame). Medians over nothing would read 0 and look perfect.
+const char* nothingToScore(const EvaluationSummary& summary);
+
 struct RequirementResult {
   std::string name;
   bool passed = true;

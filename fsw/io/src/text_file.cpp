@@ -1,0 +1,159 @@
+#include "visnav/io/text_file.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <system_error>
+
+namespace visnav::io {
+namespace {
+
+std::string errnoText(int error) { return std::generic_category().message(error); }
+
+const char* fileKind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+LoadError checkStat(const std::string& path, const struct stat& st, std::size_t max_bytes) {
+  if (!S_ISREG(st.st_mode))
+    return LoadError::failure(path + ": not a regular file (" + fileKind(st.st_mode) + ")");
+  if (static_cast<unsigned long long>(st.st_size) > max_bytes)
+    return LoadError::failure(path + ": " + std::to_string(st.st_size) + " bytes, larger than the limit of " +
+                              std::to_string(max_bytes) + " bytes for an input file");
+  return LoadError::success();
+}
+
+class Fd {
+ public:
+  explicit Fd(int fd) : m_fd(fd) {}
+  ~Fd() {
+    if (m_fd >= 0) ::close(m_fd);
+  }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  int get() const { return m_fd; }
+
+ private:
+  int m_fd;
+};
+
+}  // namespace
+
+LoadError checkRegularFile(const std::string& path, std::size_t max_bytes) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return LoadError::failure(path + ": cannot open: " + errnoText(errno));
+  return checkStat(path, st, max_bytes);
+}
+
+LoadError readTextFile(const std::string& path, std::string& text, std::size_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO without a writer would block; the type is checked on the open descriptor
+  // (no window between a stat and the open).
+  const Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
+  if (fd.get() < 0) return LoadError::failure(path + ": cannot open: " + errnoText(errno));
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) return LoadError::failure(path + ": cannot stat: " + errnoText(errno));
+  if (LoadError e = checkStat(path, st, max_bytes); !e.ok) return e;
+  std::string content;
+  content.resize(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  // The size is a hint only (a file may change while read): read up to the limit + 1 byte to notice growth.
+  while (done <= max_bytes) {
+    if (done == content.size()) content.resize(done + 4096 > max_bytes + 1 ? max_bytes + 1 : done + 4096);
+    const ssize_t got = ::read(fd.get(), &content[done], content.size() - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) return LoadError::failure(path + ": read failed: " + errnoText(errno));
+    if (got == 0) break;
+    done += static_cast<std::size_t>(got);
+  }
+  if (done > max_bytes)
+    return LoadError::failure(path + ": larger than the limit of " + std::to_string(max_bytes) +
+                              " bytes for an input file");
+  content.resize(done);
+  text = std::move(content);
+  return LoadError::success();
+}
+
+LoadError checkTomlAscii(const std::string& path, const std::string& text) {
+  enum class State { kPlain, kComment, kBasic, kLiteral, kMultiBasic, kMultiLiteral };
+  State state = State::kPlain;
+  int line = 1;
+  int column = 0;
+  const std::size_t n = text.size();
+  const auto triple = [&text, n](std::size_t i, char q) {
+    return i + 2 < n && text[i] == q && text[i + 1] == q && text[i + 2] == q;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      column = 0;
+      // Comments and single-line strings end at the line end (an unterminated string is toml++'s error).
+      if (state == State::kComment || state == State::kBasic || state == State::kLiteral)
+        state = State::kPlain;
+      continue;
+    }
+    ++column;
+    switch (state) {
+      case State::kPlain:
+        if (static_cast<unsigned char>(c) >= 0x80U)
+          return LoadError::failure(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                                    ": non-ASCII character outside a string (keys and values other than "
+                                    "strings are ASCII)");
+        if (c == '#') {
+          state = State::kComment;
+        } else if (triple(i, '"')) {
+          state = State::kMultiBasic;
+          i += 2;
+          column += 2;
+        } else if (triple(i, '\'')) {
+          state = State::kMultiLiteral;
+          i += 2;
+          column += 2;
+        } else if (c == '"') {
+          state = State::kBasic;
+        } else if (c == '\'') {
+          state = State::kLiteral;
+        }
+        break;
+      case State::kComment: break;
+      case State::kBasic:
+        if (c == '\\' && i + 1 < n && text[i + 1] != '\n') {
+          ++i;
+          ++column;
+        } else if (c == '"') {
+          state = State::kPlain;
+        }
+        break;
+      case State::kLiteral:
+        if (c == '\'') state = State::kPlain;
+        break;
+      case State::kMultiBasic:
+      case State::kMultiLiteral: {
+        const char quote = state == State::kMultiBasic ? '"' : '\'';
+        if (state == State::kMultiBasic && c == '\\' && i + 1 < n) {
+          if (text[i + 1] == '\n') continue;  // line-ending backslash: the newline is counted next round
+          ++i;
+          ++column;
+        } else if (triple(i, quote)) {
+          // Up to two more quotes right before the closing three belong to the string ("""a""""").
+          std::size_t run = 3;
+          while (run < 5 && i + run < n && text[i + run] == quote) ++run;
+          i += run - 1;
+          column += static_cast<int>(run) - 1;
+          state = State::kPlain;
+        }
+        break;
+      }
+    }
+  }
+  return LoadError::success();
+}
+
+}  // namespace visnav::io

@@ -1,0 +1,88 @@
+// Bounded file reading and the TOML text guard shared by every loader (issue 13, items 10 and 12).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <string>
+
+#include "io_test_util.hpp"
+#include "visnav/io/text_file.hpp"
+
+namespace visnav::io {
+namespace {
+
+using test::makeTempDir;
+using test::writeFile;
+
+TEST(TextFile, ReadsARegularFile) {
+  const std::string path = writeFile(makeTempDir(), "a.txt", "hello\n");
+  std::string text;
+  const LoadError e = readTextFile(path, text);
+  ASSERT_TRUE(e.ok) << e.message;
+  EXPECT_EQ(text, "hello\n");
+}
+
+TEST(TextFile, RejectsDevicesFifosDirectoriesAndLinksToThem) {
+  const std::string dir = makeTempDir();
+  std::string text;
+  LoadError e = readTextFile("/dev/zero", text);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("/dev/zero: not a regular file (a character device)"), std::string::npos)
+      << e.message;
+  ASSERT_EQ(::symlink("/dev/zero", (dir + "model.cao").c_str()), 0);
+  e = readTextFile(dir + "model.cao", text);
+  EXPECT_NE(e.message.find("not a regular file"), std::string::npos) << e.message;
+  ASSERT_EQ(::mkfifo((dir + "fifo.toml").c_str(), 0600), 0);
+  e = readTextFile(dir + "fifo.toml", text);  // must not block waiting for a writer
+  EXPECT_NE(e.message.find("not a regular file (a FIFO)"), std::string::npos) << e.message;
+  e = readTextFile(dir, text);
+  EXPECT_NE(e.message.find("not a regular file (a directory)"), std::string::npos) << e.message;
+  e = checkRegularFile("/dev/urandom");
+  EXPECT_FALSE(e.ok);
+}
+
+TEST(TextFile, MissingFileNamesTheErrno) {
+  std::string text;
+  const LoadError e = readTextFile("/nonexistent/visnav.toml", text);
+  EXPECT_EQ(e.message, "/nonexistent/visnav.toml: cannot open: No such file or directory");
+}
+
+TEST(TextFile, SizeIsBounded) {
+  const std::string path = writeFile(makeTempDir(), "big.txt", std::string(1000, 'x'));
+  std::string text;
+  EXPECT_TRUE(readTextFile(path, text, 1000).ok);
+  const LoadError e = readTextFile(path, text, 999);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("1000 bytes, larger than the limit of 999"), std::string::npos) << e.message;
+}
+
+TEST(TomlAscii, NonAsciiOnlyInsideStringsAndComments) {
+  EXPECT_EQ(checkTomlAscii("f", "\xc3\xa9 = 1\n").message,
+            "f:1:1: non-ASCII character outside a string "
+            "(keys and values other than strings are ASCII)");
+  const char* good[] = {
+      "a = \"\xc3\xa9\" # \xc3\xa9\n", "a = '\xc3\xa9'\n",   "a = \"\"\"\n\xc3\xa9\n\"\"\"\n",
+      "a = '''\n\xc3\xa9\n'''\n",      "\"\xc3\xa9\" = 1\n",
+      "a = \"x\\\"\xc3\xa9\"\n",       // escaped quote stays inside the string
+      "a = \"\"\"x\"\"\"\"\nb = 1\n",  // one extra quote before the closing three belongs to the string
+  };
+  for (const char* text : good) EXPECT_TRUE(checkTomlAscii("f", text).ok) << text;
+  const struct {
+    const char* text;
+    const char* where;
+  } bad[] = {
+      {"a = 1\nb\xc3\xa9 = 2\n", "f:2:2:"},
+      {"a = \"x\"\xc3\xa9\n", "f:1:8:"},
+      {"a = \"\"\"x\"\"\"\xc3\xa9\n", "f:1:12:"},
+      {"a = \"unterminated\n\xc3\xa9 = 1\n", "f:2:1:"},  // a basic string ends at the line end
+      {"[t\xc3\xa9]\n", "f:1:3:"},
+  };
+  for (const auto& c : bad) {
+    const LoadError e = checkTomlAscii("f", c.text);
+    EXPECT_FALSE(e.ok) << c.text;
+    EXPECT_EQ(e.message.rfind(c.where, 0), 0U) << e.message << " expected " << c.where;
+  }
+}
+
+}  // namespace
+}  // namespace visnav::io
