@@ -66,5 +66,17 @@ TEST(TelemetryParams, ReferenceListsEveryKey) {
     EXPECT_NE(doc.find(std::string("`[telemetry] ") + key + "`"), std::string::npos) << key;
 }
 
+// Issue 13 item 9: `partition = ""` is present and wrong; it used to fall back to the default silently.
+TEST(TelemetryParams, EmptyOrNonStringPartitionIsAnError) {
+  TelemetryParams p;
+  LoadError e = loadText("[telemetry]\npartition = \"\"\n", p);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("must not be empty"), std::string::npos) << e.message;
+  e = loadText("[telemetry]\npartition = 5\n", p);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("must be a string"), std::string::npos) << e.message;
+  EXPECT_STREQ(p.partitionName(), kDefaultPartition);
+}
+
 }  // namespace
 }  // namespace visnav::telemetry

@@ -84,8 +84,10 @@ inline bool setPartition(TelemetryParams& params, const char* name) {
 inline LoadError applyTelemetryConfig(io::ConfigFile& config, TelemetryParams& params) {
   TelemetryParams loaded = params;
   if (LoadError e = config.apply(loaded); !e.ok) return e;
-  const std::string partition = config.stringValue("telemetry", "partition");
-  if (!partition.empty() && !setPartition(loaded, partition.c_str()))
+  std::string partition;
+  bool present = false;  // `partition = ""` is present and wrong, not absent
+  if (LoadError e = config.stringValue("telemetry", "partition", partition, present); !e.ok) return e;
+  if (present && !setPartition(loaded, partition.c_str()))
     return LoadError::failure("[telemetry] partition '" + partition + "' " +
                               partitionProblem(partition.c_str()));
   params = loaded;
