@@ -18,8 +18,14 @@ namespace {
 
 std::atomic<visnav::app::Daemon*> g_daemon{nullptr};
 
-void onStopSignal(int) {
-  if (visnav::app::Daemon* daemon = g_daemon.load()) daemon->requestStop();
+// SIGTERM, SIGINT and SIGHUP stop the loop after the current cycle (SIGHUP: a clean stop, not a reload; a
+// changed config takes effect at the next start, after `visnavd --check`). SIGUSR1 asks for one status line.
+void onStopSignal(int signal_number) {
+  if (visnav::app::Daemon* daemon = g_daemon.load()) daemon->requestStop(signal_number);
+}
+
+void onStatusSignal(int) {
+  if (visnav::app::Daemon* daemon = g_daemon.load()) daemon->requestStatus();
 }
 
 void usage() {
@@ -92,6 +98,9 @@ int main(int argc, char** argv) {
     return kExitUsage;
   }
 
+  // A reader that goes away (`visnavd 2>&1 | head`) must not kill the daemon: write() returns EPIPE and the
+  // line is counted as dropped.
+  signal(SIGPIPE, SIG_IGN);
   EventLog log;
   VisnavConfig config;
   if (visnav::LoadError e = loadVisnavConfig(config_path, config); !e.ok) {
@@ -122,12 +131,25 @@ int main(int argc, char** argv) {
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGTERM);
   sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGHUP);
+  sigaddset(&stop_signals, SIGUSR1);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
   struct sigaction action {};
   action.sa_handler = &onStopSignal;  // no SA_RESTART: clock_nanosleep returns EINTR
   sigemptyset(&action.sa_mask);
   sigaction(SIGTERM, &action, nullptr);
   sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGHUP, &action, nullptr);
+  struct sigaction status_action {};
+  status_action.sa_handler = &onStatusSignal;
+  status_action.sa_flags = SA_RESTART;
+  sigemptyset(&status_action.sa_mask);
+  sigaction(SIGUSR1, &status_action, nullptr);
+  // From here on a stalled stderr (journald, a pipe nobody reads) must not block the cycle: lines go through
+  // the log's ring and its drain thread (started with the stop signals blocked, like the DDS threads).
+  if (!log.startAsync())
+    log.event(LogLevel::kWarning, "log_sync",
+              "message=\"no drain thread: log lines are written by the cycle\"");
 
   auto daemon =
       std::make_unique<Daemon>(log);  // large (executive statistics, pipeline buffers): heap, at init

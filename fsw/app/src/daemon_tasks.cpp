@@ -134,6 +134,7 @@ Status Daemon::healthTask(const exec::CycleInfo& cycle) {
     exec::fillTimingSummary(m_executive.taskStats(m_task_ids[static_cast<std::size_t>(i)]).exec,
                             m_health.task_timing[static_cast<std::size_t>(i)]);
   const bool ok = !m_telemetry_on || m_writer.publishHealth(m_health);
+  if (m_status_requested.exchange(false, std::memory_order_relaxed)) logStatus();
   if (ok) m_heartbeat.beat(CycleStage::kHealth);
   endHeartbeatCycle(cycle.minor_frame);
   return ok ? Status::kOk : Status::kCapacityExceeded;

@@ -235,22 +235,27 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   out = NavSolution{};
   m_last_pose_update = FilterUpdate{};
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
-  out.frame_number = m_frames_processed + m_frames_missing;
+  out.cycle_number = ++m_cycles;
+  out.frame_number = m_last_frame_number;
   const NavMode mode_before = m_modes.mode();
   out.mode = mode_before;
   Status status = Status::kOk;
   ModeInputs in;
   if (frame == nullptr || frame->image.empty()) {
-    ++m_frames_missing;
     m_fdir.raise(kFaultNoFrame);
     if (mode_before == NavMode::kNearRange) coast(out);
   } else if (frame->image.width() != m_camera.width() || frame->image.height() != m_camera.height()) {
+    // A frame the camera contract says cannot happen (driver or config fault): counted apart from a missing
+    // one, and not processed.
     ++m_frames_processed;
-    m_fdir.raise(kFaultNoFrame);
+    m_fdir.raise(kFaultBadFrame);
+    if (mode_before == NavMode::kNearRange) coast(out);
     status = Status::kInvalidArgument;
   } else {
     ++m_frames_processed;
+    m_last_frame_number = frame->sequence;
     out.frame_number = frame->sequence;
+    out.frame_received = true;
     out.exposure_time_ns = frame->exposure_time_ns;
     m_fdir.checkFrameAge(static_cast<double>(now_ns - frame->exposure_time_ns) * 1e-6);
     // Propagate the filter to this exposure (two periods after a missed frame: the timestamps say so).

@@ -54,7 +54,9 @@ const char* commandKindName(std::uint8_t kind) { return lookup(kCommandNames, ki
 void fillPoseEstimate(const nav::NavSolution& nav, std::uint64_t sample_number, std::int64_t publish_time_ns,
                       visnav_PoseEstimate& out) {
   out.sample_number = sample_number;
+  out.cycle_number = nav.cycle_number;
   out.frame_number = nav.frame_number;
+  out.frame_received = nav.frame_received;
   out.exposure_time_ns = nav.exposure_time_ns;
   out.publish_time_ns = publish_time_ns;
   out.mode = modeValue(nav.mode);
@@ -84,7 +86,9 @@ void fillFarRangeEstimate(const nav::NavSolution& nav, std::uint64_t sample_numb
                           std::int64_t publish_time_ns, visnav_FarRangeEstimate& out) {
   const nav::FarRangeSolution& far = nav.far;
   out.sample_number = sample_number;
+  out.cycle_number = nav.cycle_number;
   out.frame_number = nav.frame_number;
+  out.frame_received = nav.frame_received;
   out.exposure_time_ns = nav.exposure_time_ns;
   out.publish_time_ns = publish_time_ns;
   out.mode = modeValue(nav.mode);

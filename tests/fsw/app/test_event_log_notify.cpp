@@ -1,6 +1,8 @@
 // The daemon's log lines (key=value, journald priority prefix) and the sd_notify protocol against a real
 // AF_UNIX datagram socket standing in for systemd.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -9,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 
 #include "../../support/alloc_counter.hpp"
 #include "visnav/app/daemon.hpp"
@@ -112,11 +115,103 @@ TEST(EventLog, WritingALineAllocatesNothing) {
   EXPECT_EQ(visnav::test::allocationCount() - before, 0U);
 }
 
+/// A pipe whose reader has stopped: the smallest buffer the kernel allows, filled to the brim, so any
+/// blocking write on it would never return.
+struct StalledPipe : Pipe {
+  StalledPipe() {
+    fcntl(fds[1], F_SETPIPE_SZ, 4096);
+    const int flags = fcntl(fds[1], F_GETFL);
+    fcntl(fds[1], F_SETFL, flags | O_NONBLOCK);
+    const char fill[256] = {};
+    while (write(fds[1], fill, sizeof(fill)) > 0) {
+    }
+    fcntl(fds[1], F_SETFL, flags);  // the log sees an ordinary blocking fd
+  }
+};
+
+TEST(EventLog, AsyncLinesArriveInOrder) {
+  Pipe p;
+  EventLog log(p.fds[1], true);
+  ASSERT_TRUE(log.startAsync());
+  EXPECT_TRUE(log.async());
+  for (int i = 0; i < 20; ++i) log.event(LogLevel::kInfo, "n", "i=%d", i);
+  log.stopAsync();
+  EXPECT_FALSE(log.async());
+  std::string expected;
+  for (int i = 0; i < 20; ++i) expected += "<6>event=n i=" + std::to_string(i) + "\n";
+  EXPECT_EQ(p.drain(), expected);
+  EXPECT_EQ(log.droppedLines(), 0U);
+}
+
+TEST(EventLog, AStalledReaderNeverBlocksTheWriterAndLossIsCounted) {
+  // With a synchronous write this test would hang in the first event() (ctest's timeout would fail it).
+  StalledPipe p;
+  EventLog log(p.fds[1], true);
+  ASSERT_TRUE(log.startAsync());
+  constexpr int kLines = 3000;
+  for (int i = 0; i < kLines; ++i) log.event(LogLevel::kWarning, "fault_onset", "frame=%d", i);
+  EXPECT_EQ(log.linesWritten(), EventLog::kRingLines);  // the ring is full, the rest is dropped at once
+  EXPECT_EQ(log.droppedLines(), kLines - EventLog::kRingLines);
+  log.stopAsync(50'000'000);  // the reader never comes back: the queued lines are given up after 50 ms
+  EXPECT_EQ(log.droppedLines(), static_cast<std::uint64_t>(kLines));
+}
+
+TEST(EventLog, AReaderThatComesBackGetsEveryQueuedLine) {
+  StalledPipe p;
+  EventLog log(p.fds[1], true);
+  ASSERT_TRUE(log.startAsync());
+  for (int i = 0; i < 500; ++i) log.event(LogLevel::kInfo, "n", "i=%d", i);  // queued while stalled
+  std::string text;
+  std::thread reader([&] { text = readAll(p.fds[0]); });
+  log.stopAsync(60'000'000'000LL);  // generous: the reader is back, nothing may be lost
+  close(p.fds[1]);
+  p.fds[1] = -1;
+  reader.join();
+  EXPECT_EQ(log.droppedLines(), 0U);
+  EXPECT_NE(text.find("<6>event=n i=0\n"), std::string::npos);
+  EXPECT_NE(text.find("<6>event=n i=499\n"), std::string::npos);
+}
+
+TEST(EventLog, AReaderThatIsGoneCostsLinesNotTheProcess) {
+  signal(SIGPIPE, SIG_IGN);  // as visnavd does
+  Pipe p;
+  close(p.fds[0]);
+  p.fds[0] = -1;
+  EventLog log(p.fds[1], true);
+  log.event(LogLevel::kInfo, "sync", "%s", "");  // EPIPE
+  ASSERT_TRUE(log.startAsync());
+  log.event(LogLevel::kInfo, "async", "%s", "");
+  log.stopAsync();
+  EXPECT_EQ(log.droppedLines(), 2U);
+}
+
+TEST(EventLog, QueuingALineAllocatesNothing) {
+  Pipe p;
+  std::thread reader([&] {  // discards into a fixed buffer: no allocation of its own
+    char buffer[4096];
+    while (read(p.fds[0], buffer, sizeof(buffer)) > 0) {
+    }
+  });
+  {
+    EventLog log(p.fds[1], false);
+    ASSERT_TRUE(log.startAsync());
+    log.event(LogLevel::kInfo, "warm", "x=%.3f", 1.5);
+    const std::uint64_t before = visnav::test::allocationCount();
+    for (int i = 0; i < 200; ++i)
+      log.event(LogLevel::kWarning, "fault_onset", "frame=%d q=%.6f", i, 0.25 * i);
+    EXPECT_EQ(visnav::test::allocationCount() - before, 0U);
+  }
+  close(p.fds[1]);
+  p.fds[1] = -1;
+  reader.join();
+}
+
 TEST(FaultNames, OnePerBitBesideTheEnum) {
   EXPECT_STREQ(faultName(bitIndex(kFaultInlierRatio)), "inlier_ratio");
   EXPECT_STREQ(faultName(bitIndex(kFaultNoFrame)), "no_frame");
   EXPECT_STREQ(faultName(bitIndex(kFaultCycleSlip)), "cycle_slip");
   EXPECT_EQ(bitIndex(kFaultCycleSlip), 10);
+  EXPECT_STREQ(faultName(bitIndex(kFaultBadFrame)), "bad_frame");
   EXPECT_STREQ(faultName(kFaultBitCount), "unknown");
   EXPECT_STREQ(faultName(-1), "unknown");
   EXPECT_STREQ(stageName(CycleStage::kAcquire), "acquire");

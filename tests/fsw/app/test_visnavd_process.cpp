@@ -1,9 +1,11 @@
 // visnavd as a process: exit codes, --check, the systemd notify protocol against a socket of the test (READY,
 // one WATCHDOG per cycle, STOPPING), and SIGTERM/SIGINT ending the loop within one cycle.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/socket.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -48,7 +50,7 @@ TEST(Visnavd, ExitCodes) {
       dir.write("typo.toml", "[executive]\nmajor_frame_hz = 5.0\n\n[camera]\ndrivr = \"replay\"\n");
   EXPECT_EQ(runDaemon("--config " + typo, log), 3);
   EXPECT_NE(readText(log).find("level=error event=config_invalid message=\"" + typo +
-                               ":5: unknown key [camera] drivr\""),
+                               ":5:1: unknown key [camera] drivr\""),
             std::string::npos)
       << readText(log);
   EXPECT_EQ(runDaemon("--config " + dir.path() + "/none.toml", log), 3);
@@ -158,7 +160,7 @@ TEST(Visnavd, StopsWithinOneCycleOnSigtermAndSigint) {
       dir.write("signal.toml", "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
                                    "\"\n[daemon]\nplayback_loop = true\n[telemetry]\npartition = \"signal-" +
                                    std::to_string(getpid()) + "\"\n");
-  for (int signal_number : {SIGTERM, SIGINT}) {
+  for (int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
     NotifySocket systemd;
     setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
     const std::string log_path = dir.path() + "/signal" + std::to_string(signal_number) + ".txt";
@@ -177,8 +179,100 @@ TEST(Visnavd, StopsWithinOneCycleOnSigtermAndSigint) {
     EXPECT_LT(stopped_ns - sent_ns, 200'000'000) << "longer than one 5 Hz cycle";
     const std::string log = readText(log_path);
     EXPECT_NE(log.find("event=stop reason=stop_request"), std::string::npos) << log;
+    EXPECT_NE(log.find(std::string(" signal=") + sigabbrev_np(signal_number) + " "), std::string::npos)
+        << log;
     EXPECT_NE(log.find("event=stop_timing clock=monotonic"), std::string::npos) << log;
   }
+}
+
+TEST(Visnavd, Sigusr1LogsAStatusLineAndSigpipeIsHarmless) {
+  const std::string sequence = test::renderedApproachCi(VISNAV_APP_TEST_FRAMES);
+  test::TempDir dir("visnavd");
+  const std::string config =
+      dir.write("usr1.toml", "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
+                                 "\"\n[daemon]\nplayback_loop = true\n[telemetry]\nenabled = false\n");
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    dup2(fds[1], 2);
+    close(fds[0]);
+    close(fds[1]);
+    execl(VISNAV_DAEMON, VISNAV_DAEMON, "--config", config.c_str(), "--simulated-clock", "--pace-ms", "100",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fds[1]);
+  // Read until the start line, then ask for a status line, then close the reader: the daemon's next lines
+  // meet EPIPE, which must cost lines, not the process (SIGPIPE would end it with 141).
+  std::string text;
+  char buffer[4096];
+  bool asked = false;
+  for (int i = 0; i < 400 && text.find("event=status") == std::string::npos; ++i) {
+    const ssize_t n = read(fds[0], buffer, sizeof(buffer));
+    if (n <= 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+    if (!asked && text.find("event=start") != std::string::npos) {
+      kill(pid, SIGUSR1);
+      asked = true;
+    }
+  }
+  EXPECT_NE(text.find("level=notice event=status cycles="), std::string::npos) << text;
+  close(fds[0]);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a few cycles log into the closed pipe
+  kill(pid, SIGTERM);
+  EXPECT_EQ(waitProcess(pid, 20.0), 0);  // not 141 (SIGPIPE)
+}
+
+TEST(Visnavd, AStalledLogPipeDoesNotStopTheCycle) {
+  // visnavd on the monotonic clock (60 cycles at 5 Hz) with stderr on a pipe whose reader stops for 10 s:
+  // the smallest pipe buffer, already full. A cycle that wrote its log lines itself would stop at the first
+  // line for those 10 s; the executive would then report a ~10 s overrun.
+  const std::string sequence = test::renderedApproachCi(VISNAV_APP_TEST_FRAMES);
+  test::TempDir dir("visnavd");
+  const std::string config =
+      dir.write("stall.toml", "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
+                                  "\"\n[daemon]\nplayback_loop = true\n[telemetry]\nenabled = false\n");
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  fcntl(fds[1], F_SETPIPE_SZ, 4096);
+  fcntl(fds[1], F_SETFL, O_NONBLOCK);
+  const char fill[256] = {};
+  while (write(fds[1], fill, sizeof(fill)) > 0) {
+  }
+  fcntl(fds[1], F_SETFL, 0);
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    dup2(fds[1], 2);
+    close(fds[0]);
+    close(fds[1]);
+    execl(VISNAV_DAEMON, VISNAV_DAEMON, "--config", config.c_str(), "--cycles", "60",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fds[1]);
+  std::this_thread::sleep_for(std::chrono::seconds(10));  // the stalled reader
+  std::string text;
+  char buffer[4096];
+  for (;;) {  // ends at EOF: the daemon has exited and closed its stderr
+    const ssize_t n = read(fds[0], buffer, sizeof(buffer));
+    if (n <= 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  close(fds[0]);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  const std::size_t stop = text.find("event=stop reason=cycle_limit cycles=60 ");
+  ASSERT_NE(stop, std::string::npos) << text.substr(text.find_first_not_of('\0'));
+  const std::string summary = text.substr(stop, text.find('\n', stop) - stop);
+  const std::size_t overrun = summary.find("worst_overrun_ms=");
+  ASSERT_NE(overrun, std::string::npos) << summary;
+  // Blocked: ~10000 ms. Running: the cycle's own overrun, 0 unless the machine is extremely loaded.
+  EXPECT_LT(std::strtod(summary.c_str() + overrun + 17, nullptr), 2000.0) << summary;
+  std::printf("stalled-pipe run: %s\n", summary.c_str());
 }
 
 }  // namespace

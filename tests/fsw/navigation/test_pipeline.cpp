@@ -95,7 +95,7 @@ TEST_F(PipelineTest, CommandsAndFallbackAllocateNothingAfterInit) {
   EXPECT_GT(health.mode_transitions, 10U);
   EXPECT_EQ(health.last_command.command_id, 23U);
   EXPECT_TRUE(health.last_command.accepted);
-  EXPECT_GT(health.fault_counts[7], 0U);  // kFaultNoFrame
+  EXPECT_GT(health.fault_counts[bitIndex(kFaultNoFrame)], 0U);
 }
 
 TEST_F(PipelineTest, WrongImageSizeIsAnErrorNotACrash) {
@@ -106,7 +106,33 @@ TEST_F(PipelineTest, WrongImageSizeIsAnErrorNotACrash) {
   f.image = MonoImage::from8(ImageView8(small.data(), 64, 48));
   NavSolution out;
   EXPECT_EQ(pipeline.process(&f, 0, out), Status::kInvalidArgument);
-  EXPECT_NE(out.fault_bits & kFaultNoFrame, 0U);
+  EXPECT_NE(out.fault_bits & kFaultBadFrame, 0U);  // a camera/config fault, not a missing frame
+  EXPECT_EQ(out.fault_bits & kFaultNoFrame, 0U);
+  EXPECT_FALSE(out.frame_received);
+}
+
+TEST_F(PipelineTest, CycleNumbersAreMonotonicAndFrameNumbersAreTheCameras) {
+  // Camera sequence 0, 1, (no frame), (no frame), 4 (2 and 3 dropped by the camera), 5.
+  NavigationPipeline pipeline;
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
+  const int sequence[] = {0, 1, -1, -1, 4, 5};
+  std::uint64_t cycle = 0;
+  std::uint64_t last_frame = 0;
+  for (int s : sequence) {
+    NavSolution out;
+    if (s < 0) {
+      pipeline.process(nullptr, 0, out);
+      EXPECT_FALSE(out.frame_received);
+      EXPECT_NE(out.fault_bits & kFaultNoFrame, 0U);
+    } else {
+      const Frame f = frameAt(s);
+      pipeline.process(&f, f.exposure_time_ns, out);
+      EXPECT_TRUE(out.frame_received);
+      last_frame = static_cast<std::uint64_t>(s);
+    }
+    EXPECT_EQ(out.cycle_number, ++cycle);
+    EXPECT_EQ(out.frame_number, last_frame);  // never a cycle count, never backwards
+  }
 }
 
 }  // namespace

@@ -11,7 +11,9 @@ namespace visnav::telemetry::test {
 nav::NavSolution makeNavSolution(std::uint64_t i) {
   const auto x = static_cast<double>(i);
   nav::NavSolution s;
+  s.cycle_number = 2000 + 2 * i;  // cycles without a frame between the published ones
   s.frame_number = 1000 + i;
+  s.frame_received = i % 13 != 0;
   s.exposure_time_ns = 5'000'000'000LL + static_cast<std::int64_t>(i) * 200'000'000LL;
   const bool far = i % 11 == 0;
   const bool lost = !far && i % 7 == 0;

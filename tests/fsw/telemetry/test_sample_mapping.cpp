@@ -19,7 +19,9 @@ TEST(SampleMapping, PoseEstimateEveryField) {
   std::memset(&s, 0xA5, sizeof(s));  // every field must be overwritten
   fillPoseEstimate(nav, 17, 123456789, s);
   EXPECT_EQ(s.sample_number, 17U);
+  EXPECT_EQ(s.cycle_number, 2008U);
   EXPECT_EQ(s.frame_number, 1004U);
+  EXPECT_TRUE(s.frame_received);
   EXPECT_EQ(s.exposure_time_ns, 5'000'000'000LL + 4 * 200'000'000LL);
   EXPECT_EQ(s.publish_time_ns, 123456789);
   EXPECT_EQ(s.mode, visnav_NAV_MODE_NEAR_RANGE);
@@ -78,7 +80,9 @@ TEST(SampleMapping, FarRangeEstimateEveryField) {
   std::memset(&s, 0xA5, sizeof(s));
   fillFarRangeEstimate(nav, 9, 42, s);
   EXPECT_EQ(s.sample_number, 9U);
+  EXPECT_EQ(s.cycle_number, 2044U);
   EXPECT_EQ(s.frame_number, 1022U);
+  EXPECT_TRUE(s.frame_received);
   EXPECT_EQ(s.exposure_time_ns, 5'000'000'000LL + 22 * 200'000'000LL);
   EXPECT_EQ(s.publish_time_ns, 42);
   EXPECT_EQ(s.mode, visnav_NAV_MODE_FAR_RANGE);

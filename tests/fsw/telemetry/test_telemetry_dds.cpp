@@ -91,7 +91,9 @@ TEST_F(TelemetryDds, PoseAndFarRangeRoundTripFieldByField) {
     const visnav_PoseEstimate& p = poses[i - 1];
     const nav::NavSolution n = test::makeNavSolution(i);
     EXPECT_EQ(p.sample_number, i);
+    EXPECT_EQ(p.cycle_number, n.cycle_number);
     EXPECT_EQ(p.frame_number, 1000 + i);
+    EXPECT_EQ(p.frame_received, n.frame_received);
     EXPECT_EQ(p.exposure_time_ns, n.exposure_time_ns);
     EXPECT_GE(p.publish_time_ns, before);
     EXPECT_LE(p.publish_time_ns, after);
@@ -111,7 +113,9 @@ TEST_F(TelemetryDds, PoseAndFarRangeRoundTripFieldByField) {
 
     const visnav_FarRangeEstimate& f = fars[i - 1];
     EXPECT_EQ(f.sample_number, i);
+    EXPECT_EQ(f.cycle_number, n.cycle_number);
     EXPECT_EQ(f.frame_number, 1000 + i);
+    EXPECT_EQ(f.frame_received, n.frame_received);
     EXPECT_EQ(f.exposure_time_ns, n.exposure_time_ns);
     EXPECT_EQ(f.publish_time_ns, p.publish_time_ns);
     EXPECT_EQ(f.mode, static_cast<std::uint8_t>(n.mode));

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -72,8 +73,14 @@ class Daemon final : private exec::ExecutiveObserver {
   int init(const VisnavConfig& config, const DaemonOptions& options);
   /// Realtime settings (on this thread), READY=1, the loop until stop, the stop summary. Exit code.
   int run();
-  /// Async-signal-safe: the loop ends after the current cycle, or at once when it sleeps.
-  void requestStop() noexcept { m_executive.requestStop(); }
+  /// Async-signal-safe: the loop ends after the current cycle, or at once when it sleeps. `signal_number`
+  /// (0: none) is named in the stop summary.
+  void requestStop(int signal_number = 0) noexcept {
+    m_stop_signal.store(signal_number, std::memory_order_relaxed);
+    m_executive.requestStop();
+  }
+  /// Async-signal-safe: the next health task logs one `status` line (SIGUSR1).
+  void requestStatus() noexcept { m_status_requested.store(true, std::memory_order_relaxed); }
 
   /// The four tasks (public so tests can drive them; init() registers them in CycleStage order).
   Status acquireTask(const exec::CycleInfo& cycle);
@@ -107,6 +114,8 @@ class Daemon final : private exec::ExecutiveObserver {
   void endHeartbeatCycle(std::uint64_t minor_frame);
   void handleCommands();
   void logStart();
+  void logStatus();
+  const char* signalName() const;
   void logStopSummary(exec::StopReason reason);
 
   EventLog& m_log;
@@ -144,6 +153,8 @@ class Daemon final : private exec::ExecutiveObserver {
   std::array<std::uint64_t, kCycleStageCount> m_heartbeat_logs{};
   std::array<bool, kCycleStageCount> m_heartbeat_onset_logged{};
   DaemonCounters m_counters;
+  std::atomic<int> m_stop_signal{0};
+  std::atomic<bool> m_status_requested{false};
 };
 
 // Fault names for logs: visnav::faultName() beside the FaultBit enum (visnav/core/stage_interfaces.hpp).

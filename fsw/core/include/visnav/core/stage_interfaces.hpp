@@ -50,14 +50,15 @@ enum FaultBit : std::uint32_t {
   kFaultFarRangeNoTarget = 1U << 8,   ///< far range found no acceptable cluster
   kFaultAcquisitionFailed = 1U << 9,  ///< acquisition gave up on a candidate
   kFaultCycleSlip = 1U << 10,         ///< the executive missed a deadline
+  kFaultBadFrame = 1U << 11,          ///< the camera delivered a frame the pipeline cannot use (wrong size)
 };
-constexpr int kFaultBitCount = 11;
+constexpr int kFaultBitCount = 12;
 
 /// Name of each fault bit for logs and tools, indexed by bit index (bitIndex()).
 constexpr std::array<const char*, kFaultBitCount> kFaultNames = {
-    "inlier_ratio",        "too_few_lines",      "residual",  "not_converged",
-    "innovation",          "implausible",        "frame_age", "no_frame",
-    "far_range_no_target", "acquisition_failed", "cycle_slip"};
+    "inlier_ratio",        "too_few_lines",      "residual",   "not_converged",
+    "innovation",          "implausible",        "frame_age",  "no_frame",
+    "far_range_no_target", "acquisition_failed", "cycle_slip", "bad_frame"};
 
 /// Index of a fault bit in fault_bits (and in HealthRecord::fault_counts, kFaultNames).
 constexpr int bitIndex(FaultBit bit) {
@@ -65,7 +66,7 @@ constexpr int bitIndex(FaultBit bit) {
   for (std::uint32_t b = bit; b > 1U; b >>= 1U) ++index;
   return index;
 }
-static_assert(bitIndex(kFaultCycleSlip) == kFaultBitCount - 1, "kFaultBitCount: one past the last fault bit");
+static_assert(bitIndex(kFaultBadFrame) == kFaultBitCount - 1, "kFaultBitCount: one past the last fault bit");
 static_assert(detail::allNamed(kFaultNames), "one name per fault bit");
 
 /// Name of a fault bit index (0 .. kFaultBitCount-1): "inlier_ratio", ...; "unknown" outside.

@@ -52,7 +52,12 @@ struct StageTimes {
 };
 
 struct NavSolution {
+  /// Cycles the pipeline ran (process() calls), from 1: monotonic, one per cycle, frame or not.
+  std::uint64_t cycle_number = 0;
+  /// The camera's sequence number of the frame this cycle processed; on a cycle without a frame, that of the
+  /// last frame processed (a gap between frames is a frame the camera or driver dropped, nothing else).
   std::uint64_t frame_number = 0;
+  bool frame_received = false;        ///< this cycle processed a frame (false: missing or unusable)
   std::int64_t exposure_time_ns = 0;  ///< from the Frame
   NavMode mode = NavMode::kStandby;
   bool pose_valid = false;         ///< a 6-DOF pose is reported (near range, or acquisition's first pose)

@@ -93,7 +93,8 @@ class NavigationPipeline {
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
   std::uint64_t m_frames_processed = 0;
-  std::uint64_t m_frames_missing = 0;
+  std::uint64_t m_cycles = 0;             ///< process() calls: NavSolution::cycle_number
+  std::uint64_t m_last_frame_number = 0;  ///< camera sequence of the last frame processed
   CommandAck m_last_command;
 };
 
