@@ -92,6 +92,7 @@ int Daemon::init(const VisnavConfig& config, const DaemonOptions& options) {
   }
   // Replay on the simulated clock reports zero stage timings, as visnav-replay does (bit-identical output).
   m_pipeline.setClock(options.simulated_clock ? nullptr : &exec::monotonicNowNs);
+  m_pipeline.setNominalFramePeriodNs(static_cast<std::int64_t>(1e9 / config.camera.fps_hz));
   if (options.simulated_clock) {
     auto clock = std::make_unique<PacedSimulatedClock>(m_camera.first_timestamp_ns,
                                                        static_cast<std::int64_t>(options.pace_ms * 1e6));

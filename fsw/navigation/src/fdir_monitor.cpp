@@ -1,5 +1,7 @@
 #include "visnav/navigation/fdir_monitor.hpp"
 
+#include <algorithm>
+
 namespace visnav::nav {
 
 bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params) {
@@ -50,9 +52,12 @@ std::uint32_t FdirMonitor::checkNearRange(const NearRangeCheck& check) {
   return bits;
 }
 
-std::uint32_t FdirMonitor::checkFrameAge(double age_ms) {
-  const std::uint32_t bits =
-      m_params.max_frame_age_ms > 0.0 && age_ms > m_params.max_frame_age_ms ? kFaultFrameAge : 0U;
+std::uint32_t FdirMonitor::checkFrameAge(double age_ms, double frame_period_ms) {
+  // The cycle and the camera free-run at their own phases (the executive is the time master, fsw/app
+  // README "Frame age"): the newest frame is up to one camera period old by phase alone. Only the time
+  // beyond that is latency.
+  const double limit_ms = m_params.max_frame_latency_ms + std::max(0.0, frame_period_ms);
+  const std::uint32_t bits = m_params.max_frame_latency_ms > 0.0 && age_ms > limit_ms ? kFaultFrameAge : 0U;
   raise(bits);
   return bits;
 }

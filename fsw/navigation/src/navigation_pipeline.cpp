@@ -6,6 +6,9 @@
 
 namespace visnav::nav {
 
+/// Longest exposure interval still taken as the camera's frame period by the frame-age check (0.1 Hz).
+constexpr std::int64_t kMaxFramePeriodNs = 10'000'000'000LL;
+
 LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonModel& model,
                                    const PipelineParams& params) {
   m_camera = camera;
@@ -257,7 +260,13 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     out.frame_number = frame->sequence;
     out.frame_received = true;
     out.exposure_time_ns = frame->exposure_time_ns;
-    m_fdir.checkFrameAge(static_cast<double>(now_ns - frame->exposure_time_ns) * 1e-6);
+    // The camera's period: the interval between the last two exposures, up to kMaxFramePeriodNs (a longer
+    // gap is a loss, not a period); before two frames, the nominal one the caller gave.
+    const std::int64_t interval_ns = m_have_last_exposure ? frame->exposure_time_ns - m_last_exposure_ns : 0;
+    const std::int64_t period_ns =
+        interval_ns > 0 && interval_ns <= kMaxFramePeriodNs ? interval_ns : m_nominal_frame_period_ns;
+    m_fdir.checkFrameAge(static_cast<double>(now_ns - frame->exposure_time_ns) * 1e-6,
+                         static_cast<double>(period_ns) * 1e-6);
     // Propagate the filter to this exposure (two periods after a missed frame: the timestamps say so).
     if (m_have_last_exposure && m_filter.initialised()) {
       const double dt_s = static_cast<double>(frame->exposure_time_ns - m_last_exposure_ns) * 1e-9;

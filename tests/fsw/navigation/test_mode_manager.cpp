@@ -175,8 +175,11 @@ TEST(Fdir, EachCheckRaisesItsBit) {
   r = goodNear();
   c.centre_in_image = false;
   EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
-  EXPECT_EQ(f.checkFrameAge(200.0), kFaultFrameAge);
-  EXPECT_EQ(f.checkFrameAge(10.0), 0U);
+  // 100 ms of latency beyond one camera period (a free-running 5 Hz cycle takes frames 0-200 ms old).
+  EXPECT_EQ(f.checkFrameAge(200.0, 0.0), kFaultFrameAge);  // period not known yet: latency alone
+  EXPECT_EQ(f.checkFrameAge(10.0, 0.0), 0U);
+  EXPECT_EQ(f.checkFrameAge(290.0, 200.0), 0U);  // the phase offset of free-running clocks is no fault
+  EXPECT_EQ(f.checkFrameAge(310.0, 200.0), kFaultFrameAge);
   EXPECT_EQ(f.faultCounts()[2], 1U);  // residual
   EXPECT_EQ(f.faultCounts()[5], 2U);  // implausible twice
 }

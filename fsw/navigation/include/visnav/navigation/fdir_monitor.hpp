@@ -38,8 +38,9 @@ class FdirMonitor {
 
   /// Checks one near-range frame; returns the fault bits raised and records them.
   std::uint32_t checkNearRange(const NearRangeCheck& check);
-  /// Frame-level check, any mode: kFaultFrameAge when the frame is older than max_frame_age_ms.
-  std::uint32_t checkFrameAge(double age_ms);
+  /// Frame-level check, any mode: kFaultFrameAge when the frame is older than `frame_period_ms` (the
+  /// camera's, 0 when not known yet) plus max_frame_latency_ms.
+  std::uint32_t checkFrameAge(double age_ms, double frame_period_ms);
   /// Records faults found elsewhere (no frame, far range without target, acquisition failure, slips).
   void raise(std::uint32_t bits);
   /// Ends the frame: the bits raised since the last endFrame() become the active set.

@@ -23,7 +23,7 @@ struct NavigationParams {
   double max_rms_px = 1.0;        ///< LM residual above: fault
   double min_depth_m = 0.0;       ///< plausible depth band (t_c_m.z); 0: derived from the model and camera
   double max_depth_m = 0.0;
-  double max_frame_age_ms = 150.0;  ///< frame older than this when processed: fault
+  double max_frame_latency_ms = 100.0;  ///< frame older than one camera period plus this: fault
   // Image evidence that makes a near-range measurement win over the filter's prediction.
   double evidence_min_line_fraction = 0.6;  ///< used lines / measured lines
   double evidence_min_inlier_ratio = 0.7;   ///< inlier points / edge points of the used lines
@@ -87,9 +87,11 @@ struct NavigationParams {
             "FDIR: plausible depth band, upper end; 0 derives it from the model and camera: the depth at "
             "which the target spans 4 px (no 6-DOF fit is possible beyond)"},
            max_depth_m);
-    v.real({"navigation", "max_frame_age_ms", "ms", 0.0, 100000.0,
-            "FDIR: a frame older than this when processed is a fault (0 disables the check)"},
-           max_frame_age_ms);
+    v.real({"navigation", "max_frame_latency_ms", "ms", 0.0, 100000.0,
+            "FDIR: a frame older than one camera frame period plus this when processed is a fault (the "
+            "camera and the cycle free-run, so the newest frame is up to one period old by phase alone; the "
+            "period is the interval between the last two exposures; 0 disables the check)"},
+           max_frame_latency_ms);
     v.real({"navigation", "evidence_min_line_fraction", "-", 0.0, 1.0,
             "good image evidence: at least this share of the measured lines used (with the three below, "
             "the measurement wins over a filter that rejects it, and the filter restarts from it)"},

@@ -33,6 +33,9 @@ class NavigationPipeline {
   /// Per-stage timing source (CLOCK_MONOTONIC in flight; nullptr reports zero timings, as replay does for
   /// bit-identical output).
   void setClock(MonotonicClockNs clock);
+  /// The camera's nominal frame period (from its configured rate), which the frame-age check allows for
+  /// until two exposures have measured it. 0 (the default): no allowance before then.
+  void setNominalFramePeriodNs(std::int64_t period_ns) { m_nominal_frame_period_ns = period_ns; }
   /// Enters near range from a known pose (replay with an initial pose, tests), bypassing acquisition.
   void startNearRange(const Pose& pose, std::uint64_t frame_number);
 
@@ -93,6 +96,7 @@ class NavigationPipeline {
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
   std::uint64_t m_frames_processed = 0;
+  std::int64_t m_nominal_frame_period_ns = 0;
   std::uint64_t m_cycles = 0;             ///< process() calls: NavSolution::cycle_number
   std::uint64_t m_last_frame_number = 0;  ///< camera sequence of the last frame processed
   CommandAck m_last_command;
