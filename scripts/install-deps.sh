@@ -7,6 +7,7 @@ packages=(build-essential cmake ninja-build pkgconf libeigen3-dev libgtest-dev l
           libcamera-dev linux-libc-dev)
 packages+=(cyclonedds-dev cyclonedds-tools)  # DDS telemetry: Cyclone DDS C library and idlc (fsw/telemetry)
 packages+=(git clang-format cppcheck)        # static checks (scripts/lint.sh); CI runs format_check and cppcheck
+packages+=(clang libclang-rt-14-dev)         # fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

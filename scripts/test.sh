@@ -6,7 +6,9 @@
 #     sequences rendered, replayed and scored against the issue's bounds) and the allocation counts with
 #     malloc counted too (ASan owns malloc in the debug build);
 #  3. the arm64 flight build (scripts/test-arm64.sh): cross build, unit tests under qemu-aarch64, and the
-#     arm64 replay of approach_ci against the x86 one within the stated tolerance.
+#     arm64 replay of approach_ci against the x86 one within the stated tolerance;
+#  4. a short fuzz run (scripts/fuzz.sh 10: every parser's libFuzzer target 10 s from its corpus, two at a
+#     time, clang ASan + UBSan in build/fuzz); any crash, leak or hang fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -17,3 +19,4 @@ cmake --preset release >/dev/null
 cmake --build --preset release
 ctest --preset release
 scripts/test-arm64.sh
+scripts/fuzz.sh 10

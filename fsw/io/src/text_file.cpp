@@ -85,15 +85,21 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
   State state = State::kPlain;
   int line = 1;
   int column = 0;
+  int depth = 0;  // open [ and { of values: a '[' first on a line at depth 0 opens a table header
+  bool line_has_text = false;  // a non-blank character before this one on the line
   const std::size_t n = text.size();
   const auto triple = [&text, n](std::size_t i, char q) {
     return i + 2 < n && text[i] == q && text[i + 1] == q && text[i + 2] == q;
+  };
+  const auto failAt = [&path, &line](int col, const char* problem) {
+    return LoadError::failure(path + ":" + std::to_string(line) + ":" + std::to_string(col) + ": " + problem);
   };
   for (std::size_t i = 0; i < n; ++i) {
     const char c = text[i];
     if (c == '\n') {
       ++line;
       column = 0;
+      line_has_text = false;
       // Comments and single-line strings end at the line end (an unterminated string is toml++'s error).
       if (state == State::kComment || state == State::kBasic || state == State::kLiteral)
         state = State::kPlain;
@@ -101,11 +107,26 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
     }
     ++column;
     switch (state) {
-      case State::kPlain:
+      case State::kPlain: {
         if (static_cast<unsigned char>(c) >= 0x80U)
-          return LoadError::failure(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                                    ": non-ASCII character outside a string (keys and values other than "
-                                    "strings are ASCII)");
+          return failAt(
+              column, "non-ASCII character outside a string (keys and values other than strings are ASCII)");
+        const bool first_on_line = !line_has_text;
+        if (c != ' ' && c != '\t') line_has_text = true;
+        if (c == '[' && first_on_line && depth == 0) {
+          // toml++ 3.3.0 assumes (TOML_ASSERT_ASSUME, undefined behaviour when false) that a table header's
+          // first character after '[' or '[[' and blanks starts a key: "[!]" reached it.
+          std::size_t k = i + 1;
+          if (k < n && text[k] == '[') ++k;
+          while (k < n && (text[k] == ' ' || text[k] == '\t')) ++k;
+          const char h = k < n ? text[k] : '\0';
+          const bool key_start = (h >= 'A' && h <= 'Z') || (h >= 'a' && h <= 'z') || (h >= '0' && h <= '9') ||
+                                 h == '_' || h == '-' || h == '"' || h == '\'' || h == ']';
+          if (!key_start) return failAt(column, "table header must start with a key ([name] or [\"name\"])");
+          break;  // the header's own brackets are not value nesting
+        }
+        if (c == '[' || c == '{') ++depth;
+        if ((c == ']' || c == '}') && depth > 0) --depth;
         if (c == '#') {
           state = State::kComment;
         } else if (triple(i, '"')) {
@@ -122,6 +143,7 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
           state = State::kLiteral;
         }
         break;
+      }
       case State::kComment: break;
       case State::kBasic:
         if (c == '\\' && i + 1 < n && text[i + 1] != '\n') {

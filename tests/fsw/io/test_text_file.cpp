@@ -61,10 +61,15 @@ TEST(TomlAscii, NonAsciiOnlyInsideStringsAndComments) {
             "f:1:1: non-ASCII character outside a string "
             "(keys and values other than strings are ASCII)");
   const char* good[] = {
-      "a = \"\xc3\xa9\" # \xc3\xa9\n", "a = '\xc3\xa9'\n",   "a = \"\"\"\n\xc3\xa9\n\"\"\"\n",
-      "a = '''\n\xc3\xa9\n'''\n",      "\"\xc3\xa9\" = 1\n",
+      "a = \"\xc3\xa9\" # \xc3\xa9\n",
+      "a = '\xc3\xa9'\n",
+      "a = \"\"\"\n\xc3\xa9\n\"\"\"\n",
+      "a = '''\n\xc3\xa9\n'''\n",
+      "\"\xc3\xa9\" = 1\n",
       "a = \"x\\\"\xc3\xa9\"\n",       // escaped quote stays inside the string
       "a = \"\"\"x\"\"\"\"\nb = 1\n",  // one extra quote before the closing three belongs to the string
+      "a = [\n  [{ x = 1 }],\n  [+1, \"]\"],\n]\n[t]\n[[u]]\n[ \"v\" ]\n",  // arrays at a line start are
+                                                                            // values
   };
   for (const char* text : good) EXPECT_TRUE(checkTomlAscii("f", text).ok) << text;
   const struct {
@@ -76,6 +81,10 @@ TEST(TomlAscii, NonAsciiOnlyInsideStringsAndComments) {
       {"a = \"\"\"x\"\"\"\xc3\xa9\n", "f:1:12:"},
       {"a = \"unterminated\n\xc3\xa9 = 1\n", "f:2:1:"},  // a basic string ends at the line end
       {"[t\xc3\xa9]\n", "f:1:3:"},
+      // Found by fuzz_camera_toml: toml++ 3.3.0's parse_key assumes a key after '[' (undefined behaviour).
+      {"[!]\n", "f:1:1:"},
+      {"a = 1\n  [[ \x01]]\n", "f:2:3:"},
+      {"[\n", "f:1:1:"},
   };
   for (const auto& c : bad) {
     const LoadError e = checkTomlAscii("f", c.text);

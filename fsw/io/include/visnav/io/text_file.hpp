@@ -28,9 +28,12 @@ LoadError readTextFile(const std::string& path, std::string& text,
 /// Same check for a path that is opened elsewhere: a regular file (links followed), size <= max_bytes.
 LoadError checkRegularFile(const std::string& path, std::size_t max_bytes = kMaxInputFileBytes);
 
-/// toml++ 3.3.0 reaches __builtin_unreachable on some non-ASCII characters where it expects a key (`é = 1`).
-/// TOML keys outside quotes are ASCII, so any byte >= 0x80 outside a quoted string or a comment is rejected
-/// here, before the text reaches the parser: "<path>:<line>:<col>: non-ASCII character outside a string".
+/// toml++ 3.3.0 has undefined behaviour (a false TOML_ASSERT_ASSUME, __builtin_unreachable in release) where
+/// it expects a key and finds something else: a non-ASCII character (`é = 1`), or a table header that does
+/// not start with a key (`[!]`, found by tests/fuzz). This guard runs before the text reaches the parser:
+/// any byte >= 0x80 outside a quoted string or a comment is rejected ("<path>:<line>:<col>: non-ASCII
+/// character outside a string"; TOML keys outside quotes are ASCII), and so is a table header whose first
+/// character after '[' / '[[' and blanks is not a bare-key character, a quote or ']'.
 LoadError checkTomlAscii(const std::string& path, const std::string& text);
 
 }  // namespace visnav::io
