@@ -156,7 +156,7 @@ LoadError ConfigFile::checkNoUnknownKeys() const {
         return LoadError::failure(whereKey(m_path, key, node) + ": unknown table [" + section + "." + name +
                                   "] (sections do not nest)");
       if (m_impl->claimed.count(section + "." + name) == 0U)
-        return LoadError::failure(whereKey(m_path, key, node) + ": unknown key [" + section + "] " + name);
+        return LoadError::failure(where(m_path, node) + ": unknown key [" + section + "] " + name);
     }
   }
   return LoadError::success();

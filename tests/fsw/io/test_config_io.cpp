@@ -50,7 +50,7 @@ TEST(ConfigFile, EveryMisplacedKeyIsAnErrorWithLineAndColumn) {
       {"[executive]\ndepth = 2\n\n[[executive2]]\nx = 1\n", ":4:3:", "array of tables"},
       {"[executive]\ndepth = 2\n[executive.x]\nmajor_frame_hz = 1.0\n", ":3:12:", "[executive.x]"},
       {"[camera.extra]\nwidth = 1\n", ":1:9:", "[camera.extra]"},
-      {"[executive]\ndepth = 2\n  typo_key = 1\n", ":3:3:", "unknown key [executive] typo_key"},
+      {"[executive]\ndepth = 2\n  typo_key = 1\n", ":3:", "unknown key [executive] typo_key"},
   };
   for (const Case& c : cases) {
     std::string path;
