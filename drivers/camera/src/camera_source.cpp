@@ -1,5 +1,8 @@
 #include "visnav/camera/camera_source.hpp"
 
+#include <cinttypes>
+#include <cstdio>
+
 namespace visnav::camera {
 
 const char* toString(AcquireResult result) {
@@ -11,6 +14,43 @@ const char* toString(AcquireResult result) {
     case AcquireResult::kError: return "error";
   }
   return "unknown";
+}
+
+const char* toString(CameraState state) {
+  switch (state) {
+    case CameraState::kClosed: return "closed";
+    case CameraState::kStreaming: return "streaming";
+    case CameraState::kLost: return "lost";
+    case CameraState::kRetrying: return "retrying";
+  }
+  return "unknown";
+}
+
+const char* eventName(CameraEventKind kind) {
+  switch (kind) {
+    case CameraEventKind::kStateChange: return "camera_state";
+    case CameraEventKind::kReleaseError: return "camera_release_error";
+    case CameraEventKind::kStreamRestart: return "camera_restart";
+  }
+  return "camera_event";
+}
+
+const char* formatEvent(const CameraEvent& event, char* out, std::size_t capacity) {
+  if (capacity == 0) return out;
+  char text[CameraEvent::kTextCapacity];
+  std::size_t n = 0;
+  for (; n + 1 < sizeof(text) && event.text[n] != '\0'; ++n)
+    text[n] = event.text[n] == '"' ? '\'' : event.text[n];
+  text[n] = '\0';
+  const auto ms = [](std::int64_t ns) { return static_cast<long long>(ns / 1000000); };
+  if (event.kind == CameraEventKind::kStateChange)
+    std::snprintf(out, capacity,
+                  "from=%s to=%s attempts=%" PRIu32 " retry_interval_ms=%lld down_ms=%lld error=\"%s\"",
+                  toString(event.from), toString(event.to), event.attempts, ms(event.retry_interval_ns),
+                  ms(event.down_ns), text);
+  else
+    std::snprintf(out, capacity, "pending=%" PRIu32 " error=\"%s\"", event.pending, text);
+  return out;
 }
 
 }  // namespace visnav::camera

@@ -42,4 +42,19 @@ MonoImage extractLumaYuyv(const std::uint8_t* yuyv, int width, int height, std::
   return MonoImage::from8(ImageView8(luma, width, height));
 }
 
+MonoImage extractLumaRgb(const std::uint8_t* rgb, int width, int height, std::size_t stride_bytes,
+                         const PackedRgbLayout& layout, std::uint8_t* luma) {
+  const auto step = static_cast<std::size_t>(layout.bytes_per_pixel);
+  const auto r = static_cast<std::size_t>(layout.red);
+  const auto g = static_cast<std::size_t>(layout.green);
+  const auto b = static_cast<std::size_t>(layout.blue);
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* src = rgb + stride_bytes * static_cast<std::size_t>(y);
+    std::uint8_t* dst = luma + static_cast<std::size_t>(width) * static_cast<std::size_t>(y);
+    for (int x = 0; x < width; ++x, src += step)
+      dst[x] = static_cast<std::uint8_t>((77U * src[r] + 150U * src[g] + 29U * src[b] + 128U) >> 8U);
+  }
+  return MonoImage::from8(ImageView8(luma, width, height));
+}
+
 }  // namespace visnav::camera

@@ -5,10 +5,13 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <ctime>
 
 #include "libcamera_impl.hpp"
 #include "visnav/camera/mono_view.hpp"
+#include "visnav/camera/os_error.hpp"
 #include "visnav/libcamera/libcamera_formats.hpp"
 
 namespace visnav::camera {
@@ -23,8 +26,9 @@ libcamera::StreamRole roleOf(int role) {
   return libcamera::StreamRole::Viewfinder;
 }
 
+/// "ENODEV (No such device)" for -ENODEV (init-time messages).
 std::string errorText(int negative_errno) {
-  return std::string(std::strerror(-negative_errno)) + " (errno " + std::to_string(-negative_errno) + ")";
+  return std::string(errnoName(-negative_errno)) + " (" + errnoText(-negative_errno) + ")";
 }
 
 std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
@@ -37,11 +41,13 @@ LibcameraCamera::~LibcameraCamera() { close(); }
 
 const CameraCounters& LibcameraCamera::counters() const { return m_impl->counters; }
 const char* LibcameraCamera::lastError() const { return m_impl->last_error; }
+CameraState LibcameraCamera::state() const { return m_impl->state; }
+bool LibcameraCamera::nextEvent(CameraEvent& event) { return m_impl->events.pop(event); }
 const std::string& LibcameraCamera::description() const { return m_impl->description; }
 
 LoadError LibcameraCamera::open() {
   Impl& impl = *m_impl;
-  if (impl.state != Impl::State::kClosed) return LoadError::failure("libcamera: already open");
+  if (impl.state != CameraState::kClosed) return LoadError::failure("libcamera: already open");
   if (impl.params.buffer_count < 2 || impl.params.buffer_count > Impl::kMaxRequests)
     return LoadError::failure("libcamera: [camera] buffer_count must be in [2, 32]");
   if (formatCandidates(impl.params.format()).count == 0)
@@ -50,6 +56,7 @@ LoadError LibcameraCamera::open() {
         "(use grey, y10, y12 or yuyv)");
   impl.counters = CameraCounters{};
   impl.sequence.reset();
+  impl.events.clear();
   std::string reason = impl.startManager();
   if (reason.empty()) reason = impl.selectCamera();
   if (reason.empty()) reason = impl.configureStream(true);
@@ -60,23 +67,21 @@ LoadError LibcameraCamera::open() {
     close();
     return LoadError::failure("libcamera: " + reason);
   }
-  impl.state = Impl::State::kStreaming;
+  impl.changeState(CameraState::kStreaming);
   impl.last_error = "";
   return LoadError::success();
 }
 
 bool LibcameraCamera::recover() {
   Impl& impl = *m_impl;
-  if (impl.state == Impl::State::kStreaming) return true;
-  if (impl.state != Impl::State::kLost) {
+  if (impl.state == CameraState::kStreaming) return true;
+  if (impl.state == CameraState::kClosed) {
     impl.last_error = "recover() on a camera that was never opened";
     return false;
   }
-  if (impl.recovery_attempts_used >= impl.params.recovery_attempts) {
-    impl.last_error = "camera lost; recovery attempts exhausted ([camera] recovery_attempts)";
-    return false;
-  }
-  ++impl.recovery_attempts_used;
+  // Lost or retrying: never give up (a flight camera can come back), but space the attempts.
+  const std::int64_t now_ns = Impl::nowNs();
+  if (!impl.backoff.due(now_ns)) return false;
   impl.stopCamera();
   std::string reason = impl.selectCamera();
   if (reason.empty()) reason = impl.configureStream(false);
@@ -85,11 +90,15 @@ bool LibcameraCamera::recover() {
   if (reason.empty()) reason = impl.start();
   if (!reason.empty()) {
     impl.stopCamera();
-    impl.last_error = "camera not back yet (reopen failed)";
+    std::snprintf(impl.error_text, sizeof(impl.error_text), "camera not back yet: %s", reason.c_str());
+    impl.last_error = impl.error_text;
+    impl.backoff.failed(now_ns);
+    if (impl.state == CameraState::kLost && impl.backoff.backingOff())
+      impl.changeState(CameraState::kRetrying);
     return false;
   }
-  impl.state = Impl::State::kStreaming;
-  impl.recovery_attempts_used = 0;
+  impl.last_error = "reopened";
+  impl.changeState(CameraState::kStreaming);
   impl.sequence.restart();
   ++impl.counters.recoveries;
   impl.last_error = "";
@@ -103,7 +112,35 @@ void LibcameraCamera::close() {
     impl.manager->stop();
     impl.manager.reset();
   }
-  impl.state = Impl::State::kClosed;
+  impl.state = CameraState::kClosed;
+}
+
+std::int64_t LibcameraCamera::Impl::nowNs() {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<std::int64_t>(now.tv_sec) * 1000000000LL + now.tv_nsec;
+}
+
+void LibcameraCamera::Impl::setError(const char* what, int negative_errno) {
+  last_error = formatNegativeError(error_text, sizeof(error_text), what, negative_errno);
+}
+
+void LibcameraCamera::Impl::changeState(CameraState to) {
+  const std::int64_t now_ns = nowNs();
+  const CameraState from = state;
+  state = to;
+  if (to == CameraState::kLost) backoff.start(now_ns, params.recovery_attempts);
+  if (from == CameraState::kClosed) return;  // open(): the start line says so
+  CameraEvent event;
+  event.kind = CameraEventKind::kStateChange;
+  event.from = from;
+  event.to = to;
+  event.time_ns = now_ns;
+  event.attempts = backoff.attempts() + (to == CameraState::kStreaming ? 1U : 0U);
+  event.retry_interval_ns = backoff.intervalNs();
+  event.down_ns = to == CameraState::kLost ? 0 : now_ns - backoff.lostNs();
+  std::snprintf(event.text, sizeof(event.text), "%s", last_error);
+  events.push(event);
 }
 
 std::string LibcameraCamera::Impl::startManager() {
@@ -150,17 +187,21 @@ std::string LibcameraCamera::Impl::configureStream(bool first_open) {
   const libcamera::Size size(static_cast<unsigned int>(params.width_px),
                              static_cast<unsigned int>(params.height_px));
   FormatCandidates candidates = formatCandidates(params.format());
-  if (!first_open) candidates = FormatCandidates{{format}, 1};  // the device must come back as it was
+  if (!first_open) {  // the device must come back as it was
+    candidates.formats[0] = format;
+    candidates.count = 1;
+  }
   std::string tried;
   for (int i = 0; i < candidates.count; ++i) {
-    const PixelFormat candidate = candidates.formats[static_cast<std::size_t>(i)];
-    const libcamera::PixelFormat wanted = libcamera::PixelFormat::fromString(libcameraFormatName(candidate));
+    const LibcameraFormat candidate = candidates.formats[static_cast<std::size_t>(i)];
+    const LibcameraFormatInfo& info = formatInfo(candidate);
+    const libcamera::PixelFormat wanted = libcamera::PixelFormat::fromString(info.name);
     stream_config.pixelFormat = wanted;
     stream_config.size = size;
     stream_config.bufferCount = static_cast<unsigned int>(params.buffer_count);
     const libcamera::CameraConfiguration::Status status = configuration->validate();
     if (status == libcamera::CameraConfiguration::Invalid || stream_config.pixelFormat != wanted) {
-      tried += std::string(tried.empty() ? "" : ", ") + libcameraFormatName(candidate);
+      tried += std::string(tried.empty() ? "" : ", ") + info.name;
       continue;
     }
     if (stream_config.size != size)
@@ -169,7 +210,7 @@ std::string LibcameraCamera::Impl::configureStream(bool first_open) {
              "); set [camera] width_px/height_px to a supported size (cam -c ID --list-properties, cam -I)";
     if (stream_config.bufferCount > static_cast<unsigned int>(kMaxRequests))
       return "camera '" + camera_id + "' insists on more than 32 buffers";
-    if (first_open && candidate != static_cast<PixelFormat>(params.pixel_format))
+    if (first_open && i > 0)
       description = std::string("requested ") + toString(static_cast<PixelFormat>(params.pixel_format)) +
                     " is not offered, using " + wanted.toString() + "; ";
     else
@@ -180,10 +221,10 @@ std::string LibcameraCamera::Impl::configureStream(bool first_open) {
     stream = stream_config.stream();
     stride_bytes = stream_config.stride;
     if (stride_bytes <
-            static_cast<std::size_t>(params.width_px) * static_cast<std::size_t>(bytesPerPixel(format)) ||
-        (bytesPerPixel(format) == 2 && stride_bytes % 2U != 0U))
+            static_cast<std::size_t>(params.width_px) * static_cast<std::size_t>(info.bytes_per_pixel) ||
+        (info.source == LumaSource::kInPlace16 && stride_bytes % 2U != 0U))
       return "camera reported a row stride too small or odd for " + wanted.toString();
-    if (format == PixelFormat::kYuyv)
+    if (info.source == LumaSource::kYuyv || info.source == LumaSource::kPackedRgb)
       luma.assign(static_cast<std::size_t>(params.width_px) * static_cast<std::size_t>(params.height_px), 0);
     description += "camera '" + camera_id + "' " + role_name + " " + wanted.toString() + " " +
                    stream_config.size.toString() + " stride " + std::to_string(stride_bytes) + ", " +
@@ -205,7 +246,7 @@ std::string LibcameraCamera::Impl::allocateAndMap() {
   const auto& buffers = allocator->buffers(stream);
   if (buffers.size() < 2U || buffers.size() > static_cast<std::size_t>(kMaxRequests))
     return "the camera allocated " + std::to_string(buffers.size()) + " buffers (need 2 to 32)";
-  const std::size_t needed = minimumBufferBytes(format, params.width_px, params.height_px, stride_bytes);
+  const std::size_t needed = firstPlaneBytes(format, params.width_px, params.height_px, stride_bytes);
   mappings.assign(buffers.size(), Mapping{});
   for (std::size_t i = 0; i < buffers.size(); ++i) {
     const std::vector<libcamera::FrameBuffer::Plane>& planes = buffers[i]->planes();
@@ -280,6 +321,9 @@ void LibcameraCamera::Impl::stopCamera() {
   camera_acquired = false;
   camera.reset();
   held = -1;
+  parked.fill(false);
+  parked_count = 0;
+  parked_rounds = 0;
 }
 
 }  // namespace visnav::camera

@@ -3,6 +3,32 @@
 #include <cstring>
 
 namespace visnav::camera {
+namespace {
+
+// Indexed by LibcameraFormat. Byte order of the packed RGB formats follows DRM fourccs (libcamera's names):
+// RGB888 is [23:0] R:G:B little-endian, so B, G, R in memory; BGR888 is R, G, B; XRGB8888 is B, G, R, X;
+// XBGR8888 is R, G, B, X.
+constexpr std::array<LibcameraFormatInfo, kLibcameraFormatCount> kFormats = {{
+    {"R8", PixelFormat::kGrey8, LumaSource::kInPlace8, 1, 0, 0, 0},
+    {"R10", PixelFormat::kY10, LumaSource::kInPlace16, 2, 0, 0, 0},
+    {"R12", PixelFormat::kY12, LumaSource::kInPlace16, 2, 0, 0, 0},
+    {"NV12", PixelFormat::kGrey8, LumaSource::kInPlace8, 1, 0, 0, 0},
+    {"NV21", PixelFormat::kGrey8, LumaSource::kInPlace8, 1, 0, 0, 0},
+    {"YUV420", PixelFormat::kGrey8, LumaSource::kInPlace8, 1, 0, 0, 0},
+    {"YVU420", PixelFormat::kGrey8, LumaSource::kInPlace8, 1, 0, 0, 0},
+    {"NV16", PixelFormat::kGrey8, LumaSource::kInPlace8, 1, 0, 0, 0},
+    {"YUYV", PixelFormat::kYuyv, LumaSource::kYuyv, 2, 0, 0, 0},
+    {"XRGB8888", PixelFormat::kGrey8, LumaSource::kPackedRgb, 4, 2, 1, 0},
+    {"XBGR8888", PixelFormat::kGrey8, LumaSource::kPackedRgb, 4, 0, 1, 2},
+    {"RGB888", PixelFormat::kGrey8, LumaSource::kPackedRgb, 3, 2, 1, 0},
+    {"BGR888", PixelFormat::kGrey8, LumaSource::kPackedRgb, 3, 0, 1, 2},
+}};
+
+}  // namespace
+
+const LibcameraFormatInfo& formatInfo(LibcameraFormat format) {
+  return kFormats[static_cast<std::size_t>(format)];
+}
 
 const char* libcameraFormatName(PixelFormat format) {
   switch (format) {
@@ -13,6 +39,16 @@ const char* libcameraFormatName(PixelFormat format) {
     case PixelFormat::kY16: return nullptr;  // no 16-bit mono format in libcamera 0.0.3
   }
   return nullptr;
+}
+
+bool libcameraFormatFromName(const char* name, LibcameraFormat& format) {
+  for (int i = 0; i < kLibcameraFormatCount; ++i) {
+    if (std::strcmp(name, kFormats[static_cast<std::size_t>(i)].name) == 0) {
+      format = static_cast<LibcameraFormat>(i);
+      return true;
+    }
+  }
+  return false;
 }
 
 bool pixelFormatFromLibcameraName(const char* name, PixelFormat& format) {
@@ -28,13 +64,23 @@ bool pixelFormatFromLibcameraName(const char* name, PixelFormat& format) {
 
 FormatCandidates formatCandidates(RequestedFormat requested) {
   FormatCandidates out;
-  const auto wanted = static_cast<PixelFormat>(requested);
-  if (libcameraFormatName(wanted) == nullptr) return out;
+  const char* wanted_name = libcameraFormatName(static_cast<PixelFormat>(requested));
+  LibcameraFormat wanted = LibcameraFormat::kR8;
+  if (wanted_name == nullptr || !libcameraFormatFromName(wanted_name, wanted)) return out;
   out.formats[static_cast<std::size_t>(out.count++)] = wanted;
-  for (const PixelFormat fallback :
-       {PixelFormat::kGrey8, PixelFormat::kY10, PixelFormat::kY12, PixelFormat::kYuyv})
-    if (fallback != wanted) out.formats[static_cast<std::size_t>(out.count++)] = fallback;
+  // The enum is in preference order: mono, Y plane, YUYV, RGB.
+  for (int i = 0; i < kLibcameraFormatCount; ++i) {
+    const auto format = static_cast<LibcameraFormat>(i);
+    if (format != wanted) out.formats[static_cast<std::size_t>(out.count++)] = format;
+  }
   return out;
+}
+
+std::size_t firstPlaneBytes(LibcameraFormat format, int width, int height, std::size_t stride_bytes) {
+  if (width <= 0 || height <= 0) return 0;
+  const auto row =
+      static_cast<std::size_t>(width) * static_cast<std::size_t>(formatInfo(format).bytes_per_pixel);
+  return stride_bytes * static_cast<std::size_t>(height - 1) + row;
 }
 
 const char* toString(LibcameraRole role) {

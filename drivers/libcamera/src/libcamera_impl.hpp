@@ -16,14 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "visnav/camera/camera_events.hpp"
 #include "visnav/camera/sequence_tracker.hpp"
 #include "visnav/libcamera/libcamera_camera.hpp"
+#include "visnav/libcamera/libcamera_formats.hpp"
 
 namespace visnav::camera {
 
 struct LibcameraCamera::Impl {
   static constexpr int kMaxRequests = 32;
-  enum class State : std::uint8_t { kClosed, kStreaming, kLost };
 
   explicit Impl(const CameraParams& camera_params) : params(camera_params) {}
 
@@ -40,11 +41,16 @@ struct LibcameraCamera::Impl {
   void onRequestCompleted(libcamera::Request* request);
   void onDisconnected();
   bool requeue(libcamera::Request* request);
-  AcquireResult lose(const char* what);
+  /// Retries the requests a queueRequest() refused; false when the camera is lost (or restarted).
+  bool requeueParked();
+  AcquireResult lose(const char* what, int negative_errno = 0);
   void deliver(libcamera::Request* request, Frame& frame);
+  void setError(const char* what, int negative_errno);
+  void changeState(CameraState to);
+  static std::int64_t nowNs();
 
   CameraParams params;
-  State state = State::kClosed;
+  CameraState state = CameraState::kClosed;
   std::unique_ptr<libcamera::CameraManager> manager;
   std::shared_ptr<libcamera::Camera> camera;
   bool camera_acquired = false;
@@ -59,9 +65,9 @@ struct LibcameraCamera::Impl {
     const std::uint8_t* plane = nullptr;  // first plane inside the mapping
   };
   std::vector<Mapping> mappings;  // per request
-  PixelFormat format = PixelFormat::kGrey8;
+  LibcameraFormat format = LibcameraFormat::kR8;
   std::size_t stride_bytes = 0;
-  std::vector<std::uint8_t> luma;  // YUYV only, sized at open()
+  std::vector<std::uint8_t> luma;  // YUYV and RGB only: the converted luma, sized at open()
   std::string camera_id;
   std::string description;
 
@@ -75,10 +81,16 @@ struct LibcameraCamera::Impl {
 
   int held = -1;  // cookie of the request whose frame the caller holds
   SequenceTracker sequence;
-  int recovery_attempts_used = 0;
+  RetryBackoff backoff;
+  CameraEventQueue events;
+  std::array<bool, kMaxRequests> parked{};  // refused by queueRequest(), retried by the next acquire()
+  int parked_count = 0;
+  int parked_rounds = 0;
   CameraCounters counters;
   std::uint64_t stale_skipped = 0;
+  std::uint64_t requeue_errors = 0;
   const char* last_error = "";
+  char error_text[CameraEvent::kTextCapacity] = {};
 };
 
 }  // namespace visnav::camera

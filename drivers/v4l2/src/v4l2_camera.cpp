@@ -7,10 +7,12 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "v4l2_detail.hpp"
 #include "visnav/camera/mono_view.hpp"
+#include "visnav/camera/os_error.hpp"
 
 namespace visnav::camera {
 namespace {
@@ -24,7 +26,8 @@ V4l2Camera::V4l2Camera(const CameraParams& params, V4l2Os& os)
 V4l2Camera::~V4l2Camera() { close(); }
 
 LoadError V4l2Camera::open() {
-  if (m_state != State::kClosed) return LoadError::failure("v4l2 " + m_params.device + ": already open");
+  if (m_state != CameraState::kClosed)
+    return LoadError::failure("v4l2 " + m_params.device + ": already open");
   if (m_params.device.empty()) return LoadError::failure("v4l2: [camera] device is empty (e.g. /dev/video0)");
   if (m_params.buffer_count < 2 || m_params.buffer_count > kMaxBuffers)
     return LoadError::failure("v4l2: [camera] buffer_count must be in [2, 32]");
@@ -33,29 +36,30 @@ LoadError V4l2Camera::open() {
                   0);
   m_counters = CameraCounters{};
   m_sequence.reset();
+  m_events.clear();
   if (const char* reason = setUp(true)) return LoadError::failure(describeFailure(reason));
-  m_state = State::kStreaming;
+  changeState(CameraState::kStreaming, m_os.monotonicNs());
   m_last_error = "";
   return LoadError::success();
 }
 
 bool V4l2Camera::recover() {
-  if (m_state == State::kStreaming) return true;
-  if (m_state != State::kLost) {
+  if (m_state == CameraState::kStreaming) return true;
+  if (m_state == CameraState::kClosed) {
     m_last_error = "recover() on a camera that was never opened";
     return false;
   }
-  if (m_recovery_attempts_used >= m_params.recovery_attempts) {
-    m_last_error = "device lost; recovery attempts exhausted ([camera] recovery_attempts)";
-    return false;
-  }
-  ++m_recovery_attempts_used;
+  // Lost or retrying: never give up (a flight camera can come back), but space the attempts.
+  const std::int64_t now_ns = m_os.monotonicNs();
+  if (!m_backoff.due(now_ns)) return false;
   if (const char* reason = setUp(false)) {
-    m_last_error = reason;
+    setError(reason, m_last_errno);
+    m_backoff.failed(now_ns);
+    if (m_state == CameraState::kLost && m_backoff.backingOff()) changeState(CameraState::kRetrying, now_ns);
     return false;
   }
-  m_state = State::kStreaming;
-  m_recovery_attempts_used = 0;
+  m_last_error = "reopened";
+  changeState(CameraState::kStreaming, now_ns);
   m_sequence.restart();  // the driver restarts its count; frame.sequence continues
   ++m_counters.recoveries;
   m_last_error = "";
@@ -63,10 +67,32 @@ bool V4l2Camera::recover() {
 }
 
 void V4l2Camera::close() {
-  if (m_state == State::kClosed) return;
+  if (m_state == CameraState::kClosed) return;
   tearDown();
   m_held = -1;
-  m_state = State::kClosed;
+  m_state = CameraState::kClosed;
+}
+
+void V4l2Camera::setError(const char* what, int error_number) {
+  m_last_error = formatOsError(m_error_text, sizeof(m_error_text), what, error_number);
+}
+
+void V4l2Camera::changeState(CameraState to, std::int64_t now_ns) {
+  const CameraState from = m_state;
+  m_state = to;
+  if (to == CameraState::kLost) m_backoff.start(now_ns, m_params.recovery_attempts);
+  if (from == CameraState::kClosed) return;  // open(): the start line says so
+  CameraEvent event;
+  event.kind = CameraEventKind::kStateChange;
+  event.from = from;
+  event.to = to;
+  event.time_ns = now_ns;
+  event.attempts = m_backoff.attempts() + (to == CameraState::kStreaming ? 1U : 0U);
+  event.retry_interval_ns = m_backoff.intervalNs();
+  event.down_ns = to == CameraState::kLost ? 0 : now_ns - m_backoff.lostNs();
+  event.pending = static_cast<std::uint32_t>(m_pending_count);
+  std::snprintf(event.text, sizeof(event.text), "%s", m_last_error);
+  m_events.push(event);
 }
 
 const char* V4l2Camera::setUp(bool first_open) {
@@ -83,14 +109,22 @@ const char* V4l2Camera::setUp(bool first_open) {
   if (reason == nullptr) reason = setFrameInterval();
   if (reason == nullptr) reason = mapRing();
   if (reason == nullptr) {
-    for (int i = 0; i < m_ring_size && reason == nullptr; ++i)
-      if (!queueBuffer(i)) reason = "VIDIOC_QBUF of a fresh buffer failed";
+    // A refused buffer is parked like one refused in release(): the first acquire() queues it again.
+    for (int i = 0; i < m_ring_size && reason == nullptr; ++i) {
+      if (queueBuffer(i)) continue;
+      if (v4l2detail::isDeviceGone(m_last_errno))
+        reason = "VIDIOC_QBUF of a fresh buffer";
+      else
+        parkBuffer(i, "VIDIOC_QBUF of a fresh buffer", m_last_errno);
+    }
+    if (reason == nullptr && m_ring_size - m_pending_count < kMinDriverBuffers)
+      reason = "VIDIOC_QBUF refused the fresh buffers";
   }
   if (reason == nullptr) {
     int type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     if (m_os.ioctl(m_fd, VIDIOC_STREAMON, &type) < 0) {
       m_last_errno = errno;
-      reason = "VIDIOC_STREAMON failed";
+      reason = "VIDIOC_STREAMON";
     }
   }
   if (reason != nullptr) tearDown();
@@ -101,7 +135,7 @@ const char* V4l2Camera::queryCapabilities() {
   v4l2_capability cap{};
   if (m_os.ioctl(m_fd, VIDIOC_QUERYCAP, &cap) < 0) {
     m_last_errno = errno;
-    return m_last_errno == ENOTTY ? "not a V4L2 device (VIDIOC_QUERYCAP refused)" : "VIDIOC_QUERYCAP failed";
+    return m_last_errno == ENOTTY ? "not a V4L2 device (VIDIOC_QUERYCAP refused)" : "VIDIOC_QUERYCAP";
   }
   const std::uint32_t caps =
       (cap.capabilities & V4L2_CAP_DEVICE_CAPS) != 0U ? cap.device_caps : cap.capabilities;
@@ -126,7 +160,7 @@ const char* V4l2Camera::negotiateFormat(bool first_open) {
   if (m_os.ioctl(m_fd, VIDIOC_S_FMT, &format) < 0) {
     m_last_errno = errno;
     return m_last_errno == EBUSY ? "VIDIOC_S_FMT: device busy (another process is streaming from it?)"
-                                 : "VIDIOC_S_FMT failed";
+                                 : "VIDIOC_S_FMT";
   }
   const v4l2_pix_format& pix = format.fmt.pix;
   m_info.fourcc = pix.pixelformat;
@@ -164,7 +198,7 @@ const char* V4l2Camera::setFrameInterval() {
   m_info.interval_denominator = 0;
   if (m_os.ioctl(m_fd, VIDIOC_S_PARM, &parm) < 0) {
     m_last_errno = errno;
-    if (v4l2detail::isDeviceGone(m_last_errno)) return "VIDIOC_S_PARM failed";
+    if (v4l2detail::isDeviceGone(m_last_errno)) return "VIDIOC_S_PARM";
     m_last_errno = 0;  // not settable (ENOTTY/EINVAL): the sensor runs at its own rate, noted in streamInfo()
     return nullptr;
   }
@@ -182,7 +216,7 @@ const char* V4l2Camera::mapRing() {
   if (m_os.ioctl(m_fd, VIDIOC_REQBUFS, &request) < 0) {
     m_last_errno = errno;
     return m_last_errno == EBUSY ? "VIDIOC_REQBUFS: buffers busy (another process is streaming?)"
-                                 : "VIDIOC_REQBUFS (mmap streaming) failed";
+                                 : "VIDIOC_REQBUFS (mmap streaming)";
   }
   if (request.count < 2U) return "the driver granted fewer than 2 buffers";
   if (request.count > static_cast<std::uint32_t>(kMaxBuffers))
@@ -197,13 +231,13 @@ const char* V4l2Camera::mapRing() {
     buffer.index = i;
     if (m_os.ioctl(m_fd, VIDIOC_QUERYBUF, &buffer) < 0) {
       m_last_errno = errno;
-      return "VIDIOC_QUERYBUF failed";
+      return "VIDIOC_QUERYBUF";
     }
     if (buffer.length < needed) return "a driver buffer is shorter than the image";
     void* start = m_os.mmap(buffer.length, PROT_READ, MAP_SHARED, m_fd, static_cast<off_t>(buffer.m.offset));
     if (start == MAP_FAILED) {
       m_last_errno = errno;
-      return "mmap of a driver buffer failed";
+      return "mmap of a driver buffer";
     }
     m_ring[i].start = static_cast<const std::uint8_t*>(start);
     m_ring[i].length = buffer.length;
@@ -222,15 +256,17 @@ void V4l2Camera::tearDown() {
     m_ring[i] = Slot{};
   }
   m_ring_size = 0;
+  m_parked.fill(false);
+  m_pending_count = 0;
+  m_requeue_rounds = 0;
   if (m_fd >= 0) m_os.close(m_fd);
   m_fd = -1;
 }
 
 std::string V4l2Camera::describeFailure(const char* reason) const {
-  std::string message = "v4l2 " + m_params.device + ": " + reason;
-  if (m_last_errno != 0)
-    message +=
-        std::string(": ") + std::strerror(m_last_errno) + " (errno " + std::to_string(m_last_errno) + ")";
+  char text[CameraEvent::kTextCapacity];
+  std::string message =
+      "v4l2 " + m_params.device + ": " + formatOsError(text, sizeof(text), reason, m_last_errno);
   if (reason == kFormatAdjusted || reason == kFormatChanged) {
     message += ": asked for " + v4l2detail::fourccText(v4l2detail::fourccOf(m_format)) + " " +
                std::to_string(m_params.width_px) + "x" + std::to_string(m_params.height_px) +

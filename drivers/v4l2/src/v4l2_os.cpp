@@ -5,7 +5,16 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <ctime>
+
 namespace visnav::camera {
+
+std::int64_t V4l2Os::monotonicNs() {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<std::int64_t>(now.tv_sec) * 1000000000LL + now.tv_nsec;
+}
+
 namespace {
 
 class KernelV4l2Os final : public V4l2Os {

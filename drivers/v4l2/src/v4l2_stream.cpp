@@ -4,10 +4,11 @@
 #include <poll.h>
 
 #include <cerrno>
-#include <ctime>
+#include <cstdio>
 
 #include "v4l2_detail.hpp"
 #include "visnav/camera/mono_view.hpp"
+#include "visnav/camera/os_error.hpp"
 #include "visnav/v4l2/v4l2_camera.hpp"
 
 namespace visnav::camera {
@@ -15,14 +16,8 @@ namespace {
 
 constexpr int kMaxPollRounds = 8;  // EINTR / spurious wake-ups tolerated within one acquire()
 
-std::int64_t monotonicNowNs() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1000000000LL + now.tv_nsec;
-}
-
-int remainingMs(std::int64_t deadline_ns) {
-  const std::int64_t left_ns = deadline_ns - monotonicNowNs();
+int remainingMs(std::int64_t deadline_ns, std::int64_t now_ns) {
+  const std::int64_t left_ns = deadline_ns - now_ns;
   if (left_ns <= 0) return 0;
   const std::int64_t ms = (left_ns + 999999) / 1000000;  // round up: never return before the deadline
   return ms > 1000000000 ? 1000000000 : static_cast<int>(ms);
@@ -31,20 +26,22 @@ int remainingMs(std::int64_t deadline_ns) {
 }  // namespace
 
 AcquireResult V4l2Camera::acquire(std::int64_t timeout_ns, Frame& frame) {
-  if (m_state == State::kLost) return AcquireResult::kDeviceLost;
-  if (m_state != State::kStreaming || m_held >= 0) {
+  if (m_state == CameraState::kLost || m_state == CameraState::kRetrying) return AcquireResult::kDeviceLost;
+  if (m_state != CameraState::kStreaming || m_held >= 0) {
     m_last_error =
         m_held >= 0 ? "acquire() before the previous frame was released" : "acquire() on a closed camera";
     ++m_counters.errors;
     return AcquireResult::kError;
   }
-  const std::int64_t deadline_ns = monotonicNowNs() + (timeout_ns > 0 ? timeout_ns : 0);
+  // Buffers refused earlier go back first: a ring that only shrinks would starve the stream.
+  if (m_pending_count > 0 && !requeueParked()) return AcquireResult::kDeviceLost;
+  const std::int64_t deadline_ns = m_os.monotonicNs() + (timeout_ns > 0 ? timeout_ns : 0);
   for (int round = 0; round < kMaxPollRounds; ++round) {
     pollfd descriptor{m_fd, POLLIN, 0};
-    const int ready = m_os.poll(&descriptor, 1, remainingMs(deadline_ns));
+    const int ready = m_os.poll(&descriptor, 1, remainingMs(deadline_ns, m_os.monotonicNs()));
     if (ready < 0) {
       if (errno == EINTR) continue;
-      return deviceFailure("poll on the device failed", errno);
+      return deviceFailure("poll on the device", errno);
     }
     if (ready == 0) break;
     // Readable, or POLLERR/POLLHUP: VIDIOC_DQBUF tells which (ENODEV when the device vanished).
@@ -67,7 +64,7 @@ AcquireResult V4l2Camera::acquire(std::int64_t timeout_ns, Frame& frame) {
         }
         break;  // spurious wake-up: poll again for the time left
     }
-    if (remainingMs(deadline_ns) == 0) break;
+    if (remainingMs(deadline_ns, m_os.monotonicNs()) == 0) break;
   }
   ++m_counters.timeouts;
   return AcquireResult::kTimeout;
@@ -81,8 +78,13 @@ void V4l2Camera::release(const Frame& frame) {
   }
   const int index = m_held;
   m_held = -1;
-  if (m_state != State::kStreaming) return;  // lost meanwhile: the ring is gone already
-  if (!queueBuffer(index)) deviceFailure("VIDIOC_QBUF failed", errno);
+  if (m_state != CameraState::kStreaming) return;  // lost meanwhile: the ring is gone already
+  if (!queueBuffer(index)) {
+    if (v4l2detail::isDeviceGone(m_last_errno))
+      deviceFailure("VIDIOC_QBUF", m_last_errno);
+    else
+      parkBuffer(index, "VIDIOC_QBUF (release)", m_last_errno);
+  }
 }
 
 V4l2Camera::Dequeue V4l2Camera::dequeueNewest(int& index, std::uint32_t& sequence,
@@ -101,7 +103,7 @@ V4l2Camera::Dequeue V4l2Camera::dequeueNewest(int& index, std::uint32_t& sequenc
       const int error_number = errno;
       if (error_number == EAGAIN) break;
       if (error_number == EINTR) continue;
-      const AcquireResult result = deviceFailure("VIDIOC_DQBUF failed", error_number);
+      const AcquireResult result = deviceFailure("VIDIOC_DQBUF", error_number);
       return result == AcquireResult::kDeviceLost ? Dequeue::kLost : Dequeue::kError;
     }
     if (buffer.index >= static_cast<std::uint32_t>(m_ring_size)) {
@@ -114,16 +116,22 @@ V4l2Camera::Dequeue V4l2Camera::dequeueNewest(int& index, std::uint32_t& sequenc
       ++m_corrupt_frames;
       corrupt_seen = true;
       if (!queueBuffer(dequeued)) {
-        const AcquireResult result = deviceFailure("VIDIOC_QBUF failed", errno);
-        return result == AcquireResult::kDeviceLost ? Dequeue::kLost : Dequeue::kError;
+        if (v4l2detail::isDeviceGone(m_last_errno)) {
+          deviceFailure("VIDIOC_QBUF", m_last_errno);
+          return Dequeue::kLost;
+        }
+        parkBuffer(dequeued, "VIDIOC_QBUF (corrupt frame)", m_last_errno);
       }
       continue;
     }
     if (index >= 0) {
       ++m_stale_skipped;
       if (!queueBuffer(index)) {
-        const AcquireResult result = deviceFailure("VIDIOC_QBUF failed", errno);
-        return result == AcquireResult::kDeviceLost ? Dequeue::kLost : Dequeue::kError;
+        if (v4l2detail::isDeviceGone(m_last_errno)) {
+          deviceFailure("VIDIOC_QBUF", m_last_errno);
+          return Dequeue::kLost;
+        }
+        parkBuffer(index, "VIDIOC_QBUF (stale frame)", m_last_errno);
       }
     }
     index = dequeued;
@@ -132,7 +140,7 @@ V4l2Camera::Dequeue V4l2Camera::dequeueNewest(int& index, std::uint32_t& sequenc
       timestamp_ns = static_cast<std::int64_t>(buffer.timestamp.tv_sec) * 1000000000LL +
                      static_cast<std::int64_t>(buffer.timestamp.tv_usec) * 1000LL;
     } else {
-      timestamp_ns = monotonicNowNs();  // unknown or copied clock: dequeue time is the best we have
+      timestamp_ns = m_os.monotonicNs();  // unknown or copied clock: dequeue time is the best we have
       ++m_timestamp_fallbacks;
     }
   }
@@ -153,7 +161,7 @@ bool V4l2Camera::queueBuffer(int index) {
 }
 
 AcquireResult V4l2Camera::deviceFailure(const char* what, int error_number) {
-  m_last_error = what;
+  setError(what, error_number);
   m_last_errno = error_number;
   if (!v4l2detail::isDeviceGone(error_number)) {
     ++m_counters.errors;
@@ -161,9 +169,72 @@ AcquireResult V4l2Camera::deviceFailure(const char* what, int error_number) {
   }
   tearDown();
   m_held = -1;
-  m_state = State::kLost;
   ++m_counters.device_losses;
+  changeState(CameraState::kLost, m_os.monotonicNs());
   return AcquireResult::kDeviceLost;
+}
+
+void V4l2Camera::parkBuffer(int index, const char* what, int error_number) {
+  const auto slot = static_cast<std::size_t>(index);
+  if (!m_parked[slot]) {
+    m_parked[slot] = true;
+    ++m_pending_count;
+  }
+  ++m_requeue_errors;
+  ++m_counters.errors;
+  setError(what, error_number);
+  CameraEvent event;
+  event.kind = CameraEventKind::kReleaseError;
+  event.from = event.to = m_state;
+  event.time_ns = m_os.monotonicNs();
+  event.pending = static_cast<std::uint32_t>(m_pending_count);
+  std::snprintf(event.text, sizeof(event.text), "%s; buffer %d kept for a retry", m_last_error, index);
+  m_events.push(event);
+}
+
+bool V4l2Camera::requeueParked() {
+  for (int i = 0; i < m_ring_size; ++i) {
+    const auto slot = static_cast<std::size_t>(i);
+    if (!m_parked[slot]) continue;
+    if (queueBuffer(i)) {
+      m_parked[slot] = false;
+      --m_pending_count;
+    } else if (v4l2detail::isDeviceGone(m_last_errno)) {
+      deviceFailure("VIDIOC_QBUF (retry)", m_last_errno);
+      return false;
+    } else {
+      ++m_requeue_errors;
+      ++m_counters.errors;
+      setError("VIDIOC_QBUF (retry)", m_last_errno);
+    }
+  }
+  if (m_pending_count == 0) {
+    m_requeue_rounds = 0;
+    return true;
+  }
+  // Still refused. While the driver keeps at least kMinDriverBuffers the stream runs and the next acquire()
+  // retries; a ring that short no longer streams reliably, so a full restart (like a reopen after a loss)
+  // gives the driver a fresh ring.
+  ++m_requeue_rounds;
+  const int with_driver = m_ring_size - m_pending_count;
+  if (with_driver >= kMinDriverBuffers) return true;
+  ++m_stream_restarts;
+  CameraEvent event;
+  event.kind = CameraEventKind::kStreamRestart;
+  event.from = event.to = m_state;
+  event.time_ns = m_os.monotonicNs();
+  event.pending = static_cast<std::uint32_t>(m_pending_count);
+  std::snprintf(event.text, sizeof(event.text),
+                "%s; %d of %d buffers refused (%d retries): restarting the stream", m_last_error,
+                m_pending_count, m_ring_size, m_requeue_rounds);
+  m_events.push(event);
+  const int refused_errno = m_last_errno;
+  tearDown();
+  m_held = -1;
+  ++m_counters.device_losses;
+  setError("VIDIOC_QBUF kept refusing buffers: stream restarted", refused_errno);
+  changeState(CameraState::kLost, m_os.monotonicNs());
+  return false;
 }
 
 void V4l2Camera::deliver(int index, std::uint32_t sequence, std::int64_t timestamp_ns, Frame& frame) {

@@ -97,6 +97,29 @@ TEST(MonoView, SixteenBitViewsReadLittleEndianWordsWithTheStride) {
   EXPECT_TRUE(viewInPlace(PixelFormat::kYuyv, y10.data(), 2, 2, 6).empty());
 }
 
+TEST(MonoView, RgbLumaUsesIntegerBt601WeightsInEveryByteOrder) {
+  // 2 x 1 pixels: pure red, then a grey (90, 90, 90); rows of 8 bytes (6 used + padding).
+  const std::array<std::uint8_t, 8> rgb = {255, 0, 0, 90, 90, 90, 7, 7};   // R, G, B in memory (BGR888)
+  const std::array<std::uint8_t, 8> bgr = {0, 0, 255, 90, 90, 90, 7, 7};   // B, G, R in memory (RGB888)
+  const std::array<std::uint8_t, 8> xrgb = {0, 0, 255, 0, 90, 90, 90, 0};  // B, G, R, X (XRGB8888)
+  std::array<std::uint8_t, 2> luma{};
+  const std::uint8_t red = (77 * 255 + 128) >> 8;  // 77
+  extractLumaRgb(rgb.data(), 2, 1, 8, PackedRgbLayout{3, 0, 1, 2}, luma.data());
+  EXPECT_EQ(luma, (std::array<std::uint8_t, 2>{red, 90}));
+  extractLumaRgb(bgr.data(), 2, 1, 8, PackedRgbLayout{3, 2, 1, 0}, luma.data());
+  EXPECT_EQ(luma, (std::array<std::uint8_t, 2>{red, 90}));
+  const MonoImage image = extractLumaRgb(xrgb.data(), 2, 1, 8, PackedRgbLayout{4, 2, 1, 0}, luma.data());
+  EXPECT_EQ(luma, (std::array<std::uint8_t, 2>{red, 90}));
+  EXPECT_EQ(image.u8.strideBytes(), 2);
+  // White stays 255 and every grey stays itself: the weights sum to 256.
+  for (int v = 0; v < 256; ++v) {
+    const std::array<std::uint8_t, 3> grey = {static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v),
+                                              static_cast<std::uint8_t>(v)};
+    extractLumaRgb(grey.data(), 1, 1, 3, PackedRgbLayout{}, luma.data());
+    ASSERT_EQ(luma[0], v);
+  }
+}
+
 TEST(MonoView, BufferSizeRules) {
   EXPECT_EQ(minimumBufferBytes(PixelFormat::kGrey8, 640, 480, 640), 640U * 480U);
   EXPECT_EQ(minimumBufferBytes(PixelFormat::kY16, 640, 480, 1300), 1300U * 479U + 1280U);

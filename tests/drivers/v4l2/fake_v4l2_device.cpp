@@ -70,6 +70,7 @@ int FakeV4l2Device::close(int fd) {
   // Like the kernel: closing the streaming fd stops streaming and frees the buffers of the live device.
   if (m_fd_generation[slot] == m_generation && m_present) {
     m_streaming = false;
+    m_fatal_error = false;
     m_queued_count = 0;
     m_done_count = 0;
     m_granted = 0;
@@ -94,6 +95,10 @@ int FakeV4l2Device::ioctl(int fd, unsigned long request, void* arg) {
   if (!fdAlive(fd)) return fail(EBADF);
   if (!m_present || m_fd_generation[static_cast<std::size_t>(fd - kFirstFd)] != m_generation)
     return fail(ENODEV);
+  if (m_fail_request != 0 && request == m_fail_request) {
+    m_fail_request = 0;
+    return fail(m_fail_errno);
+  }
   switch (request) {
     case VIDIOC_QUERYCAP: {
       auto& cap = *static_cast<v4l2_capability*>(arg);
@@ -127,8 +132,16 @@ int FakeV4l2Device::ioctl(int fd, unsigned long request, void* arg) {
       buffer.flags = m_config.timestamp_flags;
       return 0;
     }
-    case VIDIOC_QBUF: return handleQueue(*static_cast<v4l2_buffer*>(arg));
-    case VIDIOC_DQBUF: return handleDequeue(*static_cast<v4l2_buffer*>(arg));
+    case VIDIOC_QBUF:
+      if (m_fatal_error && m_streaming) return fail(EIO);
+      if (m_qbuf_failures > 0) {
+        --m_qbuf_failures;
+        return fail(m_qbuf_errno);
+      }
+      return handleQueue(*static_cast<v4l2_buffer*>(arg));
+    case VIDIOC_DQBUF:
+      if (m_fatal_error && m_streaming) return fail(EIO);
+      return handleDequeue(*static_cast<v4l2_buffer*>(arg));
     case VIDIOC_STREAMON:
       if (*static_cast<int*>(arg) != V4L2_BUF_TYPE_VIDEO_CAPTURE || m_granted == 0U) return fail(EINVAL);
       m_streaming = true;
@@ -136,6 +149,7 @@ int FakeV4l2Device::ioctl(int fd, unsigned long request, void* arg) {
     case VIDIOC_STREAMOFF:
       if (*static_cast<int*>(arg) != V4L2_BUF_TYPE_VIDEO_CAPTURE) return fail(EINVAL);
       m_streaming = false;
+      m_fatal_error = false;
       m_queued_count = 0;
       m_done_count = 0;
       std::fill(m_state.begin(), m_state.end(), BufferState::kUser);
@@ -272,6 +286,10 @@ int FakeV4l2Device::munmap(void* address, std::size_t length) {
 
 int FakeV4l2Device::mappedBuffers() const {
   return static_cast<int>(std::count(m_mapped.begin(), m_mapped.end(), true));
+}
+
+std::int64_t FakeV4l2Device::monotonicNs() {
+  return m_now_ns >= 0 ? m_now_ns : camera::V4l2Os::monotonicNs();
 }
 
 int FakeV4l2Device::poll(pollfd* fds, nfds_t count, int timeout_ms) {

@@ -10,6 +10,7 @@
 #include <linux/videodev2.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdint>
 #include <vector>
 
@@ -47,6 +48,8 @@ class FakeV4l2Device final : public camera::V4l2Os {
   void* mmap(std::size_t length, int prot, int flags, int fd, off_t offset) override;
   int munmap(void* address, std::size_t length) override;
   int poll(pollfd* fds, nfds_t count, int timeout_ms) override;
+  /// The real CLOCK_MONOTONIC until setNowNs() is called; then the test's time (advanceNs()).
+  std::int64_t monotonicNs() override;
 
   // Script.
   /// The sensor finishes a frame: the oldest queued buffer gets it (false when none is queued: the frame is
@@ -57,6 +60,23 @@ class FakeV4l2Device final : public camera::V4l2Os {
   void corruptNextFrame() { m_corrupt_next = true; }
   void shortNextFrame() { m_short_next = true; }
   void failNextPollWithEintr() { m_eintr_next = true; }
+  /// The next `count` VIDIOC_QBUF calls fail with `error_number` and leave the buffer with the caller
+  /// (vivid's inject_vidioc_qbuf_error is one such call with EINVAL).
+  void failQbuf(int count, int error_number = EINVAL) {
+    m_qbuf_failures = count;
+    m_qbuf_errno = error_number;
+  }
+  /// The next call of `request` (VIDIOC_STREAMON, VIDIOC_REQBUFS, ...) fails with `error_number` (vivid's
+  /// inject_vidioc_streamon_error / inject_vidioc_reqbufs_error).
+  void failNextIoctl(unsigned long request, int error_number) {
+    m_fail_request = request;
+    m_fail_errno = error_number;
+  }
+  /// A fatal streaming error (vivid's inject_fatal_streaming_error, vb2_queue_error): DQBUF/QBUF give EIO
+  /// until the stream is stopped.
+  void fatalStreamingError() { m_fatal_error = true; }
+  void setNowNs(std::int64_t now_ns) { m_now_ns = now_ns; }
+  void advanceNs(std::int64_t step_ns) { m_now_ns += step_ns; }
   /// Device vanishes: open() gives ENOENT, calls on an open fd give ENODEV, poll gives POLLERR | POLLHUP.
   void unplug() { m_present = false; }
   /// Device comes back: new opens work, fds from before stay dead; the sequence restarts at 0.
@@ -123,6 +143,12 @@ class FakeV4l2Device final : public camera::V4l2Os {
   int m_last_poll_timeout_ms = -2;
   int m_ioctl_calls = 0;
   int m_open_calls = 0;
+  int m_qbuf_failures = 0;
+  int m_qbuf_errno = 0;
+  unsigned long m_fail_request = 0;
+  int m_fail_errno = 0;
+  bool m_fatal_error = false;
+  std::int64_t m_now_ns = -1;  // < 0: the real clock
 };
 
 }  // namespace visnav::test

@@ -59,7 +59,8 @@ struct CameraParams {
             "cycle"},
            acquire_timeout_ms);
     v.integer({"camera", "recovery_attempts", "count", 0, 100000,
-               "reopen attempts (one per recover() call) after the device is lost before giving up"},
+               "quick reopen attempts (one per recover() call) after the device is lost; then retries "
+               "back off to one every 2 s at most, for as long as the device is away"},
               recovery_attempts);
     v.enumeration(
         {"camera", "libcamera_role", "-", 0, 2,

@@ -29,4 +29,17 @@ MonoImage viewInPlace(PixelFormat format, const void* data, int width, int heigh
 MonoImage extractLumaYuyv(const std::uint8_t* yuyv, int width, int height, std::size_t stride_bytes,
                           std::uint8_t* luma);
 
+/// Where R, G and B sit inside one pixel of a packed RGB format (bytes_per_pixel 3 or 4).
+struct PackedRgbLayout {
+  int bytes_per_pixel = 3;
+  int red = 0;
+  int green = 1;
+  int blue = 2;
+};
+/// BT.601 luma of a packed RGB image into `luma` (width * height bytes, tightly packed), integer weights
+/// Y = (77 R + 150 G + 29 B + 128) >> 8 (full range; the weights sum to 256, so white stays 255). Bounded,
+/// no allocation.
+MonoImage extractLumaRgb(const std::uint8_t* rgb, int width, int height, std::size_t stride_bytes,
+                         const PackedRgbLayout& layout, std::uint8_t* luma);
+
 }  // namespace visnav::camera

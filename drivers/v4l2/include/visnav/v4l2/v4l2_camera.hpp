@@ -3,8 +3,11 @@
 // bounded timeout and hands out the newest frame as a view into its mmap buffer (GREY, Y10, Y12, Y16) or into
 // the Y plane copied at open()-sized storage (YUYV); release() queues the buffer again. Counters: sequence
 // gaps between delivered frames are dropped frames. When the device goes away (ENODEV/EIO/ENXIO) the ring is
-// torn down and acquire() says kDeviceLost until a recover() call reopens the same node with the same format.
-// Every OS call goes through V4l2Os. Nothing allocates after open(). Design note: drivers/v4l2/README.md.
+// torn down and acquire() says kDeviceLost until a recover() call reopens the same node with the same format
+// (quick attempts, then a back-off capped at 2 s, for as long as it takes). A buffer the kernel refuses back
+// (QBUF error) is kept and requeued by the next acquire(); a ring that stays short is restarted. State
+// changes and such errors are queued as events (nextEvent). Every OS call goes through V4l2Os. Nothing
+// allocates after open(). Design note: drivers/v4l2/README.md.
 #pragma once
 
 #include <array>
@@ -13,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "visnav/camera/camera_events.hpp"
 #include "visnav/camera/camera_params.hpp"
 #include "visnav/camera/camera_source.hpp"
 #include "visnav/camera/sequence_tracker.hpp"
@@ -52,6 +56,8 @@ class V4l2Camera final : public CameraSource {
   const CameraCounters& counters() const override { return m_counters; }
   const char* lastError() const override { return m_last_error; }
   const char* name() const override { return "v4l2"; }
+  CameraState state() const override { return m_state; }
+  bool nextEvent(CameraEvent& event) override { return m_events.pop(event); }
 
   const V4l2StreamInfo& streamInfo() const { return m_info; }
   /// errno of the last failed OS call (0: none).
@@ -62,9 +68,18 @@ class V4l2Camera final : public CameraSource {
   std::uint64_t corruptFrames() const { return m_corrupt_frames; }
   /// Frames whose driver timestamp was not CLOCK_MONOTONIC, stamped at dequeue instead.
   std::uint64_t timestampFallbacks() const { return m_timestamp_fallbacks; }
+  /// Buffers the kernel refused in VIDIOC_QBUF (each kept and retried, never lost).
+  std::uint64_t requeueErrors() const { return m_requeue_errors; }
+  /// Stream restarts because refused buffers left the ring short (each also a device loss + recovery).
+  std::uint64_t streamRestarts() const { return m_stream_restarts; }
+  /// Buffers waiting for a requeue now.
+  int pendingRequeues() const { return m_pending_count; }
+  /// Events dropped because the queue was full (the caller did not drain it).
+  std::uint64_t eventsDropped() const { return m_events.dropped(); }
+  /// Refused buffers are retried while the driver still has this many; fewer restart the stream.
+  static constexpr int kMinDriverBuffers = 2;
 
  private:
-  enum class State : std::uint8_t { kClosed, kStreaming, kLost };
   struct Slot {
     const std::uint8_t* start = nullptr;
     std::size_t length = 0;
@@ -84,12 +99,18 @@ class V4l2Camera final : public CameraSource {
   Dequeue dequeueNewest(int& index, std::uint32_t& sequence, std::int64_t& timestamp_ns);
   bool queueBuffer(int index);
   AcquireResult deviceFailure(const char* what, int error_number);
+  /// A buffer the kernel refused (not a lost device): kept for a retry, counted, reported.
+  void parkBuffer(int index, const char* what, int error_number);
+  /// Retries the parked buffers; false when the stream had to be restarted or the device is gone.
+  bool requeueParked();
+  void setError(const char* what, int error_number);
+  void changeState(CameraState to, std::int64_t now_ns);
   void deliver(int index, std::uint32_t sequence, std::int64_t timestamp_ns, Frame& frame);
 
   CameraParams m_params;
   V4l2Os& m_os;
   PixelFormat m_format;
-  State m_state = State::kClosed;
+  CameraState m_state = CameraState::kClosed;
   int m_fd = -1;
   std::array<Slot, kMaxBuffers> m_ring{};
   int m_ring_size = 0;
@@ -97,12 +118,20 @@ class V4l2Camera final : public CameraSource {
   std::vector<std::uint8_t> m_luma;  // YUYV only: width * height, sized in open()
   V4l2StreamInfo m_info;
   SequenceTracker m_sequence;  // frame.sequence stays increasing across driver restarts (recover())
-  int m_recovery_attempts_used = 0;
+  RetryBackoff m_backoff;
+  CameraEventQueue m_events;
+  std::array<bool, kMaxBuffers> m_parked{};  // refused by VIDIOC_QBUF, requeued by the next acquire()
+  int m_pending_count = 0;
+  int m_requeue_rounds =
+      0;  // acquire() calls in a row that still found a parked buffer refused (for the text)
   CameraCounters m_counters;
+  std::uint64_t m_requeue_errors = 0;
+  std::uint64_t m_stream_restarts = 0;
   std::uint64_t m_stale_skipped = 0;
   std::uint64_t m_corrupt_frames = 0;
   std::uint64_t m_timestamp_fallbacks = 0;
   const char* m_last_error = "";
+  char m_error_text[CameraEvent::kTextCapacity] = {};  // m_last_error with the errno spelled out
   int m_last_errno = 0;
 };
 

@@ -8,6 +8,7 @@
 #include <sys/types.h>
 
 #include <cstddef>
+#include <cstdint>
 
 namespace visnav::camera {
 
@@ -21,6 +22,9 @@ class V4l2Os {
   virtual void* mmap(std::size_t length, int prot, int flags, int fd, off_t offset) = 0;
   virtual int munmap(void* address, std::size_t length) = 0;
   virtual int poll(pollfd* fds, nfds_t count, int timeout_ms) = 0;
+  /// CLOCK_MONOTONIC [ns]: deadlines, the dequeue-time timestamp fallback and the reopen back-off (a test
+  /// injects its own time here).
+  virtual std::int64_t monotonicNs();
 };
 
 /// The kernel (process-wide, stateless).
