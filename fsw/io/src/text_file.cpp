@@ -85,7 +85,7 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
   State state = State::kPlain;
   int line = 1;
   int column = 0;
-  int depth = 0;  // open [ and { of values: a '[' first on a line at depth 0 opens a table header
+  std::string nesting;  // the [ and { of values still open: a "[" first on a line outside all opens a header
   bool line_has_text = false;  // a non-blank character before this one on the line
   const std::size_t n = text.size();
   const auto triple = [&text, n](std::size_t i, char q) {
@@ -113,7 +113,7 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
               column, "non-ASCII character outside a string (keys and values other than strings are ASCII)");
         const bool first_on_line = !line_has_text;
         if (c != ' ' && c != '\t') line_has_text = true;
-        if (c == '[' && first_on_line && depth == 0) {
+        if (c == '[' && first_on_line && nesting.empty()) {
           // toml++ 3.3.0 assumes (TOML_ASSERT_ASSUME, undefined behaviour when false) that a table header's
           // first character after '[' or '[[' and blanks starts a key: "[!]" reached it.
           std::size_t k = i + 1;
@@ -125,8 +125,11 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
           if (!key_start) return failAt(column, "table header must start with a key ([name] or [\"name\"])");
           break;  // the header's own brackets are not value nesting
         }
-        if (c == '[' || c == '{') ++depth;
-        if ((c == ']' || c == '}') && depth > 0) --depth;
+        // toml++ 3.3.0 also assumes that a '}' never stands where an array expects a value ("a = [}").
+        if (c == '}' && !nesting.empty() && nesting.back() == '[')
+          return failAt(column, "'}' inside an array (no inline table is open)");
+        if (c == '[' || c == '{') nesting.push_back(c);
+        if ((c == ']' || c == '}') && !nesting.empty()) nesting.pop_back();
         if (c == '#') {
           state = State::kComment;
         } else if (triple(i, '"')) {

@@ -33,7 +33,8 @@ LoadError checkRegularFile(const std::string& path, std::size_t max_bytes = kMax
 /// not start with a key (`[!]`, found by tests/fuzz). This guard runs before the text reaches the parser:
 /// any byte >= 0x80 outside a quoted string or a comment is rejected ("<path>:<line>:<col>: non-ASCII
 /// character outside a string"; TOML keys outside quotes are ASCII), and so is a table header whose first
-/// character after '[' / '[[' and blanks is not a bare-key character, a quote or ']'.
+/// character after '[' / '[[' and blanks is not a bare-key character, a quote or ']', and a '}' directly
+/// inside an array ("a = [}", also found by tests/fuzz).
 LoadError checkTomlAscii(const std::string& path, const std::string& text);
 
 }  // namespace visnav::io
