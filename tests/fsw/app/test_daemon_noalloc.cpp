@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "../../support/alloc_counter.hpp"
+#include "../telemetry/telemetry_test_data.hpp"
 #include "app_test_support.hpp"
 #include "visnav/app/daemon.hpp"
 
@@ -77,7 +78,9 @@ std::string loopingReplay(const std::string& sequence, bool telemetry) {
   EXPECT_FALSE(sequence.empty());
   return "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
          "\"\n[daemon]\nplayback_loop = true\nlog_throttle = 1000000\n[telemetry]\nenabled = " +
-         (telemetry ? "true" : "false") + "\npartition = \"noalloc-" + std::to_string(getpid()) + "\"\n";
+         (telemetry ? "true" : "false") +
+         "\ndomain_id = " + std::to_string(telemetry::test::isolatedDomainId()) + "\npartition = \"noalloc-" +
+         std::to_string(getpid()) + "\"\n";
 }
 
 void print(const char* what, const Measured& m) {

@@ -74,4 +74,12 @@ TelemetryParams uniqueLinkParams(const std::string& name) {
   return params;
 }
 
+int isolatedDomainId() { return 100 + static_cast<int>(getpid() % 100); }
+
+TelemetryParams isolatedLinkParams(const std::string& name) {
+  TelemetryParams params = uniqueLinkParams(name);
+  params.domain_id = isolatedDomainId();
+  return params;
+}
+
 }  // namespace visnav::telemetry::test

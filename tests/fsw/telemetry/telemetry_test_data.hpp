@@ -18,5 +18,11 @@ nav::HealthRecord makeHealthRecord(std::uint64_t i);
 
 /// Telemetry params on a partition no other test or process uses ("<name>-<pid>").
 TelemetryParams uniqueLinkParams(const std::string& name);
+/// A DDS domain of this test process's own (100-199, from the pid): participants of other DDS users on the
+/// host (a running visnavd, another test) are not discovered, so their traffic cannot reach the allocation
+/// counts. Peer processes must be given it (`--domain`).
+int isolatedDomainId();
+/// uniqueLinkParams() on isolatedDomainId().
+TelemetryParams isolatedLinkParams(const std::string& name);
 
 }  // namespace visnav::telemetry::test

@@ -98,16 +98,17 @@ void measure(Flight& flight, const char* what, int spacing_us) {
 }
 
 TEST(TelemetryNoAlloc, PublishWithoutReaders) {
-  Flight flight(test::uniqueLinkParams("noalloc-alone"));
+  Flight flight(test::isolatedLinkParams("noalloc-alone"));
   measure(flight, "no reader", 0);
 }
 
 TEST(TelemetryNoAlloc, PublishToAReliableReaderInAnotherProcess) {
-  const TelemetryParams params = test::uniqueLinkParams("noalloc-reader");
+  const TelemetryParams params = test::isolatedLinkParams("noalloc-reader");
   Flight flight(params);
-  const pid_t monitor = test::spawnProcess(
-      {VISNAV_MONITOR, "--partition", params.partitionName(), "--duration", "60", "--no-view"},
-      test::tempPath("noalloc-monitor"));
+  const pid_t monitor =
+      test::spawnProcess({VISNAV_MONITOR, "--domain", std::to_string(params.domain_id), "--partition",
+                          params.partitionName(), "--duration", "60", "--no-view"},
+                         test::tempPath("noalloc-monitor"));
   ASSERT_GT(monitor, 0);
   ASSERT_TRUE(waitForReaders(flight.writer.writer(Topic::kPose), 1, 10'000'000'000LL));
   ASSERT_TRUE(waitForReaders(flight.writer.writer(Topic::kHealth), 1, 10'000'000'000LL));
@@ -118,7 +119,7 @@ TEST(TelemetryNoAlloc, PublishToAReliableReaderInAnotherProcess) {
 
 TEST(TelemetryNoAlloc, DefaultSertypeAllocatesWhereThePoolDoesNot) {
   // Control: a writer on the participant's topic (Cyclone's default sertype) with the same QoS and sample.
-  const TelemetryParams params = test::uniqueLinkParams("noalloc-control");
+  const TelemetryParams params = test::isolatedLinkParams("noalloc-control");
   Flight flight(params);
   dds_qos_t* qos = makeWriterQos(Topic::kPose, params, 200'000'000);
   const dds_entity_t plain =
@@ -141,7 +142,7 @@ TEST(TelemetryNoAlloc, DefaultSertypeAllocatesWhereThePoolDoesNot) {
 }
 
 TEST(TelemetryNoAlloc, PoolReusesBlocksCountsMissesAndRoundTrips) {
-  TelemetryParams params = test::uniqueLinkParams("noalloc-pool");
+  TelemetryParams params = test::isolatedLinkParams("noalloc-pool");
   params.sample_pool_blocks = 2;
   Flight flight(params);
   const PooledSertype* pooled = flight.writer.sertype(Topic::kHealth);
