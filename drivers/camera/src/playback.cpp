@@ -12,7 +12,7 @@ std::int64_t nowNs() {
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
 }
 
-void sleepUntil(std::int64_t deadline_ns) {
+void monotonicSleepUntil(std::int64_t deadline_ns) {
   timespec ts{};
   ts.tv_sec = static_cast<time_t>(deadline_ns / 1000000000LL);
   ts.tv_nsec = static_cast<long>(deadline_ns % 1000000000LL);
@@ -24,6 +24,17 @@ void sleepUntil(std::int64_t deadline_ns) {
 
 }  // namespace
 
+std::int64_t FramePacer::now() const {
+  return m_clock.now_ns != nullptr ? m_clock.now_ns(m_clock.context) : nowNs();
+}
+
+void FramePacer::sleepUntil(std::int64_t deadline_ns) const {
+  if (m_clock.sleep_until_ns != nullptr)
+    m_clock.sleep_until_ns(m_clock.context, deadline_ns);
+  else
+    monotonicSleepUntil(deadline_ns);
+}
+
 void FramePacer::start(Pacing pacing, std::int64_t recorded_first_ns) {
   m_pacing = pacing;
   m_recorded_first_ns = recorded_first_ns;
@@ -33,7 +44,7 @@ void FramePacer::start(Pacing pacing, std::int64_t recorded_first_ns) {
 
 bool FramePacer::waitUntilDue(std::int64_t offset_ns, std::int64_t timeout_ns) {
   if (m_pacing == Pacing::kAsFastAsPossible) return true;
-  const std::int64_t now = nowNs();
+  const std::int64_t now = this->now();
   if (!m_started) {
     m_origin_ns = now - offset_ns;
     m_started = true;
@@ -46,7 +57,7 @@ bool FramePacer::waitUntilDue(std::int64_t offset_ns, std::int64_t timeout_ns) {
     return false;
   }
   sleepUntil(due);
-  return nowNs() >= due;
+  return this->now() >= due;
 }
 
 std::int64_t FramePacer::exposureNs(std::int64_t offset_ns) const {

@@ -15,9 +15,18 @@ enum class Pacing : std::uint8_t {
   kRecordedRate = 1,  ///< frame i is not delivered before start + (t_i - t_0) on CLOCK_MONOTONIC
 };
 
+/// The time source of the pacing: CLOCK_MONOTONIC and its absolute sleep by default (both null). Tests
+/// inject a simulated one, so what they check does not depend on how fast the machine runs them.
+struct PacerClock {
+  std::int64_t (*now_ns)(void* context) = nullptr;
+  void (*sleep_until_ns)(void* context, std::int64_t deadline_ns) = nullptr;
+  void* context = nullptr;
+};
+
 /// Maps the recorded timeline (offsets from its first frame) onto the monotonic clock.
 class FramePacer {
  public:
+  void setClock(const PacerClock& clock) { m_clock = clock; }
   /// Forgets the origin: the next frame asked for sets it (it is then due at once).
   void start(Pacing pacing, std::int64_t recorded_first_ns);
   /// Waits at most `timeout_ns` for the frame at `offset_ns` after the first one to become due. True when
@@ -31,6 +40,9 @@ class FramePacer {
   std::int64_t m_recorded_first_ns = 0;
   std::int64_t m_origin_ns = 0;
   bool m_started = false;
+  PacerClock m_clock;
+  std::int64_t now() const;
+  void sleepUntil(std::int64_t deadline_ns) const;
 };
 
 /// Which frame of a finite timeline comes next, optionally looping. A loop appends the timeline again,

@@ -27,6 +27,8 @@ struct ReplayCameraOptions {
 
 class ReplayCamera final : public camera::CameraSource {
  public:
+  /// The pacing's time source (default CLOCK_MONOTONIC): tests inject a simulated one.
+  void setPacerClock(const camera::PacerClock& clock) { m_pacer.setClock(clock); }
   explicit ReplayCamera(ReplayCameraOptions options) : m_options(std::move(options)) {}
 
   LoadError open() override;
