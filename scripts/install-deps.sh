@@ -1,13 +1,21 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages visnav builds with, only those missing (no network needed when all are
 # present). Run as root or with sudo available.
+#   --kernel-cameras  only the optional group scripts/test-kernel-cameras.sh needs (qemu, busybox, v4l2-ctl, cam)
 set -euo pipefail
-packages=(build-essential cmake ninja-build pkgconf libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libtomlplusplus-dev zlib1g-dev
-          libcamera-dev linux-libc-dev)
-packages+=(cyclonedds-dev cyclonedds-tools)  # DDS telemetry: Cyclone DDS C library and idlc (fsw/telemetry)
-packages+=(git clang-format cppcheck)        # static checks (scripts/lint.sh); CI runs format_check and cppcheck
-packages+=(clang libclang-rt-14-dev)         # fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer
+if [ "${1:-}" = "--kernel-cameras" ]; then
+  # The VM of the kernel-camera test: qemu under TCG, a busybox initramfs, vivid's controls (v4l2-ctl),
+  # libcamera's `cam` and IPA modules (vimc's pipeline needs its IPA); make/gcc/xz build vimc out of tree.
+  # The kernel itself is downloaded, never installed.
+  packages=(qemu-system-x86 busybox-static v4l-utils libcamera-tools libcamera-ipa build-essential xz-utils)
+else
+  packages=(build-essential cmake ninja-build pkgconf libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
+            libtomlplusplus-dev zlib1g-dev
+            libcamera-dev linux-libc-dev)
+  packages+=(cyclonedds-dev cyclonedds-tools)  # DDS telemetry: Cyclone DDS C library and idlc (fsw/telemetry)
+  packages+=(git clang-format cppcheck)        # static checks (scripts/lint.sh); CI runs format_check and cppcheck
+  packages+=(clang libclang-rt-14-dev)         # fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
