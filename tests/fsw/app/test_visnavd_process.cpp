@@ -50,7 +50,7 @@ TEST(Visnavd, ExitCodes) {
       dir.write("typo.toml", "[executive]\nmajor_frame_hz = 5.0\n\n[camera]\ndrivr = \"replay\"\n");
   EXPECT_EQ(runDaemon("--config " + typo, log), 3);
   EXPECT_NE(readText(log).find("level=error event=config_invalid message=\"" + typo +
-                               ":5:1: unknown key [camera] drivr\""),
+                               ":5: unknown key [camera] drivr\""),
             std::string::npos)
       << readText(log);
   EXPECT_EQ(runDaemon("--config " + dir.path() + "/none.toml", log), 3);
