@@ -337,7 +337,12 @@ fault_campaign() {
     # Longer than the old retry budget: retries go on (back-off capped at 2 s) and the camera comes back.
     [ "$RC" -eq 0 ] && [ "$M_lost" -eq 1 ] && [ "$M_back" -eq 1 ] && ge "$M_rec_s" 14.5 && le "$M_rec_s" 17.5 || ok=1
     local states=""
-    [ "$M_states" -gt 0 ] && states=" states: $(grep -o 'event=camera_state from=[a-z]* to=[a-z]*' "$LOG" | sed 's/event=camera_state //; s/from=//; s/ to=/->/' | tr '\n' ' ')"
+    if [ "$M_states" -gt 0 ]; then  # visnavd logs the driver's state changes: the retrying state must show
+      states=" states: $(grep -o 'event=camera_state .* from=[a-z]* to=[a-z]*' "$LOG" |
+        sed 's/.* from=\([a-z]*\) to=\([a-z]*\)$/\1->\2/' | tr '\n' ' ')"
+      grep -q "event=camera_state .*from=lost to=retrying" "$LOG" &&
+        grep -q "event=camera_state .*from=retrying to=streaming" "$LOG" || ok=1
+    fi
     result disconnect_15s "lost 15 s, retried (cap 2 s), back within 15-17.5 s" "$M_seen$states" "$M_recovery" "$(verdict $ok)"
   fi
   if wanted disconnect_3x; then
