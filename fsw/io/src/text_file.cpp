@@ -85,6 +85,10 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
   State state = State::kPlain;
   int line = 1;
   int column = 0;
+  // Last non-blank character outside strings and comments ('\n' at a line start): a quote opens a string
+  // only where one can begin (after = [ { , . or first on a line). Elsewhere it is part of a bare value that
+  // toml++ scans on past the quote: a quote after "a = x" followed by U+FCFF reached its unreachable branch.
+  char previous = '\n';
   std::string nesting;  // the [ and { of values still open: a "[" first on a line outside all opens a header
   bool line_has_text = false;  // a non-blank character before this one on the line
   const std::size_t n = text.size();
@@ -103,6 +107,7 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
       // Comments and single-line strings end at the line end (an unterminated string is toml++'s error).
       if (state == State::kComment || state == State::kBasic || state == State::kLiteral)
         state = State::kPlain;
+      if (state == State::kPlain) previous = '\n';
       continue;
     }
     ++column;
@@ -130,13 +135,21 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
           return failAt(column, "'}' inside an array (no inline table is open)");
         if (c == '[' || c == '{') nesting.push_back(c);
         if ((c == ']' || c == '}') && !nesting.empty()) nesting.pop_back();
+        const bool string_may_start = previous == '\n' || previous == '=' || previous == '[' ||
+                                      previous == '{' || previous == ',' || previous == '.';
+        // A multi-line string is a value only: where a key stands, '"""' is an empty key and a quote.
+        const bool value_may_start = previous == '=' || ((previous == '[' || previous == ',') &&
+                                                         !nesting.empty() && nesting.back() == '[');
+        if (c != ' ' && c != '\t') previous = c;
         if (c == '#') {
           state = State::kComment;
-        } else if (triple(i, '"')) {
+        } else if ((c == '"' || c == '\'') && !string_may_start) {
+          // part of a bare value: stays plain, so what follows it is checked too
+        } else if (value_may_start && triple(i, '"')) {
           state = State::kMultiBasic;
           i += 2;
           column += 2;
-        } else if (triple(i, '\'')) {
+        } else if (value_may_start && triple(i, '\'')) {
           state = State::kMultiLiteral;
           i += 2;
           column += 2;

@@ -60,21 +60,16 @@ TEST(TomlAscii, NonAsciiOnlyInsideStringsAndComments) {
   EXPECT_EQ(checkTomlAscii("f", "\xc3\xa9 = 1\n").message,
             "f:1:1: non-ASCII character outside a string "
             "(keys and values other than strings are ASCII)");
-  const char*
-      good[] =
-          {
-              "a = \"\xc3\xa9\" # \xc3\xa9\n",
-              "a = '\xc3\xa9'\n",
-              "a = \"\"\"\n\xc3\xa9\n\"\"\"\n",
-              "a = '''\n\xc3\xa9\n'''\n",
-              "\"\xc3\xa9\" = 1\n",
-              "a = \"x\\\"\xc3\xa9\"\n",       // escaped quote stays inside the string
-              "a = \"\"\"x\"\"\"\"\nb = 1\n",  // one extra quote before the closing three belongs to the
-                                               // string
-              "c = { d = [1], e = { f = 2 } }\na = [\n  [{ x = 1 }],\n  [+1, \"]\"],\n]\n[t]\n[[u]]\n[ \"v\" "
-              "]\n",  // arrays at a line start are
-                      // values
-          };
+  const char* good[] = {
+      "a = \"\xc3\xa9\" # \xc3\xa9\n", "a = '\xc3\xa9'\n", "a = \"\"\"\n\xc3\xa9\n\"\"\"\n",
+      "a = '''\n\xc3\xa9\n'''\n", "\"\xc3\xa9\" = 1\n",
+      "a = \"x\\\"\xc3\xa9\"\n",       // escaped quote stays inside the string
+      "a = \"\"\"x\"\"\"\"\nb = 1\n",  // one extra quote before the closing three belongs to the
+                                       // string
+      "c = { d = [1], e = { f = 2 } }\na = [\n  [{ x = 1 }],\n  [+1, \"]\"],\n]\n[t]\n[[u]]\n[ \"v\" "
+      "]\n",  // arrays at a line start are
+              // values
+  };
   for (const char* text : good) EXPECT_TRUE(checkTomlAscii("f", text).ok) << text;
   const struct {
     const char* text;
@@ -91,6 +86,11 @@ TEST(TomlAscii, NonAsciiOnlyInsideStringsAndComments) {
       {"[\n", "f:1:1:"},
       // Found by fuzz_camera_toml: parse_value assumes no '}' where an array expects a value.
       {"a = [}\n", "f:1:6:"},
+      // Found by fuzz_camera_toml: a quote inside a bare value opens no string; toml++ scans on past it.
+      {"k2 = -zameigA'''era\xef\xb3\xbf'\n", "f:1:20:"},
+      {"a = 1\"\xc3\xa9\"\n", "f:1:7:"},
+      // Found by fuzz_config: where a key stands, three quotes are an empty key and a quote, not a string.
+      {"\"\"\"@\"@\"\"r\n[v\xd2\x92]\n", "f:2:3:"},
       {"a = {b = [1, # c\n}]}\n", "f:2:1:"},
   };
   for (const auto& c : bad) {
