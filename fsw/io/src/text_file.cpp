@@ -138,8 +138,9 @@ LoadError checkTomlAscii(const std::string& path, const std::string& text) {
         const bool string_may_start = previous == '\n' || previous == '=' || previous == '[' ||
                                       previous == '{' || previous == ',' || previous == '.';
         // A multi-line string is a value only: where a key stands, '"""' is an empty key and a quote.
-        const bool value_may_start = previous == '=' || ((previous == '[' || previous == ',') &&
-                                                         !nesting.empty() && nesting.back() == '[');
+        const bool value_may_start =
+            previous == '=' || ((previous == '[' || previous == ',' || previous == '\n') &&
+                                !nesting.empty() && nesting.back() == '[');
         if (c != ' ' && c != '\t') previous = c;
         if (c == '#') {
           state = State::kComment;

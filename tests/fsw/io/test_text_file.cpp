@@ -62,10 +62,12 @@ TEST(TomlAscii, NonAsciiOnlyInsideStringsAndComments) {
             "(keys and values other than strings are ASCII)");
   const char* good[] = {
       "a = \"\xc3\xa9\" # \xc3\xa9\n", "a = '\xc3\xa9'\n", "a = \"\"\"\n\xc3\xa9\n\"\"\"\n",
-      "a = '''\n\xc3\xa9\n'''\n", "\"\xc3\xa9\" = 1\n",
-      "a = \"x\\\"\xc3\xa9\"\n",       // escaped quote stays inside the string
-      "a = \"\"\"x\"\"\"\"\nb = 1\n",  // one extra quote before the closing three belongs to the
-                                       // string
+      "a = '''\n\xc3\xa9\n'''\n",
+      "a = [\n  \"\"\"\n\xc3\xa9\"\"\",\n]\n",  // a multi-line string first on a line inside an array
+                                                // "\"\xc3\xa9\" = 1\n",
+      "a = \"x\\\"\xc3\xa9\"\n",                // escaped quote stays inside the string
+      "a = \"\"\"x\"\"\"\"\nb = 1\n",           // one extra quote before the closing three belongs to the
+                                                // string
       "c = { d = [1], e = { f = 2 } }\na = [\n  [{ x = 1 }],\n  [+1, \"]\"],\n]\n[t]\n[[u]]\n[ \"v\" "
       "]\n",  // arrays at a line start are
               // values
