@@ -37,10 +37,13 @@ LoadError openCamera(const VisnavConfig& config, bool simulated_clock, OpenedCam
                                     : camera::Pacing::kRecordedRate;
   out.source = makeCamera(config, pacing);
   if (!out.source) return LoadError::failure("[camera] driver: no such driver");
+  const camera::CameraDriver driver = config.camera.driverKind();
+  out.playback = driver == camera::CameraDriver::kReplay || driver == camera::CameraDriver::kSynthetic;
+  if (!out.playback) return LoadError::success();  // a live camera starts streaming in startLiveCamera()
   if (LoadError e = out.source->open(); !e.ok)
     return LoadError::failure(std::string("camera ") + out.source->name() + " '" + config.camera.device +
                               "': " + e.message);
-  if (config.camera.driverKind() == camera::CameraDriver::kReplay) {
+  if (driver == camera::CameraDriver::kReplay) {
     const auto& sequence = static_cast<const replay::ReplayCamera&>(*out.source).sequence();
     out.playback = true;
     out.have_intrinsics = out.have_model = true;
@@ -63,6 +66,14 @@ LoadError openCamera(const VisnavConfig& config, bool simulated_clock, OpenedCam
           static_cast<double>(out.frame_count - 1) * 1e9 /
           static_cast<double>(setup.trajectory->timestampNs(out.frame_count - 1) - out.first_timestamp_ns);
   }
+  return LoadError::success();
+}
+
+LoadError startLiveCamera(const VisnavConfig& config, OpenedCamera& camera) {
+  if (camera.playback || !camera.source) return LoadError::success();
+  if (LoadError e = camera.source->open(); !e.ok)
+    return LoadError::failure(std::string("camera ") + camera.source->name() + " '" + config.camera.device +
+                              "': " + e.message);
   return LoadError::success();
 }
 

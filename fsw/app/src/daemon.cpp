@@ -120,6 +120,11 @@ int Daemon::init(const VisnavConfig& config, const DaemonOptions& options) {
   m_pipeline.fillHealth(m_health);
   m_last_ack = m_health.last_command;
   m_transitions_logged = m_pipeline.modes().transitionCount();
+  // Last: a live camera's stream starts now, not before DDS discovery and the subscriber wait.
+  if (LoadError started = startLiveCamera(config, m_camera); !started.ok) {
+    m_log.event(LogLevel::kError, "init_failed", "stage=camera message=\"%s\"", started.message.c_str());
+    return kExitInit;
+  }
   return kExitOk;
 }
 

@@ -30,6 +30,7 @@ Status Daemon::acquireTask(const exec::CycleInfo& cycle) {
   const camera::AcquireResult result = m_camera.source->acquire(timeout_ns, m_frame);
   m_have_frame = result == camera::AcquireResult::kFrame;
   noteCameraResult(result);
+  logCameraEvents();
   m_acquire_us = static_cast<double>(m_clock->nowNs() - start_ns) * 1e-3;
   // Heartbeat: a frame, or the end of a playback (a source that is done, not failing), or a gap of at most
   // camera_stall_cycles cycles (a slow camera, a recovering driver). A longer gap is a failed stage.
@@ -90,6 +91,19 @@ void Daemon::noteCameraResult(camera::AcquireResult result) {
                     quotable(source.lastError(), text));
       return;
     }
+  }
+}
+
+void Daemon::logCameraEvents() {
+  // The driver's own account of its state changes (streaming, lost, retrying) and refused buffers; bounded
+  // by its queue. State changes are always logged; buffer trouble within [daemon] log_throttle.
+  camera::CameraEvent event;
+  for (int i = 0; i < camera::CameraEventQueue::kCapacity && m_camera.source->nextEvent(event); ++i) {
+    const bool state_change = event.kind == camera::CameraEventKind::kStateChange;
+    if (!state_change && !allowLog(m_camera_logs)) continue;
+    char fields[camera::CameraEvent::kTextCapacity + 160];
+    m_log.event(state_change ? LogLevel::kNotice : LogLevel::kWarning, camera::eventName(event.kind),
+                "driver=%s %s", m_camera.source->name(), camera::formatEvent(event, fields, sizeof(fields)));
   }
 }
 

@@ -32,9 +32,13 @@ struct OpenedCamera {
 /// Creates (not opened) the source for config.camera.driver.
 std::unique_ptr<camera::CameraSource> makeCamera(const VisnavConfig& config, camera::Pacing pacing);
 
-/// Creates and opens the camera; for playback fills intrinsics, model and timeline from the source.
-/// `simulated_clock` forces as-fast-as-possible playback (recorded timestamps, which the simulated clock
-/// follows). Errors name the device and the problem.
+/// Creates the camera. A playback source is opened here: it fills intrinsics, model and timeline from its
+/// file. A live one (v4l2, libcamera) is only created: its stream starts in startLiveCamera(), the last step
+/// of start-up, so it does not run ahead of the first cycle (frames queued during the rest of start-up would
+/// be stale or dropped). `simulated_clock` forces as-fast-as-possible playback (recorded timestamps, which
+/// the simulated clock follows). Errors name the device and the problem.
 LoadError openCamera(const VisnavConfig& config, bool simulated_clock, OpenedCamera& out);
+/// Opens a live camera created by openCamera() (nothing for playback sources).
+LoadError startLiveCamera(const VisnavConfig& config, OpenedCamera& camera);
 
 }  // namespace visnav::app

@@ -109,6 +109,7 @@ class Daemon final : private exec::ExecutiveObserver {
   int initTelemetry();
   bool allowLog(std::uint64_t& reported);
   void noteCameraResult(camera::AcquireResult result);
+  void logCameraEvents();
   void logTransitions();
   void logFaultOnsets(std::uint32_t faults, std::uint64_t frame);
   void endHeartbeatCycle(std::uint64_t minor_frame);
