@@ -111,6 +111,38 @@ TEST_F(PipelineTest, WrongImageSizeIsAnErrorNotACrash) {
   EXPECT_FALSE(out.frame_received);
 }
 
+TEST_F(PipelineTest, WeakEvidenceTheFilterRejectsIsNotDelivered) {
+  // Ten frames of a steady approach in near range, then the plate jumps 0.15 m sideways (6 px: within the
+  // tracker's reach, far outside the filter's prediction, so the NIS gate rejects it). With good image
+  // evidence the measurement wins and the filter restarts; when no frame's evidence counts as good
+  // (evidence_max_rms_px tiny), the disputed measurement must not be delivered as valid.
+  for (const bool weak : {false, true}) {
+    PipelineParams p = params;
+    if (weak) p.navigation.evidence_max_rms_px = 1e-9;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    NavSolution out;
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameAt(i);
+      pipeline.process(&f, f.exposure_time_ns, out);
+    }
+    ASSERT_TRUE(out.pose_valid) << "weak=" << weak;
+    const test::RenderedFrame jumped =
+        test::renderFrame(renderer, test::plateAt(25.0, 0.25, 1.0, -1.0), 777U);
+    Frame f = frameAt(10);
+    f.image = jumped.image();
+    pipeline.process(&f, f.exposure_time_ns, out);
+    EXPECT_NE(out.fault_bits & kFaultInnovation, 0U) << "weak=" << weak;
+    if (weak) {
+      EXPECT_FALSE(out.pose_valid);
+    } else {
+      ASSERT_TRUE(out.pose_valid);
+      EXPECT_NEAR(out.pose.t_c_m.x(), 0.25, 0.02);  // the image's pose, not the prediction's
+    }
+  }
+}
+
 TEST_F(PipelineTest, CycleNumbersAreMonotonicAndFrameNumbersAreTheCameras) {
   // Camera sequence 0, 1, (no frame), (no frame), 4 (2 and 3 dropped by the camera), 5.
   NavigationPipeline pipeline;
