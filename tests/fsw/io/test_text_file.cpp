@@ -93,6 +93,10 @@ TEST(TomlAscii, NonAsciiOnlyInsideStringsAndComments) {
       {"a = 1\"\xc3\xa9\"\n", "f:1:7:"},
       // Found by fuzz_config: where a key stands, three quotes are an empty key and a quote, not a string.
       {"\"\"\"@\"@\"\"r\n[v\xd2\x92]\n", "f:2:3:"},
+      // Found by fuzz_camera_toml: toml++ tests what follows a backslash with its Unicode whitespace tables.
+      {"a = [\"\"\"x\\\\\\\xef\xbb\xbd\"\"\"]\n", "f:1:"},
+      {"a = \"\"\"x\\  \n  \xc3\xa9\"\"\"\n", "f:1:"},
+      {"a = \"x\\\xc3\xa9\"\n", "f:1:"},
       {"a = {b = [1, # c\n}]}\n", "f:2:1:"},
   };
   for (const auto& c : bad) {
