@@ -2,6 +2,8 @@
 // executive, runs until SIGTERM/SIGINT (or --cycles, or the end of a playback), logs a stop summary.
 //   visnavd --config FILE [--cycles N] [--simulated-clock] [--pace-ms X] [--wait-subscribers N]
 //           [--wait-timeout S] [--check]
+//   visnavd --check FILE    (the same as --config FILE --check)
+//   visnavd --help | --version
 // Exit codes: fsw/app/README.md (0 ok, 2 usage, 3 config invalid, 4 init failure, 5 realtime refused).
 #include <signal.h>
 
@@ -12,7 +14,9 @@
 #include <memory>
 #include <string>
 
+#include "visnav/app/camera_factory.hpp"
 #include "visnav/app/daemon.hpp"
+#include "visnav/version.hpp"
 
 namespace {
 
@@ -28,10 +32,12 @@ void onStatusSignal(int) {
   if (visnav::app::Daemon* daemon = g_daemon.load()) daemon->requestStatus();
 }
 
-void usage() {
+void usage(std::FILE* stream) {
   std::fputs(
       "usage: visnavd --config FILE [--cycles N] [--simulated-clock] [--pace-ms X] [--wait-subscribers N]\n"
       "               [--wait-timeout S] [--wait-file FILE] [--check]\n"
+      "       visnavd --check FILE | --help | --version\n"
+      "The visnav flight program: camera, navigation pipeline and DDS telemetry on a cyclic executive.\n"
       "  --config FILE         run configuration (every table; reference: config/PARAMETERS.md)\n"
       "  --cycles N            stop after N cycles (default: run until SIGTERM/SIGINT)\n"
       "  --simulated-clock     simulated time from the first frame's timestamp; a replay or synthetic "
@@ -43,10 +49,13 @@ void usage() {
       "  --wait-timeout S      longest wait for them (default 10 s; exit code 4 when they do not come)\n"
       "  --wait-file FILE      then wait (same bound) for FILE, a ground tool's --ready-file, instead of a\n"
       "                        0.5 s pause: its readers have matched too, nothing is lost\n"
-      "  --check               validate the config and its files, then exit (0 valid, 3 invalid)\n"
+      "  --check [FILE]        validate the config (FILE: the same as --config FILE) and every file it\n"
+      "                        names (calibration, model, a replay sequence or synthetic scenario), then\n"
+      "                        exit (0 valid, 3 invalid)\n"
+      "  --help, --version     this text; the version\n"
       "  exit codes: 0 ok, 2 usage, 3 config invalid, 4 camera/pipeline/DDS init failure, 5 realtime "
       "refused\n",
-      stderr);
+      stream);
 }
 
 bool parseNumber(const char* text, double min, double max, double& out) {
@@ -55,6 +64,44 @@ bool parseNumber(const char* text, double min, double max, double& out) {
   if (end == text || *end != '\0' || !(value >= min && value <= max)) return false;
   out = value;
   return true;
+}
+
+// --check: what Daemon::init loads before it touches hardware or DDS, and nothing more. A playback camera
+// (replay sequence, synthetic scenario) is opened with its own loader, so a missing or broken one fails here
+// (exit 3) and not at start (exit 4); a live camera is not opened: the device may be absent until flight.
+int checkConfig(const visnav::app::VisnavConfig& config, visnav::app::EventLog& log) {
+  using namespace visnav::app;
+  if (const char* problem = runProblem(config)) {
+    log.event(LogLevel::kError, "config_invalid", "message=\"%s: %s\"", config.path.c_str(), problem);
+    return kExitConfig;
+  }
+  visnav::CameraIntrinsics intrinsics;
+  visnav::PolygonModel model;
+  bool have_camera = false;
+  bool have_model = false;
+  if (visnav::LoadError e = loadConfiguredFiles(config, intrinsics, have_camera, model, have_model); !e.ok) {
+    log.event(LogLevel::kError, "config_invalid", "message=\"%s\"", e.message.c_str());
+    return kExitConfig;
+  }
+  OpenedCamera camera;
+  if (visnav::LoadError e = openCamera(config, true, camera); !e.ok) {
+    log.event(LogLevel::kError, "config_invalid", "message=\"%s: %s\"", config.path.c_str(),
+              e.message.c_str());
+    return kExitConfig;
+  }
+  const bool size_differs = camera.playback && have_camera &&
+                            (intrinsics.width_px != camera.intrinsics.width_px ||
+                             intrinsics.height_px != camera.intrinsics.height_px);
+  if (camera.source) camera.source->close();
+  if (size_differs) {
+    log.event(LogLevel::kError, "config_invalid",
+              "message=\"[files] camera %s is %dx%d but the camera delivers %dx%d frames\"",
+              config.files.camera.c_str(), intrinsics.width_px, intrinsics.height_px,
+              camera.intrinsics.width_px, camera.intrinsics.height_px);
+    return kExitConfig;
+  }
+  std::printf("visnavd: %s is valid\n", config.path.c_str());
+  return kExitOk;
 }
 
 }  // namespace
@@ -84,17 +131,21 @@ int main(int argc, char** argv) {
       options.wait_file = argv[++i];
     } else if (arg == "--check") {
       check_only = true;
+      if (has_value && argv[i + 1][0] != '-') config_path = argv[++i];  // --check FILE
     } else if (arg == "--help" || arg == "-h") {
-      usage();
+      usage(stdout);
+      return kExitOk;
+    } else if (arg == "--version") {
+      std::printf("visnavd %s\n", visnav::kVersion);
       return kExitOk;
     } else {
       std::fprintf(stderr, "visnavd: unknown, incomplete or out-of-range argument '%s'\n", arg.c_str());
-      usage();
+      usage(stderr);
       return kExitUsage;
     }
   }
   if (config_path.empty()) {
-    usage();
+    usage(stderr);
     return kExitUsage;
   }
 
@@ -107,23 +158,7 @@ int main(int argc, char** argv) {
     log.event(LogLevel::kError, "config_invalid", "message=\"%s\"", e.message.c_str());
     return kExitConfig;
   }
-  if (check_only) {
-    if (const char* problem = runProblem(config)) {
-      log.event(LogLevel::kError, "config_invalid", "message=\"%s: %s\"", config_path.c_str(), problem);
-      return kExitConfig;
-    }
-    visnav::CameraIntrinsics intrinsics;
-    visnav::PolygonModel model;
-    bool have_camera = false;
-    bool have_model = false;
-    if (visnav::LoadError e = loadConfiguredFiles(config, intrinsics, have_camera, model, have_model);
-        !e.ok) {
-      log.event(LogLevel::kError, "config_invalid", "message=\"%s\"", e.message.c_str());
-      return kExitConfig;
-    }
-    std::printf("visnavd: %s is valid\n", config_path.c_str());
-    return kExitOk;
-  }
+  if (check_only) return checkConfig(config, log);
 
   // SIGTERM/SIGINT stay blocked while DDS starts its threads (they inherit the mask), so the signal reaches
   // this thread and interrupts the executive's sleep: the loop ends at once, or after the running cycle.

@@ -108,7 +108,10 @@ endif()
 if(NOT EXISTS ${root}/usr/share/visnav/config/scenarios/full_approach_ci.toml)
   string(APPEND errors "missing usr/share/visnav/config/scenarios/full_approach_ci.toml\n")
 endif()
-execute_process(COMMAND ${root}/usr/bin/visnavd --config ${root}/etc/visnav/visnavd.toml --check
+# --check opens the scenario too, so the copy checked here points into the scratch root instead of /usr.
+string(REPLACE "\"/usr/share/visnav/" "\"${root}/usr/share/visnav/" rooted_config "${service_config}")
+file(WRITE ${work}/visnavd-rooted.toml "${rooted_config}")
+execute_process(COMMAND ${root}/usr/bin/visnavd --check ${work}/visnavd-rooted.toml
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT rc EQUAL 0)
   string(APPEND errors "packaged visnavd --check on etc/visnav/visnavd.toml failed (${rc}): ${out}\n")

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "far_cli.hpp"
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/far_eval/far_evaluation.hpp"
 #include "visnav/io/camera_io.hpp"
 
@@ -17,7 +18,11 @@ const char* const kUsage =
     "       visnav-calibrate-gamma --camera FILE --frame IMG.pgm --distance M [--frame ... --distance ...]\n"
     "       visnav-calibrate-gamma --pixels N --distance M [--pixels ... --distance ...]  known cluster "
     "sizes\n"
-    "  common: [--config FILE] [--method paper|robust] [--out gamma.toml]\n";
+    "  common: [--config FILE] [--method paper|robust] [--out gamma.toml]\n"
+    "       visnav-calibrate-gamma --help | --version\n"
+    "Calibrates eq. 16's gamma (d = gamma / sqrt(n)) from frames at known distance\n"
+    "(tools/calibrate_gamma/README.md).\n"
+    "  exit code: 0 ok, 1 no usable frame, 2 usage or bad input\n";
 
 }  // namespace
 
@@ -30,6 +35,8 @@ int main(int argc, char** argv) {
   double max_range = 1e12;
   for (int i = 1; i < argc; ++i) {
     const std::string opt = argv[i];
+    if (const int code = cli::standardOption(argv[i], "visnav-calibrate-gamma", kUsage); code >= 0)
+      return code;
     if (i + 1 >= argc) {
       std::fprintf(stderr, "visnav-calibrate-gamma: missing value for %s\n%s", opt.c_str(), kUsage);
       return 2;

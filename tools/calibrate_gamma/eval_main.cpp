@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "far_cli.hpp"
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/far_eval/far_evaluation.hpp"
 
 namespace {
@@ -16,7 +17,11 @@ const char* const kUsage =
     "                       [--method paper|robust|both] [--csv per_frame.csv]\n"
     "                       [--require-direction-median-deg X] [--require-distance-median-pct X]\n"
     "                       [--require-right-fraction F] [--require-clutter-right-fraction F]\n"
-    "  requirements apply to the robust method (or the one method given)\n";
+    "       visnav-far-eval --help | --version\n"
+    "Runs the far-range estimator over a sequence with truth: direction and distance errors, right-target\n"
+    "fraction (tools/calibrate_gamma/README.md).\n"
+    "  requirements apply to the robust method (or the one method given)\n"
+    "  exit code: 0 all requested requirements hold, 1 a requirement failed, 2 usage or bad input\n";
 
 struct Requirements {
   double direction_median_deg = -1.0;
@@ -39,6 +44,7 @@ int main(int argc, char** argv) {
   Requirements req;
   for (int i = 1; i < argc; ++i) {
     const std::string opt = argv[i];
+    if (const int code = cli::standardOption(argv[i], "visnav-far-eval", kUsage); code >= 0) return code;
     if (i + 1 >= argc) {
       std::fprintf(stderr, "visnav-far-eval: missing value for %s\n%s", opt.c_str(), kUsage);
       return 2;

@@ -10,6 +10,7 @@
 #include "visnav/app/visnav_config.hpp"
 #include "visnav/campaign/options.hpp"
 #include "visnav/campaign/report.hpp"
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/io/model_io.hpp"
 
 using namespace visnav;
@@ -46,6 +47,11 @@ int fail(const std::string& message) {
 int main(int argc, char** argv) {
   CampaignOptions options;
   const std::vector<std::string> args(argv + 1, argv + argc);
+  // --version alone; --help goes through the option parser (its usage text).
+  if (args.size() == 1 && args[0] == "--version") {
+    cli::printVersion("visnav-campaign");
+    return 0;
+  }
   if (LoadError e = parseArguments(args, options); !e.ok) {
     std::fprintf(stderr, "visnav-campaign: %s\n%s", e.message.c_str(), usageText().c_str());
     return 2;

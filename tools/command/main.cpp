@@ -10,6 +10,7 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/monitor/link_args.hpp"
 #include "visnav/telemetry/ground_link.hpp"
 #include "visnav/telemetry/sample_mapping.hpp"
@@ -23,10 +24,12 @@ constexpr int kExitRejected = 1;
 constexpr int kExitUsage = 2;
 constexpr int kExitTimeout = 3;
 
-void usage() {
+void usage(std::FILE* stream) {
   std::fprintf(
-      stderr,
+      stream,
       "usage: visnav-command force-far-range|reacquire|standby|resume [--id N] [--timeout S] %s\n"
+      "       visnav-command --help | --version\n"
+      "Sends one mode command to visnavd over DDS and waits for its acknowledgment.\n"
       "  --id N       command id echoed in the acknowledgment (1..4294967295; default: from time and pid)\n"
       "  --timeout S  longest wait for the flight software and its acknowledgment (default 5)\n"
       "  exit code: 0 accepted, 1 rejected, 2 usage or setup error, 3 timeout\n",
@@ -89,6 +92,8 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
     visnav::LoadError error;
+    if (const int code = visnav::cli::standardOption(argv[i], "visnav-command", usage); code >= 0)
+      return code;
     if (visnav::monitor::parseLinkArgument(argc, argv, i, link_params, error)) {
       if (!error.ok) {
         std::fprintf(stderr, "visnav-command: %s\n", error.message.c_str());
@@ -109,19 +114,16 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "visnav-command: --timeout wants seconds in (0, 3600]\n");
         return kExitUsage;
       }
-    } else if (arg == "--help" || arg == "-h") {
-      usage();
-      return 0;
     } else if (!have_kind && parseKind(arg, kind)) {
       have_kind = true;
     } else {
       std::fprintf(stderr, "visnav-command: unknown or incomplete argument '%s'\n", arg.c_str());
-      usage();
+      usage(stderr);
       return kExitUsage;
     }
   }
   if (!have_kind) {
-    usage();
+    usage(stderr);
     return kExitUsage;
   }
   if (command_id == 0) command_id = defaultCommandId();

@@ -7,7 +7,20 @@
 #include <cstdio>
 #include <string>
 
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/csvdiff/csv_compare.hpp"
+
+namespace {
+
+const char* const kUsage =
+    "usage: visnav-csvdiff A.csv B.csv [--abs-tol X] [--rel-tol R] [--column-tol PATTERN=ABS[:REL]]...\n"
+    "                      [--ignore COL,...] [--ignore-prefix P]\n"
+    "       visnav-csvdiff --help | --version\n"
+    "Compares two CSV files with the same header cell by cell, numbers within a tolerance\n"
+    "(|a - b| <= abs + rel * max(|a|, |b|); --column-tol PATTERN is a column name or a prefix and '*').\n"
+    "  exit code: 0 every cell matches, 1 a difference, 2 usage or bad input\n";
+
+}  // namespace
 
 int main(int argc, char** argv) {
   visnav::csvdiff::CompareOptions options;
@@ -16,6 +29,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
+    if (const int code = visnav::cli::standardOption(argv[i], "visnav-csvdiff", kUsage); code >= 0)
+      return code;
     if (arg == "--abs-tol" && has_value) {
       options.abs_tol = std::stod(argv[++i]);
     } else if (arg == "--rel-tol" && has_value) {
@@ -34,9 +49,7 @@ int main(int argc, char** argv) {
     } else if (n_paths < 2 && !arg.empty() && arg[0] != '-') {
       paths[n_paths++] = arg;
     } else {
-      std::fprintf(stderr,
-                   "usage: visnav-csvdiff A.csv B.csv [--abs-tol X] [--rel-tol R] "
-                   "[--column-tol PATTERN=ABS[:REL]]... [--ignore COL,...] [--ignore-prefix P]\n");
+      std::fputs(kUsage, stderr);
       return 2;
     }
   }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/eval/evaluation.hpp"
 #include "visnav/eval/plot.hpp"
 #include "visnav/eval/replay_csv.hpp"
@@ -26,7 +27,10 @@ const char* const kUsage =
     "                   [--require-tracked-all] [--min-inside-fraction F [--inside-envelope-px D]]\n"
     "                   [--symmetry x180|y180|z180 ...]  (model rotations that look the same)\n"
     "                   [--timeline modes.png] [--max-far-direction-median-deg X]\n"
-    "                   [--max-far-distance-median-pct X] [--require-final-mode MODE]\n";
+    "                   [--max-far-distance-median-pct X] [--require-final-mode MODE]\n"
+    "       visnav-eval --help | --version\n"
+    "Scores a visnav-replay CSV against a sequence's truth (tools/eval/README.md).\n"
+    "  exit code: 0 all requested requirements hold, 1 a requirement failed, 2 usage or bad input\n";
 
 struct Args {
   std::string sequence, replay, far_range, plot, timeline, csv, json;
@@ -56,6 +60,8 @@ std::string parseArgs(int argc, char** argv, Args& a) {
       a.req.require_tracked_all = true;
     } else if (opt == "--help" || opt == "-h") {
       return "help";
+    } else if (opt == "--version") {
+      return "version";
     } else if (!value(v)) {
       return "unknown option or missing value: " + opt;
     } else if (opt == "--sequence") {
@@ -135,10 +141,8 @@ int main(int argc, char** argv) {
   using namespace visnav;
   Args args;
   const std::string arg_error = parseArgs(argc, argv, args);
-  if (arg_error == "help") {
-    std::cout << kUsage;
-    return 0;
-  }
+  if (arg_error == "help" || arg_error == "version")
+    return cli::standardOption(arg_error == "help" ? "--help" : "--version", "visnav-eval", kUsage);
   if (!arg_error.empty()) {
     std::cerr << "visnav-eval: " << arg_error << '\n' << kUsage;
     return kExitBadInput;

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/executive/executive.hpp"
 #include "visnav/executive/realtime.hpp"
 #include "visnav/io/config_io.hpp"
@@ -31,10 +32,12 @@ struct BusyTask final : visnav::exec::CycleTask {
   }
 };
 
-void usage() {
+void usage(std::FILE* stream) {
   std::fputs(
       "usage: visnav-jitter [--cycles N] [--hz F] [--busy-us U] [--config FILE] [--priority P] [--cpu C]\n"
       "                     [--lock-memory] [--slack-ns N] [--fatal] [--max-p99-us X]\n"
+      "       visnav-jitter --help | --version\n"
+      "Runs the cyclic executive on the real clock and prints the release jitter (fsw/executive/README.md).\n"
       "  --cycles N      cycles to run (default 300: one minute at 5 Hz)\n"
       "  --hz F          major frame rate (default: the config's, else 5 Hz)\n"
       "  --busy-us U     the task busy-waits U us per cycle (default 0: empty task)\n"
@@ -42,8 +45,9 @@ void usage() {
       "  --priority P    SCHED_FIFO priority   --cpu C  pin to CPU C   --lock-memory  mlockall\n"
       "  --slack-ns N    timer slack of the loop thread (default 1000; 0: the OS default, 50 us)\n"
       "  --fatal         a refused realtime setting is an error (exit 2)\n"
-      "  --max-p99-us X  exit 1 when the jitter p99 exceeds X us\n",
-      stderr);
+      "  --max-p99-us X  exit 1 when the jitter p99 exceeds X us\n"
+      "  exit code: 0 done, 1 p99 above the limit, 2 usage or setup error\n",
+      stream);
 }
 
 bool parseNumber(const char* text, double& out) {
@@ -73,6 +77,7 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
     double value = 0.0;
+    if (const int code = visnav::cli::standardOption(argv[i], "visnav-jitter", usage); code >= 0) return code;
     if (arg == "--lock-memory") {
       params.lock_memory = true;
     } else if (arg == "--fatal") {
@@ -97,12 +102,12 @@ int main(int argc, char** argv) {
         max_p99_us = value;
       } else {
         std::fprintf(stderr, "visnav-jitter: bad value for %s\n", arg.c_str());
-        usage();
+        usage(stderr);
         return 2;
       }
     } else {
       std::fprintf(stderr, "visnav-jitter: bad argument '%s'\n", arg.c_str());
-      usage();
+      usage(stderr);
       return 2;
     }
   }

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/monitor/link_args.hpp"
 #include "visnav/monitor/monitor.hpp"
 
@@ -13,10 +14,12 @@ namespace {
 std::atomic<bool> g_stop{false};
 void onSignal(int) { g_stop.store(true); }
 
-void usage() {
-  std::fprintf(stderr,
+void usage(std::FILE* stream) {
+  std::fprintf(stream,
                "usage: visnav-monitor %s [--csv FILE] [--samples N] [--duration S] [--no-view]\n"
                "       [--ready-file FILE]\n"
+               "       visnav-monitor --help | --version\n"
+               "Live view of visnavd's DDS telemetry, CSV recording, summary at the end.\n"
                "  --csv FILE     record every sample: FILE (pose, visnav-eval columns), FILE's stem +\n"
                "                 _far_range.csv and _health.csv\n"
                "  --samples N    stop after N PoseEstimate samples\n"
@@ -42,6 +45,8 @@ int main(int argc, char** argv) {
     const bool has_value = i + 1 < argc;
     visnav::LoadError error;
     double number = 0.0;
+    if (const int code = visnav::cli::standardOption(argv[i], "visnav-monitor", usage); code >= 0)
+      return code;
     if (visnav::monitor::parseLinkArgument(argc, argv, i, options.link, error)) {
       if (!error.ok) {
         std::fprintf(stderr, "visnav-monitor: %s\n", error.message.c_str());
@@ -59,12 +64,9 @@ int main(int argc, char** argv) {
       options.ready_file = argv[++i];
     } else if (arg == "--no-view") {
       options.live_view = false;
-    } else if (arg == "--help" || arg == "-h") {
-      usage();
-      return 0;
     } else {
       std::fprintf(stderr, "visnav-monitor: unknown or incomplete argument '%s'\n", arg.c_str());
-      usage();
+      usage(stderr);
       return 2;
     }
   }

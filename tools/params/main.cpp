@@ -7,6 +7,7 @@
 #include "visnav/acquisition/acquisition_params.hpp"
 #include "visnav/app/visnav_config.hpp"
 #include "visnav/camera/camera_params.hpp"
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/executive/executive_params.hpp"
 #include "visnav/farrange/far_range_params.hpp"
 #include "visnav/io/param_docs.hpp"
@@ -15,7 +16,20 @@
 #include "visnav/nearrange/near_range_params.hpp"
 #include "visnav/telemetry/telemetry_params.hpp"
 
+namespace {
+
+const char* const kUsage =
+    "usage: visnav-params              print the parameter reference (config/PARAMETERS.md, Markdown)\n"
+    "       visnav-params --check FILE validate a config file and the files it names\n"
+    "       visnav-params --help | --version\n"
+    "  exit code: 0 ok (valid), 2 usage or config invalid\n";
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (argc == 2)
+    if (const int code = visnav::cli::standardOption(argv[1], "visnav-params", kUsage); code >= 0)
+      return code;
   if (argc == 3 && std::strcmp(argv[1], "--check") == 0) {
     // The loader visnavd and visnav-replay use (fsw/app): every table, cross-checks, unknown keys, and the
     // [files] it names. One source of truth for what a valid config is.
@@ -34,10 +48,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc != 1) {
-    std::fputs(
-        "usage: visnav-params            print config/PARAMETERS.md\n"
-        "       visnav-params --check FILE validate a config file\n",
-        stderr);
+    std::fputs(kUsage, stderr);
     return 2;
   }
   std::printf(

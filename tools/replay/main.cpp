@@ -5,18 +5,22 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/replay_tool/replay_runner.hpp"
 
 namespace {
 
-void usage() {
+void usage(std::FILE* stream) {
   std::fputs(
       "usage: visnav-replay --sequence DIR --out replay.csv [--config FILE] [--camera FILE] [--model FILE]\n"
       "                     [--initial-pose x,y,z,yaw_deg,pitch_deg,roll_deg | --init-from-truth]\n"
       "                     [--overlay-dir DIR]\n"
       "                     [--overlay-every N] [--max-frames N] [--residual vertex|point_to_line]\n"
-      "                     [--no-timing] [--no-progress]\n",
-      stderr);
+      "                     [--no-timing] [--no-progress]\n"
+      "       visnav-replay --help | --version\n"
+      "Runs the flight pipeline over a recorded sequence as fast as possible; one CSV row per frame\n"
+      "(tools/replay/README.md). Exit code: 0 done, 2 usage or bad input.\n",
+      stream);
 }
 
 // Whole-argument positive integer: "10x", "0" and "-3" are errors, not silently 0 or negative.
@@ -38,6 +42,7 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
     auto value = [&]() { return std::string(argv[++i]); };
+    if (const int code = visnav::cli::standardOption(argv[i], "visnav-replay", usage); code >= 0) return code;
     if (arg == "--sequence" && has_value) {
       options.sequence_dir = value();
     } else if (arg == "--out" && has_value) {
@@ -78,17 +83,14 @@ int main(int argc, char** argv) {
       options.timing = false;
     } else if (arg == "--no-progress") {
       options.progress = false;
-    } else if (arg == "--help" || arg == "-h") {
-      usage();
-      return 0;
     } else {
       std::fprintf(stderr, "visnav-replay: unknown or incomplete argument '%s'\n", arg.c_str());
-      usage();
+      usage(stderr);
       return 2;
     }
   }
   if (options.sequence_dir.empty() || options.output_csv.empty()) {
-    usage();
+    usage(stderr);
     return 2;
   }
   visnav::replay_tool::ReplaySummary summary;

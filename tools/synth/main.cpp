@@ -8,19 +8,23 @@
 #include <vector>
 
 #include "scenario.hpp"
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/io/camera_io.hpp"
 #include "visnav/io/model_io.hpp"
 #include "visnav/replay/sequence.hpp"
 
 namespace {
 
-void usage() {
-  std::fprintf(stderr,
+void usage(std::FILE* stream) {
+  std::fprintf(stream,
                "usage: visnav-synth --scenario FILE.toml --out DIR [--frames N] [--stride K] [--seed S] "
                "[--dry-run]\n"
+               "       visnav-synth --help | --version\n"
+               "Renders a synthetic image sequence with truth from a scenario file (tools/synth/README.md).\n"
                "  --frames N  render at most N frames     --stride K  every K-th trajectory frame\n"
                "  --seed S    noise seed (overrides the scenario's)\n"
-               "  --dry-run   only check that the target stays inside the image; write nothing\n");
+               "  --dry-run   only check that the target stays inside the image; write nothing\n"
+               "  exit code: 0 done, 1 load or write error, 2 usage, 3 target outside the image\n");
 }
 
 bool parseCount(const char* text, long long& out) {
@@ -54,6 +58,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
+    if (const int code = cli::standardOption(argv[i], "visnav-synth", usage); code >= 0) return code;
     if (arg == "--scenario" && has_value) {
       scenario_path = argv[++i];
     } else if (arg == "--out" && has_value) {
@@ -62,19 +67,19 @@ int main(int argc, char** argv) {
       long long& target = arg == "--frames" ? max_frames : (arg == "--stride" ? stride : seed);
       if (!parseCount(argv[++i], target) || (arg == "--stride" && stride < 1)) {
         std::fprintf(stderr, "visnav-synth: bad value '%s' for %s\n", argv[i], arg.c_str());
-        usage();
+        usage(stderr);
         return 2;
       }
     } else if (arg == "--dry-run") {
       dry_run = true;
     } else {
       std::fprintf(stderr, "visnav-synth: bad argument '%s'\n", arg.c_str());
-      usage();
+      usage(stderr);
       return 2;
     }
   }
   if (scenario_path.empty() || (out_dir.empty() && !dry_run)) {
-    usage();
+    usage(stderr);
     return 2;
   }
 

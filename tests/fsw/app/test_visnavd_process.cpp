@@ -58,7 +58,7 @@ TEST(Visnavd, ExitCodes) {
   const std::string no_sequence =
       dir.write("nosequence.toml",
                 "[camera]\ndriver = \"replay\"\ndevice = \"missing\"\n[telemetry]\nenabled = false\n");
-  EXPECT_EQ(runDaemon("--config " + no_sequence + " --check", log), 0);  // the device is not the config's
+  EXPECT_EQ(runDaemon("--config " + no_sequence + " --check", log), 3);  // --check loads the sequence too
   EXPECT_EQ(runDaemon("--config " + no_sequence, log), 4);
   EXPECT_NE(readText(log).find("event=init_failed stage=camera"), std::string::npos) << readText(log);
 
@@ -89,6 +89,56 @@ TEST(Visnavd, ExitCodes) {
     EXPECT_EQ(
         runDaemon(std::string("--config ") + VISNAV_SOURCE_DIR + "/config/" + shipped + " --check", log), 0)
         << shipped;
+}
+
+// `--check FILE` is `--config FILE --check`, and it loads every file the config names: a playback camera's
+// sequence or scenario (and the scenario's own camera and model) with the loaders the daemon uses, so a
+// config that would fail at start with exit 4 fails the check with exit 3, naming the file and the errno
+// text.
+TEST(Visnavd, CheckFileLoadsEveryNamedFile) {
+  test::TempDir dir("visnavd_check");
+  const std::string log = dir.path() + "/stderr.txt";
+  const std::string scenario = std::string(VISNAV_SOURCE_DIR) + "/config/scenarios/approach_ci.toml";
+  const std::string good = dir.write("good.toml", "[camera]\ndriver = \"synthetic\"\ndevice = \"" + scenario +
+                                                      "\"\n[telemetry]\nenabled = false\n");
+  EXPECT_EQ(runDaemon("--check " + good, log), 0) << readText(log);
+  EXPECT_EQ(runDaemon("--config " + good + " --check", log), 0) << readText(log);
+  EXPECT_EQ(runDaemon("--check " + good + " --cycles 1", log), 0) << readText(log);
+  EXPECT_EQ(runDaemon(std::string("--check ") + VISNAV_SOURCE_DIR + "/config/visnavd.toml", log), 0)
+      << readText(log);
+
+  const std::string no_scenario = dir.write(
+      "noscenario.toml",
+      "[camera]\ndriver = \"synthetic\"\ndevice = \"missing.toml\"\n[telemetry]\nenabled = false\n");
+  EXPECT_EQ(runDaemon("--check " + no_scenario, log), 3);
+  EXPECT_NE(readText(log).find("event=config_invalid"), std::string::npos) << readText(log);
+  EXPECT_NE(readText(log).find(dir.path() + "/missing.toml: cannot open: No such file or directory"),
+            std::string::npos)
+      << readText(log);
+  EXPECT_EQ(runDaemon("--config " + no_scenario, log), 4);  // the same file at start: init failure
+
+  // A scenario (approach_ci's) whose camera calibration does not exist.
+  std::string text = readText(scenario);
+  const std::string camera_line = "camera = \"../cameras/vga_6mm.toml\"";
+  const std::string model_line = "model = \"../models/";
+  ASSERT_NE(text.find(camera_line), std::string::npos);
+  ASSERT_NE(text.find(model_line), std::string::npos);
+  text.replace(text.find(camera_line), camera_line.size(), "camera = \"nocamera.toml\"");
+  text.replace(text.find(model_line), model_line.size(),
+               "model = \"" + std::string(VISNAV_SOURCE_DIR) + "/config/models/");
+  const std::string broken_scenario = dir.write("broken_scenario.toml", text);
+  const std::string broken =
+      dir.write("broken.toml", "[camera]\ndriver = \"synthetic\"\ndevice = \"" + broken_scenario +
+                                   "\"\n[telemetry]\nenabled = false\n");
+  EXPECT_EQ(runDaemon("--check " + broken, log), 3);
+  EXPECT_NE(readText(log).find(dir.path() + "/nocamera.toml: cannot open: No such file or directory"),
+            std::string::npos)
+      << readText(log);
+
+  EXPECT_EQ(runDaemon("--check " + dir.path() + "/none.toml", log), 3);
+  EXPECT_NE(readText(log).find("none.toml: cannot open: No such file or directory"), std::string::npos)
+      << readText(log);
+  EXPECT_EQ(runDaemon("--check", log), 2);  // neither FILE nor --config
 }
 
 /// systemd's end of the notify protocol.
