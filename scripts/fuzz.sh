@@ -25,10 +25,11 @@ run_one() {
   local t="$1"
   mkdir -p "$build/corpus/$t" "$build/artifacts/$t"
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: a loader must stay well under it.
+  local rc=0
   "$build/bin/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$build/artifacts/$t/" "$build/corpus/$t" "$root/tests/fuzz/corpus/$t" \
-    >"$build/logs/$t.log" 2>&1
-  echo $? >"$build/logs/$t.rc"
+    >"$build/logs/$t.log" 2>&1 || rc=$?
+  echo "$rc" >"$build/logs/$t.rc"
 }
 running=0
 for t in "${targets[@]}"; do
