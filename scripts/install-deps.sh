@@ -15,6 +15,7 @@ else
   packages+=(cyclonedds-dev cyclonedds-tools)  # DDS telemetry: Cyclone DDS C library and idlc (fsw/telemetry)
   packages+=(git clang-format cppcheck)        # static checks (scripts/lint.sh); CI runs format_check and cppcheck
   packages+=(clang libclang-rt-14-dev)         # fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer
+  packages+=(help2man lintian)                 # man pages from --help at build time; the .deb's check
 fi
 missing=()
 for p in "${packages[@]}"; do

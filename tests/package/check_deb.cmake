@@ -53,7 +53,15 @@ set(expected usr/bin/visnavd usr/bin/visnav-replay usr/bin/visnav-synth usr/bin/
              usr/share/visnav/config/PARAMETERS.md usr/share/visnav/config/cyclonedds-loopback.xml
              usr/share/visnav/config/scenarios/approach_ci.toml usr/include/visnav/idl/visnav.idl
              usr/include/visnav/idl/visnav.h usr/share/doc/visnav/README.md etc/visnav/visnavd.toml
-             etc/visnav/cyclonedds.xml)
+             etc/visnav/cyclonedds.xml usr/share/doc/visnav/copyright usr/share/doc/visnav/changelog.gz
+             usr/lib/sysusers.d/visnav.conf)
+# A man page per binary when the build had help2man (MAN_PAGES).
+if(MAN_PAGES)
+  file(GLOB binaries RELATIVE ${root}/usr/bin ${root}/usr/bin/*)
+  foreach(binary IN LISTS binaries)
+    list(APPEND expected usr/share/man/man1/${binary}.1.gz)
+  endforeach()
+endif()
 file(GLOB units RELATIVE ${SOURCE_DIR}/config ${SOURCE_DIR}/config/*.service ${SOURCE_DIR}/config/*/*.service)
 foreach(unit IN LISTS units)
   get_filename_component(unit_name ${unit} NAME)
@@ -116,6 +124,21 @@ execute_process(COMMAND ${root}/usr/bin/visnavd --check ${work}/visnavd-rooted.t
 if(NOT rc EQUAL 0)
   string(APPEND errors "packaged visnavd --check on etc/visnav/visnavd.toml failed (${rc}): ${out}\n")
 endif()
+# Maintainer scripts: systemd-sysusers, deb-systemd-helper / deb-systemd-invoke (stop on remove, purge).
+foreach(script postinst prerm postrm)
+  if(NOT EXISTS ${work}/control/${script})
+    string(APPEND errors "no ${script} maintainer script\n")
+  endif()
+endforeach()
+# Stripped executables (lintian: unstripped-binary-or-object).
+foreach(path IN LISTS all_files)
+  if(path MATCHES "^usr/bin/")
+    execute_process(COMMAND readelf -S ${root}/${path} OUTPUT_VARIABLE sections)
+    if(sections MATCHES "\\.debug_info|\\.symtab")
+      string(APPEND errors "not stripped: ${path}\n")
+    endif()
+  endif()
+endforeach()
 list(LENGTH all_files file_count)
 if(errors)
   message(FATAL_ERROR "visnav_${VERSION}_${ARCH}.deb (${file_count} files):\n${errors}")
