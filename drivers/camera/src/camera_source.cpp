@@ -53,4 +53,19 @@ const char* formatEvent(const CameraEvent& event, char* out, std::size_t capacit
   return out;
 }
 
+CameraEvent stateChangeEvent(CameraState from, CameraState to, std::int64_t now_ns,
+                             const RetryBackoff& backoff, std::uint32_t pending, const char* text) {
+  CameraEvent event;
+  event.kind = CameraEventKind::kStateChange;
+  event.from = from;
+  event.to = to;
+  event.time_ns = now_ns;
+  event.attempts = backoff.attempts() + (to == CameraState::kStreaming ? 1U : 0U);  // the one that worked
+  event.retry_interval_ns = backoff.intervalNs();
+  event.down_ns = to == CameraState::kLost ? 0 : now_ns - backoff.lostNs();
+  event.pending = pending;
+  std::snprintf(event.text, sizeof(event.text), "%s", text != nullptr ? text : "");
+  return event;
+}
+
 }  // namespace visnav::camera

@@ -131,16 +131,7 @@ void LibcameraCamera::Impl::changeState(CameraState to) {
   state = to;
   if (to == CameraState::kLost) backoff.start(now_ns, params.recovery_attempts);
   if (from == CameraState::kClosed) return;  // open(): the start line says so
-  CameraEvent event;
-  event.kind = CameraEventKind::kStateChange;
-  event.from = from;
-  event.to = to;
-  event.time_ns = now_ns;
-  event.attempts = backoff.attempts() + (to == CameraState::kStreaming ? 1U : 0U);
-  event.retry_interval_ns = backoff.intervalNs();
-  event.down_ns = to == CameraState::kLost ? 0 : now_ns - backoff.lostNs();
-  std::snprintf(event.text, sizeof(event.text), "%s", last_error);
-  events.push(event);
+  events.push(stateChangeEvent(from, to, now_ns, backoff, 0U, last_error));
 }
 
 std::string LibcameraCamera::Impl::startManager() {

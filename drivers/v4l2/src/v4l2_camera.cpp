@@ -82,17 +82,8 @@ void V4l2Camera::changeState(CameraState to, std::int64_t now_ns) {
   m_state = to;
   if (to == CameraState::kLost) m_backoff.start(now_ns, m_params.recovery_attempts);
   if (from == CameraState::kClosed) return;  // open(): the start line says so
-  CameraEvent event;
-  event.kind = CameraEventKind::kStateChange;
-  event.from = from;
-  event.to = to;
-  event.time_ns = now_ns;
-  event.attempts = m_backoff.attempts() + (to == CameraState::kStreaming ? 1U : 0U);
-  event.retry_interval_ns = m_backoff.intervalNs();
-  event.down_ns = to == CameraState::kLost ? 0 : now_ns - m_backoff.lostNs();
-  event.pending = static_cast<std::uint32_t>(m_pending_count);
-  std::snprintf(event.text, sizeof(event.text), "%s", m_last_error);
-  m_events.push(event);
+  m_events.push(stateChangeEvent(from, to, now_ns, m_backoff, static_cast<std::uint32_t>(m_pending_count),
+                                 m_last_error));
 }
 
 const char* V4l2Camera::setUp(bool first_open) {

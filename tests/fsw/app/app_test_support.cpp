@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 namespace visnav::app::test {
@@ -16,7 +17,8 @@ TempDir::TempDir(const std::string& name) {
 }
 
 TempDir::~TempDir() {
-  if (!m_path.empty()) std::system(("rm -rf '" + m_path + "'").c_str());
+  std::error_code ignored;  // a temporary folder left behind is not a test failure
+  if (!m_path.empty()) std::filesystem::remove_all(m_path, ignored);
 }
 
 std::string TempDir::write(const std::string& name, const std::string& text) const {
@@ -33,14 +35,15 @@ std::string renderedSequence(const std::string& scenario, int frames) {
   std::string out =
       std::string(VISNAV_TEST_DATA_DIR) + "/" + stem + (frames > 0 ? "_" + std::to_string(frames) : "");
   if (access((out + "/sequence.toml").c_str(), R_OK) == 0) return out;
-  std::system(("mkdir -p '" + std::string(VISNAV_TEST_DATA_DIR) + "'").c_str());
+  std::error_code exists;  // created by a concurrent test process: fine
+  std::filesystem::create_directories(VISNAV_TEST_DATA_DIR, exists);
   const std::string staging = out + ".tmp-" + std::to_string(getpid());
   const std::string command = std::string(VISNAV_SYNTH) + " --scenario " + scenario + " --out " + staging +
                               (frames > 0 ? " --frames " + std::to_string(frames) : std::string()) +
                               " > /dev/null";
   if (std::system(command.c_str()) != 0) return "";
   if (std::rename(staging.c_str(), out.c_str()) != 0)  // another process was first: use its copy
-    std::system(("rm -rf '" + staging + "'").c_str());
+    std::filesystem::remove_all(staging, exists);
   return access((out + "/sequence.toml").c_str(), R_OK) == 0 ? out : "";
 }
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -27,7 +28,10 @@ class ConfigFiles : public ::testing::Test {
     ASSERT_NE(mkdtemp(pattern), nullptr);
     m_dir = pattern;
   }
-  void TearDown() override { std::system(("rm -rf '" + m_dir + "'").c_str()); }
+  void TearDown() override {
+    std::error_code ignored;  // a temporary folder left behind is not a test failure
+    std::filesystem::remove_all(m_dir, ignored);
+  }
   std::string m_dir;
   int m_count = 0;
 };

@@ -32,6 +32,24 @@ pid_t spawnDaemon(const std::string& args, const std::string& log_path) {
       {"/bin/sh", "-c", std::string("exec ") + VISNAV_DAEMON + " " + args + " 2> " + log_path});
 }
 
+/// Starts visnavd with `args` and its stderr on the pipe `fds` (the child gets the write end, the parent
+/// keeps only the read end). Returns the pid (-1 on failure).
+pid_t spawnWithStderrPipe(const int fds[2], const std::vector<std::string>& args) {
+  std::vector<const char*> argv{VISNAV_DAEMON};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], 2);
+    close(fds[0]);
+    close(fds[1]);
+    execv(VISNAV_DAEMON, const_cast<char* const*>(argv.data()));
+    _exit(127);
+  }
+  close(fds[1]);
+  return pid;
+}
+
 int runDaemon(const std::string& args, const std::string& log_path, double timeout_s = 30.0) {
   const pid_t pid = spawnDaemon(args, log_path);
   EXPECT_GT(pid, 0);
@@ -243,17 +261,8 @@ TEST(Visnavd, Sigusr1LogsAStatusLineAndSigpipeIsHarmless) {
                                  "\"\n[daemon]\nplayback_loop = true\n[telemetry]\nenabled = false\n");
   int fds[2];
   ASSERT_EQ(pipe(fds), 0);
-  const pid_t pid = fork();
+  const pid_t pid = spawnWithStderrPipe(fds, {"--config", config, "--simulated-clock", "--pace-ms", "100"});
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    dup2(fds[1], 2);
-    close(fds[0]);
-    close(fds[1]);
-    execl(VISNAV_DAEMON, VISNAV_DAEMON, "--config", config.c_str(), "--simulated-clock", "--pace-ms", "100",
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  close(fds[1]);
   // Read until the start line, then ask for a status line, then close the reader: the daemon's next lines
   // meet EPIPE, which must cost lines, not the process (SIGPIPE would end it with 141).
   std::string text;
@@ -292,17 +301,8 @@ TEST(Visnavd, AStalledLogPipeDoesNotStopTheCycle) {
   while (write(fds[1], fill, sizeof(fill)) > 0) {
   }
   fcntl(fds[1], F_SETFL, 0);
-  const pid_t pid = fork();
+  const pid_t pid = spawnWithStderrPipe(fds, {"--config", config, "--cycles", "60"});
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    dup2(fds[1], 2);
-    close(fds[0]);
-    close(fds[1]);
-    execl(VISNAV_DAEMON, VISNAV_DAEMON, "--config", config.c_str(), "--cycles", "60",
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  close(fds[1]);
   std::this_thread::sleep_for(std::chrono::seconds(10));  // the stalled reader
   std::string text;
   char buffer[4096];

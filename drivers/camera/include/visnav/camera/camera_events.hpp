@@ -117,4 +117,9 @@ class RetryBackoff {
   int m_quick = 0;
 };
 
+/// The event of a driver's state change `from` -> `to` at `now_ns`, with the back-off's attempt count and
+/// spacing, the time down (since the loss), the buffers waiting for a requeue and the cause `text`.
+CameraEvent stateChangeEvent(CameraState from, CameraState to, std::int64_t now_ns,
+                             const RetryBackoff& backoff, std::uint32_t pending, const char* text);
+
 }  // namespace visnav::camera
