@@ -107,9 +107,11 @@ TEST(EndToEnd, MonitorReceivesEverySampleAndScoresLikeReplay) {
       dir.path() + "/monitor.txt");
   ASSERT_GT(monitor, 0);
   const std::string daemon_log = dir.path() + "/visnavd.txt";
+  // 25 ms per cycle: the keep-last-1 writer overwrites a sample the reader has not acknowledged yet, and at
+  // 5 ms a loaded machine (a full parallel ctest) lost 6 of 80. The flight rate is 200 ms.
   const pid_t daemon = spawnProcess({"/bin/sh", "-c",
                                      std::string("exec ") + VISNAV_DAEMON + " --config " + config +
-                                         " --simulated-clock --pace-ms 5 --wait-subscribers 1 --wait-file " +
+                                         " --simulated-clock --pace-ms 25 --wait-subscribers 1 --wait-file " +
                                          dir.path() + "/monitor.ready 2> " + daemon_log});
   ASSERT_GT(daemon, 0);
   EXPECT_EQ(waitProcess(daemon, 90.0), 0) << readText(daemon_log);

@@ -25,7 +25,10 @@ namespace visnav::telemetry {
 namespace {
 
 constexpr int kCycles = 1000;
-constexpr std::uint64_t kRareCycloneAllocations = 2;  // on the cycle's thread per 1000 cycles, see measure()
+// On the cycle's thread per 1000 cycles (3000 writes), see measure(): 2 % of the writes. With a remote
+// reliable reader Cyclone 0.10.2 allocates inside dds_write on ~0.3-1 % of the writes (0-10 per run seen;
+// test_soak traced them to ddsrt_malloc under dds_write); one allocation per cycle of ours would be 1000.
+constexpr std::uint64_t kRareCycloneAllocations = 60;
 constexpr std::uint64_t kBackgroundSlack = 100;  // Cyclone's own threads (heartbeats, acks, leases); 25 seen
                                                  // under a loaded parallel ctest. One allocation per cycle of
                                                  // ours would add 1000: the bound still catches it.
@@ -87,8 +90,7 @@ void measure(Flight& flight, const char* what, int spacing_us) {
       visnav::test::countsMalloc() ? 1 : 0,
       static_cast<unsigned long long>(flight.writer.samplePoolMisses()));
   EXPECT_EQ(flight.writer.counters().write_failures, 0U);
-  // Rare: Cyclone's write path itself allocated once in 6 of 200 repeated runs (3000 writes each; inside
-  // dds_write, below our serdata, stripped library: not traced). One allocation per cycle would be 1000.
+  // Cyclone's write path (kRareCycloneAllocations); one allocation per cycle would be 1000.
   EXPECT_LE(n.thread, kRareCycloneAllocations);
   EXPECT_EQ(flight.writer.samplePoolMisses(), 0U);
   EXPECT_LE(n.process, kBackgroundSlack);
