@@ -26,7 +26,7 @@ void usage(std::FILE* stream) {
                "  --duration S   stop after S seconds\n"
                "  --ready-file FILE  create FILE once every reader has matched a writer (a publisher that\n"
                "                 waits for it loses nothing: visnavd --wait-file)\n"
-               "  exit code: 0 done, 1 --samples not reached, 2 usage or setup error\n",
+               "  exit code: 0 done, 1 --samples not reached, 2 usage or setup error, 3 no sample at all\n",
                visnav::monitor::kLinkUsage);
 }
 
@@ -77,6 +77,14 @@ int main(int argc, char** argv) {
   if (!error.ok) {
     std::fprintf(stderr, "visnav-monitor: %s\n", error.message.c_str());
     return 2;
+  }
+  if (result.pose.samples() + result.far_range.samples() + result.health.samples() == 0) {
+    // Silence is a misconfiguration far more often than an idle flight program: say where it listened.
+    std::fprintf(stderr,
+                 "visnav-monitor: no sample on any topic in %.1f s (domain %d, partition '%s'): is visnavd "
+                 "running, and do CYCLONEDDS_URI, --domain and --partition match its [telemetry]?\n",
+                 result.elapsed_s, options.link.domain_id, options.link.partitionName());
+    return 3;
   }
   return options.stop_after_pose_samples > 0 && !result.reached_sample_limit && !g_stop.load() ? 1 : 0;
 }

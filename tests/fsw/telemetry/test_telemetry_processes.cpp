@@ -101,6 +101,19 @@ class FlightLoop {
   std::thread thread;
 };
 
+TEST(TelemetryProcesses, MonitorThatHearsNothingSaysSoAndFails) {
+  // A partition nobody publishes on stands for a wrong CYCLONEDDS_URI, domain or partition.
+  const std::string partition = "silent-" + std::to_string(getpid());
+  const std::string err = test::tempPath("monitor-silent");
+  const pid_t monitor = test::spawnProcess(
+      {"/bin/sh", "-c",
+       std::string(VISNAV_MONITOR) + " --partition " + partition + " --duration 1 --no-view 2> " + err});
+  ASSERT_GT(monitor, 0);
+  EXPECT_EQ(test::waitProcess(monitor, 30.0), 3);
+  EXPECT_NE(test::readText(err).find("no sample on any topic"), std::string::npos) << test::readText(err);
+  EXPECT_NE(test::readText(err).find("partition '" + partition + "'"), std::string::npos);
+}
+
 TEST(TelemetryProcesses, VisnavCommandExitCodeReflectsTheAcknowledgment) {
   const TelemetryParams params = test::uniqueLinkParams("command");
   const std::string partition = params.partitionName();
