@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../../../tools/monitor/src/monitor_view.hpp"
 #include "../../fsw/telemetry/process_util.hpp"
 #include "../../fsw/telemetry/telemetry_test_data.hpp"
 #include "visnav/eval/replay_csv.hpp"
@@ -98,4 +99,24 @@ TEST(CsvRecorder, PoseCsvReadsBackInVisnavEvalWithTheSamePoses) {
 }
 
 }  // namespace
+TEST(MonitorView, FaultsAreNamedAsInVisnavdsLog) {
+  LatestSamples latest;
+  latest.have_pose = true;
+  latest.pose.fault_bits = kFaultResidual | kFaultInnovation;
+  latest.have_health = true;
+  latest.health.fault_bits = 0;
+  MonitorOptions options;
+  MonitorResult result;
+  char* text = nullptr;
+  std::size_t size = 0;
+  std::FILE* out = open_memstream(&text, &size);
+  ASSERT_NE(out, nullptr);
+  drawView(out, options, latest, result);
+  std::fclose(out);
+  const std::string view(text, size);
+  std::free(text);
+  EXPECT_NE(view.find("faults residual,innovation\n"), std::string::npos) << view;
+  EXPECT_NE(view.find("health: mode standby  faults none  "), std::string::npos) << view;
+}
+
 }  // namespace visnav::monitor

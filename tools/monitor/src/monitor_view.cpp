@@ -1,5 +1,8 @@
 #include "monitor_view.hpp"
 
+#include <string>
+
+#include "visnav/core/stage_interfaces.hpp"
 #include "visnav/core/types.hpp"
 #include "visnav/telemetry/sample_mapping.hpp"
 
@@ -24,6 +27,17 @@ void topicLine(std::FILE* out, const char* name, const TopicStats& s) {
     std::fputs("      n/a\n", out);
 }
 
+/// "none", or the names of the set fault bits ("residual,innovation"), as visnavd's log spells them.
+std::string faultList(std::uint32_t bits) {
+  std::string text;
+  for (int b = 0; b < 32; ++b) {
+    if ((bits & (1U << b)) == 0U) continue;
+    if (!text.empty()) text += ',';
+    text += faultName(b);
+  }
+  return text.empty() ? "none" : text;
+}
+
 }  // namespace
 
 void drawView(std::FILE* out, const MonitorOptions& options, const LatestSamples& latest,
@@ -33,9 +47,9 @@ void drawView(std::FILE* out, const MonitorOptions& options, const LatestSamples
                options.link.domain_id, options.link.partitionName(), result.elapsed_s);
   if (latest.have_pose) {
     const visnav_PoseEstimate& p = latest.pose;
-    std::fprintf(out, "mode %-12s status %-9s frame %-8llu quality %.3f  faults 0x%03x\n",
+    std::fprintf(out, "mode %-12s status %-9s frame %-8llu quality %.3f  faults %s\n",
                  telemetry::modeName(p.mode), telemetry::trackStatusName(p.status),
-                 static_cast<unsigned long long>(p.frame_number), p.quality, p.fault_bits);
+                 static_cast<unsigned long long>(p.frame_number), p.quality, faultList(p.fault_bits).c_str());
     std::fprintf(out, "position t_c_m [m]   x %9.4f  y %9.4f  z %9.4f\n", p.position_m[0], p.position_m[1],
                  p.position_m[2]);
     std::fprintf(out, "attitude [deg]       yaw %8.3f  pitch %8.3f  roll %8.3f   surfaces %u lines %u/%u\n",
@@ -55,8 +69,9 @@ void drawView(std::FILE* out, const MonitorOptions& options, const LatestSamples
   if (latest.have_health) {
     const visnav_Health& h = latest.health;
     std::fprintf(
-        out, "\nhealth: mode %s  faults 0x%03x  frames %llu  dropped %llu  slips %llu  transitions %llu\n",
-        telemetry::modeName(h.mode), h.fault_bits, static_cast<unsigned long long>(h.frames_processed),
+        out, "\nhealth: mode %s  faults %s  frames %llu  dropped %llu  slips %llu  transitions %llu\n",
+        telemetry::modeName(h.mode), faultList(h.fault_bits).c_str(),
+        static_cast<unsigned long long>(h.frames_processed),
         static_cast<unsigned long long>(h.frames_dropped), static_cast<unsigned long long>(h.cycle_slips),
         static_cast<unsigned long long>(h.mode_transitions));
     std::fprintf(out, "  last transition %s -> %s at frame %llu: %s\n",
