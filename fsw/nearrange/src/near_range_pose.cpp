@@ -1,0 +1,139 @@
+// The near-range tracker's pose from its fitted lines (paper sec. II-F/G): vertices where measured lines of
+// adjacent edges meet (eq. 6), the LM fit over them (eq. 7) or over every inlier edge point, and the
+// leave-one-line-out refit that drops one wrong line. Measuring the lines: near_range_tracker.cpp.
+#include <cmath>
+
+#include "visnav/nearrange/near_range_tracker.hpp"
+
+namespace visnav {
+
+bool NearRangeTracker::fitPose(const Pose& predicted, Pose& pose, PoseFitResult& fit, NearRangeResult& out) {
+  // Sec. II-G, then one wrong line may be dropped (rejectWorstLine) when the fit fails or stays high.
+  bool solved = solvePose(predicted, -1, out.lines_used, pose, fit, out.vertices, out.flags);
+  const bool solver_failed = !solved && (out.flags & kFlagTooFewLines) == 0U;
+  if (solver_failed || (solved && fit.rms_px > m_params.degraded_rms_px))
+    solved = rejectWorstLine(predicted, solved, pose, fit, out);
+  out.rms_px = fit.rms_px;
+  out.lm_iterations = fit.lm.iterations;
+  if ((out.flags & kFlagTooFewLines) == 0U && !solved) out.flags |= kFlagSolverFailed;
+  if (solved && fit.rms_px > m_params.max_rms_px) out.flags |= kFlagResidualTooHigh;
+  if (solved && fit.rms_px > m_params.degraded_rms_px) out.flags |= kFlagResidualHigh;
+  if (solved && !(pose.t_c_m.z() > 0.0)) out.flags |= kFlagOutOfImage;
+  return solved;
+}
+
+int NearRangeTracker::collectVertices(int excluded_slot) {
+  // A vertex is observed where two measured lines of edges meeting at it intersect (eq. 6, Cramer form).
+  // With outline edges a vertex may join three measured edges: the best-conditioned pair (largest |sin| of
+  // the angle between the lines) gives its one observation, so no corner is counted twice.
+  m_vertex_obs.clear();
+  for (double& best : m_vertex_best_sin) best = 0.0;
+  const auto& edges = m_model.edges();
+  const int slots = static_cast<int>(m_edges.size());
+  for (int i = 0; i < slots; ++i) {
+    if (!m_edges[i].line_ok || i == excluded_slot) continue;
+    const ModelEdge& ei = edges[m_edges[i].model_edge];
+    for (int j = i + 1; j < slots; ++j) {
+      if (!m_edges[j].line_ok || j == excluded_slot) continue;
+      const ModelEdge& ej = edges[m_edges[j].model_edge];
+      const int shared =
+          (ei.v0 == ej.v0 || ei.v0 == ej.v1) ? ei.v0 : ((ei.v1 == ej.v0 || ei.v1 == ej.v1) ? ei.v1 : -1);
+      if (shared < 0) continue;
+      const Line2d& a = m_edges[i].line;
+      const Line2d& b = m_edges[j].line;
+      const double sin_angle = std::fabs(std::sin(a.theta_rad - b.theta_rad));
+      Vec2 px;
+      // Nearly parallel neighbours give no vertex.
+      if (sin_angle <= m_vertex_best_sin[shared] || !intersect(a, b, px, kMinVertexSinAngle)) continue;
+      m_vertex_best_sin[shared] = sin_angle;
+      m_vertex_best_px[shared] = px;
+    }
+  }
+  for (std::size_t v = 0; v < m_vertex_best_sin.size(); ++v) {
+    if (m_vertex_best_sin[v] <= 0.0) continue;
+    VertexObservation obs;
+    obs.vertex = static_cast<int>(v);
+    obs.px_ideal = m_vertex_best_px[v];
+    m_vertex_obs.push(obs);
+  }
+  return static_cast<int>(m_vertex_obs.size());
+}
+
+int NearRangeTracker::collectEdgePoints(int excluded_slot) {
+  m_edge_obs.clear();
+  for (int k = 0; k < static_cast<int>(m_edges.size()); ++k) {
+    const EdgeMeasurement& slot = m_edges[k];
+    if (!slot.line_ok || k == excluded_slot) continue;
+    for (int i = 0; i < slot.point_count; ++i) {
+      if (!m_scan_points[slot.first_point + i].inlier) continue;
+      m_edge_obs.push({slot.model_edge, m_points_ideal[slot.first_point + i]});
+    }
+  }
+  return static_cast<int>(m_edge_obs.size());
+}
+
+bool NearRangeTracker::solvePose(const Pose& predicted, int excluded_slot, int lines_used, Pose& pose,
+                                 PoseFitResult& fit, int& vertices, std::uint32_t& flags) {
+  pose = predicted;
+  fit = PoseFitResult{};
+  const LmOptions lm{m_params.lm_max_iterations};
+  vertices = collectVertices(excluded_slot);
+  const bool vertex_mode = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex);
+  if (vertex_mode && lines_used >= kMinLinesForVertexPose && vertices >= kMinLinesForVertexPose)
+    return fitPoseToVertices(m_camera, m_model, m_vertex_obs.data(), vertices, lm, m_params.pixel_sigma_px,
+                             pose, fit);
+  // Point-to-line needs no complete corner: three non-parallel lines with many points still fix 6 DOF.
+  // When the vertex residual lacks corners this is the fallback, and the frame is marked degraded.
+  const int n = collectEdgePoints(excluded_slot);
+  const int min_lines = vertex_mode ? kMinLinesForPointToLine : kMinLinesForVertexPose;
+  if (lines_used < min_lines || n < kMinEdgePointsForPose) {
+    flags |= kFlagTooFewLines;
+    return false;
+  }
+  if (vertex_mode) flags |= kFlagResidualFallback;
+  return fitPoseToEdgePoints(m_camera, m_model, m_edge_obs.data(), n, lm, m_params.pixel_sigma_px, pose, fit);
+}
+
+bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose& pose, PoseFitResult& fit,
+                                       NearRangeResult& out) {
+  // One wrong line (e.g. locked onto the parallel neighbour edge of a face seen at a grazing angle) spoils
+  // every vertex it touches. Refit without each used line in turn (bounded: one LM per line) and keep the
+  // best, if it explains the rest clearly better; the frame is then degraded (kFlagLineRejected).
+  if (out.lines_used < kMinLinesForLineRejection) return solved;
+  int best_slot = -1;
+  Pose best_pose = pose;
+  PoseFitResult best_fit = fit;
+  std::uint32_t best_flags = 0;
+  for (int k = 0; k < static_cast<int>(m_edges.size()); ++k) {
+    if (!m_edges[k].line_ok) continue;
+    Pose trial_pose;
+    PoseFitResult trial_fit;
+    int trial_vertices = 0;  // unused: recounted for the kept solution
+    std::uint32_t trial_flags = 0;
+    if (!solvePose(predicted, k, out.lines_used - 1, trial_pose, trial_fit, trial_vertices, trial_flags))
+      continue;
+    const bool better =
+        best_slot < 0 && !solved ? true : trial_fit.rms_px < m_params.reject_line_rms_gain * best_fit.rms_px;
+    if (better) {
+      best_slot = k;
+      best_pose = trial_pose;
+      best_fit = trial_fit;
+      best_flags = trial_flags;
+    }
+  }
+  if (best_slot < 0) {
+    out.vertices = collectVertices(-1);  // leave the buffers as the kept solution saw them
+    return solved;
+  }
+  EdgeMeasurement& rejected = m_edges[best_slot];
+  rejected.line_ok = false;
+  for (int b = 0; b < kPolarityBins; ++b) m_polarity_next[rejected.model_edge * kPolarityBins + b] = 0;
+  --out.lines_used;
+  out.flags |= kFlagLineRejected | best_flags;
+  out.vertices = collectVertices(-1);
+  pose = best_pose;
+  fit = best_fit;
+  return true;
+}
+
+}  // namespace visnav
