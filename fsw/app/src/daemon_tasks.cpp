@@ -76,7 +76,7 @@ void Daemon::noteCameraResult(camera::AcquireResult result) {
         m_log.event(LogLevel::kError, "camera_lost", "driver=%s error=\"%s\"", source.name(),
                     quotable(source.lastError(), text));
       }
-      if (source.recover()) {  // one bounded reopen attempt per cycle
+      if (source.recover()) {  // bounded; the driver spaces its attempts (quick ones, then a back-off)
         m_camera_lost = false;
         m_log.event(LogLevel::kNotice, "camera_recovered", "driver=%s recoveries=%" PRIu64, source.name(),
                     source.counters().recoveries);

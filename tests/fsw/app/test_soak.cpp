@@ -2,7 +2,7 @@
 // on and a reliable ground reader (visnav-monitor) in another process. Shows, over the whole run:
 //   - allocations after init: none from visnav's code (DaemonNoAlloc proves 0 with telemetry off and on
 //     without a remote reader); with a matched remote reader, Cyclone 0.10.2's dds_write allocates now and
-//     then (backtraces: ddsrt_malloc under dds_write; about 0.7 % of writes at 200 Hz; freed again), which
+//     then (backtraces: ddsrt_malloc under dds_write; 0.2-1 % of writes at 100-275 Hz; freed again), which
 //     this test bounds at 2 % of the writes and shows to be freed (flat RSS);
 //   - flat resident memory (RSS sampled ten times; no growth after the first sample);
 //   - no counter overflow or drift (cycles, frames, samples and the Health counters agree exactly);

@@ -28,7 +28,7 @@ enum class LogLevel : int { kError = 3, kWarning = 4, kNotice = 5, kInfo = 6 };
 class EventLog {
  public:
   static constexpr std::size_t kLineCapacity = 1024;
-  /// Lines the ring holds: at 5 Hz a stalled reader can be 50 s behind a burst of 5 lines per cycle.
+  /// Lines the ring holds: at 5 Hz and 5 lines per cycle, about 40 s of a stalled reader.
   static constexpr std::size_t kRingLines = 1024;
   /// stopAsync(): longest wait for a stalled reader to take the lines still in the ring.
   static constexpr std::int64_t kStopFlushNs = 2'000'000'000;
