@@ -45,7 +45,6 @@ LoadError openCamera(const VisnavConfig& config, bool simulated_clock, OpenedCam
                               "': " + e.message);
   if (driver == camera::CameraDriver::kReplay) {
     const auto& sequence = static_cast<const replay::ReplayCamera&>(*out.source).sequence();
-    out.playback = true;
     out.have_intrinsics = out.have_model = true;
     out.intrinsics = sequence.camera;
     out.model = sequence.model;
@@ -55,7 +54,6 @@ LoadError openCamera(const VisnavConfig& config, bool simulated_clock, OpenedCam
   } else if (config.camera.driverKind() == camera::CameraDriver::kSynthetic) {
     const auto& scenario_camera = static_cast<const synthetic::ScenarioCamera&>(*out.source);
     const synthetic::SyntheticCameraConfig& setup = scenario_camera.config();
-    out.playback = true;
     out.have_intrinsics = out.have_model = true;
     out.intrinsics = setup.camera;
     out.model = setup.model;
