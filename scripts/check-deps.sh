@@ -23,6 +23,7 @@ declare -A DIRECT=(
   [io]="geometry"
   [telemetry]="navigation io"
   [app]="navigation executive telemetry io camera v4l2 libcamera replay synthetic"
+  [capi]="app navigation executive io"
   [camera]="core"
   [v4l2]="camera"
   [libcamera]="camera"
