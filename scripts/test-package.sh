@@ -1,0 +1,189 @@
+#!/usr/bin/env bash
+# The visnav .deb in a clean Debian 12 root: install, enable, start, upgrade, remove, purge, with real dpkg
+# running the package's real maintainer scripts (cmake/deb/{postinst,prerm,postrm}) in a chroot.
+#   scripts/test-package.sh [DEB]      # DEB default: build/release/package_test/visnav_<version>_amd64.deb
+#                                      # (ctest -R package_deb_contents in build/release makes it)
+# Root: `debootstrap --variant=minbase bookworm` plus systemd (for systemctl's offline unit-file operations,
+# systemd-sysusers, deb-systemd-helper) and the package's run-time Depends, taken from the machine's own
+# Debian mirror (its apt sources) once and cached in build/package-root/base.tar; every run unpacks a fresh
+# copy. No systemd runs in a chroot, so /usr/bin/systemctl is diverted to a stand-in (below) that records
+# every call: unit-file verbs (enable, disable, is-enabled, mask, ...) go to the real systemctl, which edits
+# the links offline; runtime verbs (start, stop, try-restart, is-active, daemon-reload) are recorded and
+# answered from a state file. /run/systemd/system exists, so the maintainer scripts act as on a booted system.
+# Checks: the visnav user (sysusers) in group video; conffiles; enable makes the multi-user.target.wants
+# link; an upgrade (the same package repacked as <version>+1) try-restarts the running service and does not
+# stop it; remove stops it; purge removes the enable link, /etc/visnav and the helper's state, and leaves no
+# file of the package: the root's file list after purge equals the one before install, except for dpkg's and
+# apt's own records, logs, and the visnav user and group, which stay (Debian policy: a uid may own files
+# elsewhere; the postrm says so).
+# Needs root (chroot), debootstrap (scripts/install-deps.sh) and the Debian mirror on the first run.
+# Exit 0 all checks passed, 1 a check failed, 3 cannot run here (no root, no debootstrap, no mirror).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+t0=$(date +%s)
+version=$(sed -n 's/^project(visnav VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
+deb=$(realpath -m "${1:-build/release/package_test/visnav_${version}_amd64.deb}")
+cache=build/package-root
+root=$PWD/$cache/root
+if [ "$(id -u)" -ne 0 ] || ! command -v debootstrap >/dev/null; then
+  echo "test-package: needs root and debootstrap (scripts/install-deps.sh)" >&2
+  exit 3
+fi
+if [ ! -f "$deb" ]; then
+  echo "test-package: $deb missing (ctest -R package_deb_contents builds it)" >&2
+  exit 1
+fi
+failures=0
+ok() {  # ok DESCRIPTION COMMAND...: one line per check, counted
+  local desc=$1
+  shift
+  if "$@"; then echo "test-package: ok   $desc"; else
+    echo "test-package: FAIL $desc"
+    failures=$((failures + 1))
+  fi
+}
+cleanup() {
+  for m in proc dev/pts dev; do mountpoint -q "$root/$m" 2>/dev/null && umount -l "$root/$m"; done
+  return 0
+}
+trap cleanup EXIT
+
+# 1. The base root, cached: minbase + systemd + the package's Depends (from dpkg-deb, versions dropped).
+depends=$(dpkg-deb -f "$deb" Depends | tr ',' '\n' | sed -e 's/[(|].*//' -e 's/ //g' | grep -v '^$' | sort -u |
+  paste -sd, -)
+include="systemd,$depends"
+mkdir -p "$cache"
+if [ ! -f "$cache/base.tar" ] || [ "$(cat "$cache/base.include" 2>/dev/null)" != "$include" ]; then
+  mirror=$(sed -n 's/^URIs: *\([^ ]*\).*/\1/p' /etc/apt/sources.list.d/debian.sources 2>/dev/null | head -n 1)
+  [ -n "$mirror" ] || mirror=$(awk '$1 == "deb" && $3 == "bookworm" {print $2; exit}' /etc/apt/sources.list 2>/dev/null)
+  if [ -z "$mirror" ]; then
+    echo "test-package: no Debian mirror in this machine's apt sources" >&2
+    exit 3
+  fi
+  rm -rf "$cache/base"
+  echo "test-package: debootstrap bookworm (minbase + $include) from the machine's mirror"
+  if ! debootstrap --variant=minbase --include="$include" bookworm "$cache/base" "$mirror" \
+      >"$cache/debootstrap.log" 2>&1; then
+    tail -n 20 "$cache/debootstrap.log" >&2
+    echo "test-package: debootstrap failed (log: $cache/debootstrap.log)" >&2
+    exit 3
+  fi
+  rm -rf "$cache/base/var/cache/apt/archives/"*.deb
+  tar -C "$cache/base" -cf "$cache/base.tar" .
+  echo "$include" >"$cache/base.include"
+  rm -rf "$cache/base"
+  echo "test-package: base root cached ($(du -m "$cache/base.tar" | cut -f1) MB) at $(( $(date +%s) - t0 )) s"
+fi
+rm -rf "$root"
+mkdir -p "$root"
+tar -C "$root" -xf "$cache/base.tar"
+mount -t proc proc "$root/proc"
+mount --bind /dev "$root/dev"
+in_root() { chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin "$@"; }
+
+# 2. The systemctl stand-in.
+in_root dpkg-divert --quiet --local --rename --add /usr/bin/systemctl
+cat >"$root/usr/bin/systemctl" <<'EOF'
+#!/bin/sh
+# test-package.sh's stand-in: records every call in /var/log/systemctl.calls; runtime verbs answered from
+# /run/fake-systemd/<unit>.active, unit-file verbs done by the real systemctl (offline in a chroot).
+echo "$*" >>/var/log/systemctl.calls
+verb=""
+unit=""
+for arg in "$@"; do
+  case "$arg" in
+    -*) ;;
+    *) if [ -z "$verb" ]; then verb=$arg; elif [ -z "$unit" ]; then unit=$arg; fi ;;
+  esac
+done
+state=/run/fake-systemd/$unit.active
+mkdir -p /run/fake-systemd
+case "$verb" in
+  daemon-reload | daemon-reexec | reset-failed) exit 0 ;;
+  start | restart | reload-or-restart) touch "$state"; echo "$verb $unit" >>/var/log/systemctl.actions ;;
+  stop) rm -f "$state"; echo "stop $unit" >>/var/log/systemctl.actions ;;
+  try-restart | condrestart | try-reload-or-restart)
+    [ -e "$state" ] && echo "restart $unit (running)" >>/var/log/systemctl.actions ;;
+  is-active) [ -e "$state" ] ;;
+  is-system-running) echo running ;;
+  *) SYSTEMD_OFFLINE=1 exec /usr/bin/systemctl.distrib "$@" ;;  # /run/systemd/system exists: say "offline"
+esac
+EOF
+chmod 755 "$root/usr/bin/systemctl"
+mkdir -p "$root/run/systemd/system"
+: >"$root/var/log/systemctl.calls"
+: >"$root/var/log/systemctl.actions"
+snapshot() {  # every path in the root but dpkg's/apt's records, logs, caches and the stand-in's state
+  (cd "$root" && find . -xdev \( -path ./proc -o -path ./dev -o -path ./run -o -path ./var/lib/dpkg \
+    -o -path ./var/log -o -path ./var/cache -o -path ./tmp -o -path ./var/lib/apt \) -prune -o -print | sort)
+}
+snapshot >"$cache/before.txt"
+
+# 3. Install.
+cp "$deb" "$root/tmp/visnav.deb"
+echo "test-package: dpkg -i $(basename "$deb")"
+in_root dpkg -i /tmp/visnav.deb >"$cache/install.log" 2>&1 || { cat "$cache/install.log"; exit 1; }
+ok "installed: dpkg status 'install ok installed'" \
+  test "$(in_root dpkg-query -W -f='${Status}' visnav)" = "install ok installed"
+ok "sysusers: user visnav exists, in group video" sh -c "chroot '$root' id -nG visnav | grep -qw video"
+ok "visnavd --check accepts the packaged /etc/visnav/visnavd.toml" \
+  in_root /usr/bin/visnavd --check /etc/visnav/visnavd.toml
+ok "not enabled on install (no enable link)" test ! -e "$root/etc/systemd/system/multi-user.target.wants/visnavd.service"
+ok "conffiles registered" sh -c "chroot '$root' dpkg-query -W -f='\${Conffiles}' visnav | grep -q /etc/visnav/visnavd.toml"
+
+# 4. Enable and start as an operator would.
+in_root systemctl enable visnavd.service >>"$cache/install.log" 2>&1
+in_root systemctl start visnavd.service
+link=$(readlink "$root/etc/systemd/system/multi-user.target.wants/visnavd.service" || true)
+ok "enable: multi-user.target.wants/visnavd.service -> the packaged unit ($link)" \
+  sh -c "case '$link' in /lib/systemd/system/visnavd.service | /usr/lib/systemd/system/visnavd.service) ;; *) false ;; esac"
+# An operator's edit of a conffile survives the upgrade.
+echo "# operator edit" >>"$root/etc/visnav/visnavd.toml"
+
+# 5. Upgrade: the same package repacked with version <version>+1.
+rm -rf "$cache/repack" && mkdir -p "$cache/repack"
+dpkg-deb -R "$deb" "$cache/repack/pkg"
+sed -i "s/^Version: .*/Version: ${version}+1/" "$cache/repack/pkg/DEBIAN/control"
+dpkg-deb --root-owner-group -b "$cache/repack/pkg" "$root/tmp/visnav-upgrade.deb" >/dev/null
+: >"$root/var/log/systemctl.actions"
+in_root dpkg -i /tmp/visnav-upgrade.deb >"$cache/upgrade.log" 2>&1 || { cat "$cache/upgrade.log"; exit 1; }
+ok "upgrade: version ${version}+1 installed" test "$(in_root dpkg-query -W -f='${Version}' visnav)" = "${version}+1"
+ok "upgrade: the running visnavd is restarted, once, and not stopped" \
+  test "$(cat "$root/var/log/systemctl.actions")" = "restart visnavd.service (running)"
+ok "upgrade: the enable link stays" test -L "$root/etc/systemd/system/multi-user.target.wants/visnavd.service"
+ok "upgrade: the operator's conffile edit survives" grep -q "^# operator edit" "$root/etc/visnav/visnavd.toml"
+
+# 6. Remove: stops the service, keeps the conffiles.
+: >"$root/var/log/systemctl.actions"
+in_root dpkg --remove visnav >"$cache/remove.log" 2>&1 || { cat "$cache/remove.log"; exit 1; }
+ok "remove: visnavd stopped" test "$(cat "$root/var/log/systemctl.actions")" = "stop visnavd.service"
+ok "remove: binaries gone, conffiles kept (dpkg state config-files)" sh -c \
+  "[ ! -e '$root/usr/bin/visnavd' ] && [ -f '$root/etc/visnav/visnavd.toml' ] &&
+   [ \"\$(chroot '$root' dpkg-query -W -f='\${Status}' visnav)\" = 'deinstall ok config-files' ]"
+
+# 7. Purge: nothing left but the user.
+in_root dpkg --purge visnav >"$cache/purge.log" 2>&1 || { cat "$cache/purge.log"; exit 1; }
+ok "purge: no multi-user.target.wants link (dangling or not)" \
+  sh -c "! ls -A '$root'/etc/systemd/system/*.wants/visnavd.service >/dev/null 2>&1"
+ok "purge: /etc/visnav gone" test ! -e "$root/etc/visnav"
+ok "purge: no mask link left" test ! -e "$root/etc/systemd/system/visnavd.service"
+ok "purge: package unknown to dpkg" sh -c "! chroot '$root' dpkg-query -W visnav >/dev/null 2>&1"
+ok "purge: the visnav user stays (policy)" sh -c "chroot '$root' getent passwd visnav >/dev/null"
+snapshot >"$cache/after.txt"
+# Allowed differences: the user's lines live in these files, which exist before and after (same paths), and
+# deb-systemd-helper's state folders (empty after purge; checked below).
+leftover=$(comm -13 "$cache/before.txt" "$cache/after.txt" |
+  grep -v -e '^\./var/lib/systemd/deb-systemd-helper-\(enabled\|masked\)$' -e '^\./etc/\(passwd\|group\|shadow\|gshadow\)-$' || true)
+missing=$(comm -23 "$cache/before.txt" "$cache/after.txt" || true)
+ok "purge: no file of the package left (file list = before install)" test -z "$leftover$missing"
+[ -n "$leftover$missing" ] && printf 'left: %s\nmissing: %s\n' "$leftover" "$missing"
+ok "purge: deb-systemd-helper state holds nothing for visnavd" \
+  sh -c "! find '$root/var/lib/systemd' -name '*visnavd*' | grep -q ."
+echo "test-package: systemctl calls made by the maintainer scripts and the operator:"
+sed 's/^/  /' "$root/var/log/systemctl.calls"
+echo "test-package: $(( $(date +%s) - t0 )) s"
+if [ "$failures" -ne 0 ]; then
+  echo "test-package: $failures check(s) failed"
+  exit 1
+fi
+echo "test-package: all checks passed"
