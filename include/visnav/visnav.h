@@ -180,6 +180,9 @@ VISNAV_API int visnav_start_near_range(visnav_handle* handle, const double posit
 /** 1: per-stage timings from CLOCK_MONOTONIC (not deterministic); 0 (default): timings are zero. */
 VISNAV_API int visnav_set_timing(visnav_handle* handle, int enabled);
 
+/** The camera's image size in pixels (what visnav_step expects). */
+VISNAV_API int visnav_image_size(const visnav_handle* handle, int32_t* width, int32_t* height);
+
 /** Reason of the handle's last failed call ("" after success), valid until the next call on the handle. */
 VISNAV_API const char* visnav_last_error(const visnav_handle* handle);
 

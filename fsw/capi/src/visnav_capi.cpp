@@ -20,6 +20,8 @@
 struct visnav_handle {
   visnav::nav::NavigationPipeline pipeline;
   std::uint64_t next_frame = 0;  ///< sequence number the next stepped image gets
+  std::int32_t width = 0;        ///< the camera's image size
+  std::int32_t height = 0;
   char last_error[256] = {};
 };
 
@@ -148,6 +150,8 @@ visnav::LoadError build(const char* config_path, const char* camera_path, const 
   }
   if (!have_camera) return visnav::LoadError::failure("no camera: pass camera_path or set [files] camera");
   if (!have_model) return visnav::LoadError::failure("no model: pass model_path or set [files] model");
+  handle.width = intrinsics.width_px;
+  handle.height = intrinsics.height_px;
   return handle.pipeline.init(visnav::PinholeCamera(intrinsics), model, params);
 }
 
@@ -315,6 +319,13 @@ int visnav_set_timing(visnav_handle* handle, int enabled) {
   if (handle == nullptr) return VISNAV_ERROR_INVALID_ARGUMENT;
   handle->pipeline.setClock(enabled != 0 ? &visnav::exec::monotonicNowNs : nullptr);
   handle->last_error[0] = '\0';
+  return VISNAV_OK;
+}
+
+int visnav_image_size(const visnav_handle* handle, std::int32_t* width, std::int32_t* height) {
+  if (handle == nullptr || width == nullptr || height == nullptr) return VISNAV_ERROR_INVALID_ARGUMENT;
+  *width = handle->width;
+  *height = handle->height;
   return VISNAV_OK;
 }
 

@@ -78,6 +78,11 @@ TEST(CApi, CreateReportsLoadErrorsAsCodeAndText) {
 TEST(CApi, StepRejectsBadArgumentsAndLeavesTheSolutionAlone) {
   visnav_handle* h = createOrFail();
   ASSERT_NE(h, nullptr);
+  std::int32_t width = 0, height = 0;
+  ASSERT_EQ(visnav_image_size(h, &width, &height), VISNAV_OK);
+  EXPECT_EQ(width, 640);
+  EXPECT_EQ(height, 480);
+  EXPECT_EQ(visnav_image_size(h, nullptr, &height), VISNAV_ERROR_INVALID_ARGUMENT);
   std::vector<std::uint8_t> image(640 * 480, 10);
   visnav_solution sol;
   std::memset(&sol, 0xAB, sizeof(sol));
