@@ -86,8 +86,8 @@ LoadError writePlot(const std::string& path, const ScenarioParams& params, const
   Canvas c(kWidth, 60 + panels * (kPanelH + 30) + 110, kWhite);
   const double t_max = std::max(v.frames.back().t_s, t.frames.back().t_s) + 1.0;
   c.text(kLeft, 10,
-         "visnav-closedloop " + params.name + ": from " + fmt("%.0f", params.start_range_m) +
-             " m to the hold point; blue: visnav in the loop, orange: the same guidance fed the truth",
+         "visnav-closedloop " + params.name + ", from " + fmt("%.0f", params.start_range_m) +
+             " m. blue: visnav in the loop, orange: the same guidance fed the truth",
          kBlack, kText);
   int top = 40;
   const double r_hi = std::ceil(std::log10(params.start_range_m * 1.2));
@@ -104,9 +104,8 @@ LoadError writePlot(const std::string& path, const ScenarioParams& params, const
   curve(
       c, p, t, [](const FrameLog& f) { return f.position_error_m; }, kTruth);
   top += kPanelH + 30;
-  p = frame(c, top,
-            "attitude error at the hold attitude [deg] (mod the plate's 180 deg symmetry), gate 2 deg", t_max,
-            0.0, 30.0, false);
+  p = frame(c, top, "attitude error to the hold attitude [deg] (modulo the plate symmetry), gate 2 deg",
+            t_max, 0.0, 30.0, false);
   c.line(kLeft, p.py(params.gate_attitude_deg), kRight - 1, p.py(params.gate_attitude_deg), kGate);
   curve(
       c, p, v, [](const FrameLog& f) { return f.attitude_error_deg; }, kVisnav);
