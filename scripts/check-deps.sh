@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Dependency direction of the flight libraries and drivers (README.md, "The house"): every
 # `#include "visnav/<folder>/..."` in fsw/<X> or drivers/<X> must name X itself or a folder X may use, and only
-# fsw/telemetry speaks DDS (<dds/...>, "idl/..."). The graph below is one-way (checked: no cycle); a folder may
+# fsw/telemetry speaks DDS (<dds/...>, "idl/..."), also not through a header: fsw/telemetry's public headers
+# (fsw/telemetry/include) include no DDS header, its DDS-level headers (fsw/telemetry/include-dds: for ground
+# tools and tests) are included by no other fsw/ or drivers/ folder, and no other folder's CMakeLists.txt links
+# Cyclone or the DDS-level target (fsw/telemetry/README.md, "Interfaces"). The graph below is one-way (checked: no cycle); a folder may
 # use what its direct dependencies may use. A CMakeLists.txt that adds another folder's include directory by
 # path (the way round the graph) is held to the same rule. Prints file:line and the offending include for each
 # violation and exits 1; exits 0 when there is none. CI runs it as the ctest `dependency_direction` (label
@@ -32,6 +35,7 @@ declare -A DIRECT=(
 )
 # The only folder that may include the DDS C API or the idlc-generated types.
 DDS_FOLDER=telemetry
+DDS_INCLUDE=include-dds  # its DDS-level headers (ground tools, tests); include/ is its DDS-free interface
 
 declare -A ALLOWED=()  # folder -> " a b c " (transitive closure, with spaces around every name)
 
@@ -82,13 +86,36 @@ check_tree() {
       violations=$((violations + 1))
     done < <(grep -rnE --include='*.cpp' --include='*.hpp' --include='*.h' --include='*.c' \
                '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]visnav/[A-Za-z0-9_]+/' "$dir" 2>/dev/null)
-    # DDS outside telemetry.
+    # DDS outside telemetry: directly, or through one of telemetry's DDS-level headers.
     if [[ $folder != "$DDS_FOLDER" ]]; then
       while IFS=: read -r file line text; do
         echo "${file#"$root"/}:$line: $text  <- only fsw/$DDS_FOLDER talks to DDS"
         violations=$((violations + 1))
       done < <(grep -rnE --include='*.cpp' --include='*.hpp' --include='*.h' --include='*.c' \
                  '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"](dds/|idl/)' "$dir" 2>/dev/null)
+      while IFS=: read -r file line text; do
+        target=$(sed -E 's/.*visnav\/'"$DDS_FOLDER"'\/([A-Za-z0-9_.]+).*/\1/' <<<"$text")
+        [[ -f $root/fsw/$DDS_FOLDER/$DDS_INCLUDE/visnav/$DDS_FOLDER/$target ]] || continue
+        echo "${file#"$root"/}:$line: $text  <- a DDS-level header (fsw/$DDS_FOLDER/$DDS_INCLUDE): only fsw/$DDS_FOLDER, ground tools and tests"
+        violations=$((violations + 1))
+      done < <(grep -rnE --include='*.cpp' --include='*.hpp' --include='*.h' --include='*.c' \
+                 '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]visnav/'"$DDS_FOLDER"'/' "$dir" 2>/dev/null)
+      if [[ -f $dir/CMakeLists.txt ]]; then
+        while IFS=: read -r line text; do
+          echo "${dir#"$root"/}/CMakeLists.txt:$line: $text  <- only fsw/$DDS_FOLDER links DDS (others get it PRIVATE, through it)"
+          violations=$((violations + 1))
+        done < <(grep -nE 'CycloneDDS|visnav_'"$DDS_FOLDER"'_dds|'"$DDS_INCLUDE" "$dir/CMakeLists.txt")
+      fi
+    else
+      # The public (flight) interface of telemetry is DDS-free, also through its own DDS-level headers.
+      while IFS=: read -r file line text; do
+        target=$(sed -E 's/.*[<"]([^>"]+)[>"].*/\1/' <<<"$text")
+        if [[ $target == dds/* || $target == idl/* || -f $dir/$DDS_INCLUDE/$target ]]; then
+          echo "${file#"$root"/}:$line: $text  <- fsw/$DDS_FOLDER/include is the DDS-free interface (DDS goes in $DDS_INCLUDE)"
+          violations=$((violations + 1))
+        fi
+      done < <(grep -rnE --include='*.hpp' --include='*.h' '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]' \
+                 "$dir/include" 2>/dev/null)
     fi
     # Another folder's include directory added by path in CMake.
     if [[ -f $dir/CMakeLists.txt ]]; then
@@ -156,10 +183,31 @@ self_test() {
   echo '#include <visnav/app/daemon.hpp>' >"$tmp/fsw/core/include/visnav/core/bad.hpp"
   expect "$tmp" 1 "fsw/core/include/visnav/core/bad.hpp:1:" || failed=1
   rm "$tmp/fsw/core/include/visnav/core/bad.hpp"
-  # DDS outside telemetry.
+  # DDS outside telemetry: directly, through a DDS-level telemetry header, or linked in CMake; and a DDS
+  # header in telemetry's public interface.
+  mkdir -p "$tmp/fsw/telemetry/include/visnav/telemetry" "$tmp/fsw/telemetry/include-dds/visnav/telemetry"
+  printf '#pragma once\n#include <cstdint>\n' >"$tmp/fsw/telemetry/include/visnav/telemetry/telemetry_writer.hpp"
+  printf '#pragma once\n#include <dds/dds.h>\n' >"$tmp/fsw/telemetry/include-dds/visnav/telemetry/dds_topics.hpp"
+  echo '#include "visnav/telemetry/telemetry_writer.hpp"' >>"$tmp/fsw/app/src/daemon.cpp"
+  expect "$tmp" 0 || failed=1
   echo '#include <dds/dds.h>' >>"$tmp/fsw/app/src/daemon.cpp"
-  expect "$tmp" 1 "fsw/app/src/daemon.cpp:3:" || failed=1
+  expect "$tmp" 1 "fsw/app/src/daemon.cpp:4:" || failed=1
   sed -i '$d' "$tmp/fsw/app/src/daemon.cpp"
+  echo '#include "visnav/telemetry/dds_topics.hpp"' >>"$tmp/fsw/app/src/daemon.cpp"
+  expect "$tmp" 1 "fsw/app/src/daemon.cpp:4:" || failed=1
+  sed -i '$d' "$tmp/fsw/app/src/daemon.cpp"
+  echo 'target_link_libraries(visnav_app PUBLIC CycloneDDS::ddsc)' >"$tmp/fsw/app/CMakeLists.txt"
+  expect "$tmp" 1 "fsw/app/CMakeLists.txt:1:" || failed=1
+  echo 'target_link_libraries(visnav_app PUBLIC visnav_telemetry_dds)' >"$tmp/fsw/app/CMakeLists.txt"
+  expect "$tmp" 1 "fsw/app/CMakeLists.txt:1:" || failed=1
+  rm "$tmp/fsw/app/CMakeLists.txt"
+  echo '#include "visnav/telemetry/dds_topics.hpp"' >>"$tmp/fsw/telemetry/include/visnav/telemetry/telemetry_writer.hpp"
+  expect "$tmp" 1 "fsw/telemetry/include/visnav/telemetry/telemetry_writer.hpp:3:" || failed=1
+  sed -i '$d' "$tmp/fsw/telemetry/include/visnav/telemetry/telemetry_writer.hpp"
+  echo '#include "idl/visnav.h"' >>"$tmp/fsw/telemetry/include/visnav/telemetry/telemetry_writer.hpp"
+  expect "$tmp" 1 "fsw/telemetry/include/visnav/telemetry/telemetry_writer.hpp:3:" || failed=1
+  sed -i '$d' "$tmp/fsw/telemetry/include/visnav/telemetry/telemetry_writer.hpp"
+  expect "$tmp" 0 || failed=1
   # The CMake way round: another folder's include directory added by path.
   echo 'target_include_directories(x PUBLIC ${PROJECT_SOURCE_DIR}/fsw/navigation/include)' \
     >"$tmp/fsw/farrange/CMakeLists.txt"

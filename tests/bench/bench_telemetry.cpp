@@ -13,6 +13,7 @@
 #include "visnav/telemetry/ground_link.hpp"
 #include "visnav/telemetry/sample_mapping.hpp"
 #include "visnav/telemetry/telemetry_writer.hpp"
+#include "visnav/telemetry/telemetry_writer_dds.hpp"  // test-only: the DDS writers
 
 namespace visnav::telemetry {
 namespace {
@@ -47,7 +48,7 @@ void BM_TelemetryCycle(benchmark::State& state) {
   GroundLink ground;
   if (state.range(0) == 1) {
     ground.init(params, 256);
-    waitForReaders(writer.writer(Topic::kPose), 1, 5'000'000'000LL);
+    waitForReaders(ddsWriter(writer, Topic::kPose), 1, 5'000'000'000LL);
   }
   const nav::NavSolution nav = test::makeNavSolution(4);
   const nav::HealthRecord health = test::makeHealthRecord(4);

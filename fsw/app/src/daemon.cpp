@@ -132,7 +132,7 @@ int Daemon::initTelemetry() {
   const telemetry::TelemetryParams& params = m_config.telemetry;
   m_telemetry_on = params.enabled;
   if (!m_telemetry_on) return kExitOk;
-  LoadError e = m_participant.init(params.domain_id, params.partitionName());
+  LoadError e = m_participant.init(params);  // domain, partition, naming
   if (e.ok) e = m_writer.init(m_participant, params, m_executive.minorPeriodNs());
   if (e.ok) e = m_commands.init(m_participant, params);
   if (!e.ok) {
@@ -145,7 +145,8 @@ int Daemon::initTelemetry() {
   if (!m_writer.waitForReaders(static_cast<std::uint32_t>(m_options.wait_subscribers), timeout_ns, missing)) {
     m_log.event(LogLevel::kError, "init_failed",
                 "stage=telemetry message=\"fewer than %d readers on %s within %.1f s\"",
-                m_options.wait_subscribers, telemetry::topicName(missing), m_options.wait_timeout_s);
+                m_options.wait_subscribers, telemetry::topicName(missing, params.naming),
+                m_options.wait_timeout_s);
     return kExitInit;
   }
   // The writer sees the match first; the reader drops data from a writer it has not matched yet, and a
@@ -170,12 +171,15 @@ void Daemon::logStart() {
   const CameraIntrinsics& k = m_camera.intrinsics;
   m_log.event(LogLevel::kNotice, "start",
               "config=\"%s\" camera=%s device=\"%s\" image=%dx%d clock=%s major_frame_hz=%g minor_frames=%d "
-              "mode=%s telemetry=%s domain=%d partition=%s systemd=%s watchdog_usec=%" PRIu64 " journald=%s",
+              "mode=%s telemetry=%s domain=%d partition=%s naming=%s systemd=%s watchdog_usec=%" PRIu64
+              " journald=%s",
               m_config.path.c_str(), m_camera.source->name(), m_config.camera.device.c_str(), k.width_px,
               k.height_px, m_options.simulated_clock ? "simulated" : "monotonic",
               m_config.executive.major_frame_hz, m_config.executive.minor_frames_per_major,
               nav::toString(m_pipeline.mode()), m_telemetry_on ? "on" : "off", m_config.telemetry.domain_id,
-              m_config.telemetry.partitionName(), m_notifier.active() ? "yes" : "no",
+              m_config.telemetry.naming == telemetry::TopicNaming::kRos2 ? "none"
+                                                                         : m_config.telemetry.partitionName(),
+              telemetry::namingName(m_config.telemetry.naming), m_notifier.active() ? "yes" : "no",
               m_notifier.watchdogUsec(), m_log.journal() ? "yes" : "no");
 }
 
@@ -201,6 +205,11 @@ int Daemon::run() {
     }
   }
   logStart();
+  if (m_config.daemon.fault_stage != 0)
+    m_log.event(LogLevel::kWarning, "fault_injection_armed", "stage=%s kind=%s from_cycle=%d",
+                stageName(static_cast<CycleStage>(m_config.daemon.fault_stage - 1)),
+                m_config.daemon.faultKind() == InjectedFault::kHang ? "hang" : "fail",
+                m_config.daemon.fault_from_cycle);
   char status[96];
   std::snprintf(status, sizeof(status), "running, mode %s", nav::toString(m_pipeline.mode()));
   m_notifier.ready(status);
@@ -225,22 +234,23 @@ void Daemon::logStopSummary(exec::StopReason reason) {
     if (n < 0) break;
     used += static_cast<std::size_t>(n);
   }
-  m_log.event(
-      LogLevel::kNotice, "stop",
-      "reason=%s cycles=%" PRIu64 " frames=%" PRIu64 " cycles_without_frame=%" PRIu64
-      " camera_dropped=%" PRIu64 " camera_timeouts=%" PRIu64 " camera_errors=%" PRIu64 " slips=%" PRIu64
-      " releases_skipped=%" PRIu64 " worst_overrun_ms=%.3f task_failures=%" PRIu64
-      " mode=%s transitions=%" PRIu64 " commands=%" PRIu64 " commands_accepted=%" PRIu64
-      " fault_onsets=%" PRIu64 " samples_written=%" PRIu64 " write_failures=%" PRIu64
-      " sample_pool_misses=%" PRIu64 " watchdog_notifications=%" PRIu64 " watchdog_withheld=%" PRIu64
-      " heartbeat_misses=%s log_suppressed=%" PRIu64 " log_dropped=%" PRIu64 " signal=%s elapsed_s=%.3f",
-      stopReasonName(reason, m_counters.end_of_stream), c.cycles, m_counters.frames,
-      m_counters.cycles_without_frame, cam.frames_dropped, cam.timeouts, cam.errors, c.slips,
-      c.releases_skipped, static_cast<double>(c.worst_overrun_ns) * 1e-6, c.task_failures,
-      nav::toString(m_pipeline.mode()), m_pipeline.modes().transitionCount(), m_counters.commands,
-      m_counters.commands_accepted, m_counters.fault_onsets, w.samples_written, w.write_failures,
-      m_writer.samplePoolMisses(), m_notifier.sent(), m_counters.watchdog_withheld, misses.data(),
-      m_counters.log_suppressed + c.events_suppressed, m_log.droppedLines(), signalName(), m_log.elapsedS());
+  m_log.event(LogLevel::kNotice, "stop",
+              "reason=%s cycles=%" PRIu64 " frames=%" PRIu64 " cycles_without_frame=%" PRIu64
+              " camera_dropped=%" PRIu64 " camera_timeouts=%" PRIu64 " camera_errors=%" PRIu64
+              " slips=%" PRIu64 " releases_skipped=%" PRIu64 " worst_overrun_ms=%.3f task_failures=%" PRIu64
+              " mode=%s transitions=%" PRIu64 " commands=%" PRIu64 " commands_accepted=%" PRIu64
+              " fault_onsets=%" PRIu64 " samples_written=%" PRIu64 " write_failures=%" PRIu64
+              " sample_pool_misses=%" PRIu64 " watchdog_notifications=%" PRIu64 " watchdog_withheld=%" PRIu64
+              " heartbeat_misses=%s faults_injected=%" PRIu64 " log_suppressed=%" PRIu64
+              " log_dropped=%" PRIu64 " signal=%s elapsed_s=%.3f",
+              stopReasonName(reason, m_counters.end_of_stream), c.cycles, m_counters.frames,
+              m_counters.cycles_without_frame, cam.frames_dropped, cam.timeouts, cam.errors, c.slips,
+              c.releases_skipped, static_cast<double>(c.worst_overrun_ns) * 1e-6, c.task_failures,
+              nav::toString(m_pipeline.mode()), m_pipeline.modes().transitionCount(), m_counters.commands,
+              m_counters.commands_accepted, m_counters.fault_onsets, w.samples_written, w.write_failures,
+              m_writer.samplePoolMisses(), m_notifier.sent(), m_counters.watchdog_withheld, misses.data(),
+              m_counters.faults_injected, m_counters.log_suppressed + c.events_suppressed,
+              m_log.droppedLines(), signalName(), m_log.elapsedS());
   const exec::DurationStats& jitter = m_executive.releaseJitter();
   const exec::DurationStats& busy = m_executive.cycleBusy();
   const exec::DurationStats& acquire = m_executive.taskStats(taskId(CycleStage::kAcquire)).exec;

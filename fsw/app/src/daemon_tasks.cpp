@@ -5,11 +5,17 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <ctime>
 
 #include "visnav/app/daemon.hpp"
-#include "visnav/telemetry/sample_mapping.hpp"
 
 namespace visnav::app {
+namespace {
+
+/// What a stage failed by fault injection returns (the executive counts and logs it as a task failure).
+constexpr Status kInjectedFailure = Status::kInvalidArgument;
+
+}  // namespace
 
 bool Daemon::allowLog(std::uint64_t& reported) {
   if (reported < static_cast<std::uint64_t>(m_config.daemon.log_throttle)) {
@@ -38,9 +44,11 @@ Status Daemon::acquireTask(const exec::CycleInfo& cycle) {
     m_cycles_since_frame = 0;
   else
     ++m_cycles_since_frame;
-  if (m_cycles_since_frame <= static_cast<std::uint64_t>(m_config.daemon.camera_stall_cycles))
+  const bool injected = injectFault(CycleStage::kAcquire, cycle);
+  if (!injected && m_cycles_since_frame <= static_cast<std::uint64_t>(m_config.daemon.camera_stall_cycles))
     m_heartbeat.beat(CycleStage::kAcquire);
   const bool failed = result == camera::AcquireResult::kError || result == camera::AcquireResult::kDeviceLost;
+  if (injected) return kInjectedFailure;
   return failed ? Status::kNotEnoughData : Status::kOk;
 }
 
@@ -107,7 +115,7 @@ void Daemon::logCameraEvents() {
   }
 }
 
-Status Daemon::processTask(const exec::CycleInfo&) {
+Status Daemon::processTask(const exec::CycleInfo& cycle) {
   if (m_skip_cycle) return Status::kOk;
   const Status status = m_pipeline.process(m_have_frame ? &m_frame : nullptr, m_clock->nowNs(), m_solution);
   m_solution.timing.acquire_us = m_acquire_us;
@@ -117,14 +125,16 @@ Status Daemon::processTask(const exec::CycleInfo&) {
   }
   logTransitions();
   logFaultOnsets(m_solution.fault_bits, m_solution.frame_number);
+  if (injectFault(CycleStage::kProcess, cycle)) return kInjectedFailure;
   if (status == Status::kOk) m_heartbeat.beat(CycleStage::kProcess);  // a missing frame is not its failure
   return status;
 }
 
-Status Daemon::publishTask(const exec::CycleInfo&) {
+Status Daemon::publishTask(const exec::CycleInfo& cycle) {
   if (m_skip_cycle) return Status::kOk;
   // A failed write (counted by the writer) is a task failure: the executive counts and reports it.
   const bool ok = !m_telemetry_on || m_writer.publishNav(m_solution);
+  if (injectFault(CycleStage::kPublish, cycle)) return kInjectedFailure;
   if (ok) m_heartbeat.beat(CycleStage::kPublish);  // telemetry off: nothing to publish is done work
   return ok ? Status::kOk : Status::kCapacityExceeded;
 }
@@ -149,9 +159,37 @@ Status Daemon::healthTask(const exec::CycleInfo& cycle) {
                             m_health.task_timing[static_cast<std::size_t>(i)]);
   const bool ok = !m_telemetry_on || m_writer.publishHealth(m_health);
   if (m_status_requested.exchange(false, std::memory_order_relaxed)) logStatus();
-  if (ok) m_heartbeat.beat(CycleStage::kHealth);
+  const bool injected = injectFault(CycleStage::kHealth, cycle);
+  if (ok && !injected) m_heartbeat.beat(CycleStage::kHealth);
   endHeartbeatCycle(cycle.minor_frame);
+  if (injected) return kInjectedFailure;
   return ok ? Status::kOk : Status::kCapacityExceeded;
+}
+
+bool Daemon::injectFault(CycleStage stage, const exec::CycleInfo& cycle) {
+  // Fault injection ([daemon] fault_stage, off by default; fsw/app/README.md, "Watchdog"): the stage's work
+  // is done, then it reports a failure without its heartbeat, or it hangs.
+  const DaemonParams& d = m_config.daemon;
+  if (d.fault_stage != stageIndex(stage) + 1 || cycle.cycle < static_cast<std::uint64_t>(d.fault_from_cycle))
+    return false;
+  ++m_counters.faults_injected;
+  const bool hang = d.faultKind() == InjectedFault::kHang;
+  if (!m_fault_injected_logged) {
+    m_fault_injected_logged = true;
+    m_log.event(LogLevel::kWarning, "fault_injected",
+                "stage=%s kind=%s minor_frame=%" PRIu64 " cycle=%" PRIu64, stageName(stage),
+                hang ? "hang" : "fail", cycle.minor_frame, cycle.cycle);
+    char status[96];
+    std::snprintf(status, sizeof(status), "fault injection: %s stage %s", stageName(stage),
+                  hang ? "hangs" : "fails every cycle");
+    m_notifier.status(status);
+  }
+  if (hang) {
+    // Deliberately unbounded, like the deadlock it stands for: only a stop request (SIGTERM) ends it.
+    const timespec step{0, 10'000'000};
+    while (!m_executive.stopRequested()) nanosleep(&step, nullptr);
+  }
+  return true;
 }
 
 void Daemon::endHeartbeatCycle(std::uint64_t minor_frame) {

@@ -4,15 +4,38 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <type_traits>
 
 namespace visnav::telemetry {
+
+static_assert(std::is_same_v<EntityHandle, dds_entity_t>,
+              "participant.hpp's opaque handle is a dds_entity_t");
+
 namespace {
 
-constexpr const char* kTopicNames[kTopicCount] = {"visnav_pose", "visnav_far_range", "visnav_health",
-                                                  "visnav_mode_command"};
+constexpr int kNamingCount = 2;  // TopicNaming values
+constexpr const char* kTopicNames[kNamingCount][kTopicCount] = {
+    {"visnav_pose", "visnav_far_range", "visnav_health", "visnav_mode_command"},
+    {"rt/visnav_pose", "rt/visnav_far_range", "rt/visnav_health", "rt/visnav_mode_command"}};
+// ROS 2's IDL mapping of a .msg (rosidl, rmw_cyclonedds): <package>::msg::dds_::<Message>_ (idl/ros2/).
+constexpr const char* kRos2TypeNames[kTopicCount] = {
+    "visnav_msgs::msg::dds_::PoseEstimate_", "visnav_msgs::msg::dds_::FarRangeEstimate_",
+    "visnav_msgs::msg::dds_::Health_", "visnav_msgs::msg::dds_::ModeCommand_"};
 constexpr const char* kTopicLabels[kTopicCount] = {"pose", "far_range", "health", "mode_command"};
 const dds_topic_descriptor_t* const kDescriptors[kTopicCount] = {
     &visnav_PoseEstimate_desc, &visnav_FarRangeEstimate_desc, &visnav_Health_desc, &visnav_ModeCommand_desc};
+
+int namingIndex(TopicNaming naming) { return naming == TopicNaming::kRos2 ? 1 : 0; }
+
+/// idlc's descriptor under the ROS 2 type name: same size, alignment, ops (the CDR is the same), no XTypes
+/// type information (its type objects name the visnav:: types).
+dds_topic_descriptor_t ros2Descriptor(const dds_topic_descriptor_t& d, const char* type_name) {
+  return dds_topic_descriptor_t{
+      d.m_size,     d.m_align,    d.m_flagset & ~static_cast<std::uint32_t>(DDS_TOPIC_XTYPES_METADATA),
+      d.m_nkeys,    type_name,    d.m_keys,
+      d.m_nops,     d.m_ops,      d.m_meta,
+      {nullptr, 0}, {nullptr, 0}, d.restrict_data_representation};
+}
 
 template <typename GetStatus>
 bool waitForMatch(GetStatus get_current_count, std::uint32_t count, std::int64_t timeout_ns) {
@@ -33,8 +56,25 @@ std::int64_t monotonicNowNs() {
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
 }
 
-const char* topicName(Topic topic) { return kTopicNames[static_cast<int>(topic)]; }
-const dds_topic_descriptor_t* topicDescriptor(Topic topic) { return kDescriptors[static_cast<int>(topic)]; }
+const char* topicName(Topic topic, TopicNaming naming) {
+  return kTopicNames[namingIndex(naming)][static_cast<int>(topic)];
+}
+
+const char* typeName(Topic topic, TopicNaming naming) {
+  return naming == TopicNaming::kRos2 ? kRos2TypeNames[static_cast<int>(topic)]
+                                      : kDescriptors[static_cast<int>(topic)]->m_typename;
+}
+
+const dds_topic_descriptor_t* topicDescriptor(Topic topic, TopicNaming naming) {
+  // Made on first use (thread-safe static initialisation), in static storage: no allocation.
+  static const dds_topic_descriptor_t kRos2[kTopicCount] = {
+      ros2Descriptor(visnav_PoseEstimate_desc, kRos2TypeNames[0]),
+      ros2Descriptor(visnav_FarRangeEstimate_desc, kRos2TypeNames[1]),
+      ros2Descriptor(visnav_Health_desc, kRos2TypeNames[2]),
+      ros2Descriptor(visnav_ModeCommand_desc, kRos2TypeNames[3])};
+  return naming == TopicNaming::kRos2 ? &kRos2[static_cast<int>(topic)]
+                                      : kDescriptors[static_cast<int>(topic)];
+}
 const char* topicLabel(Topic topic) { return kTopicLabels[static_cast<int>(topic)]; }
 
 dds_qos_t* makeWriterQos(Topic topic, const TelemetryParams& params, std::int64_t cycle_period_ns) {
@@ -77,10 +117,22 @@ void Participant::close() {
   for (dds_entity_t& t : m_topics) t = 0;
 }
 
+LoadError Participant::init(const TelemetryParams& params) {
+  return create(params.domain_id, params.partitionName(), params.naming);
+}
+
 LoadError Participant::init(int domain_id, const char* partition) {
+  return create(domain_id, partition, TopicNaming::kVisnav);
+}
+
+LoadError Participant::create(int domain_id, const char* partition, TopicNaming naming) {
   close();
-  if (const char* problem = partitionProblem(partition))
+  m_naming = naming;
+  if (naming == TopicNaming::kRos2) {
+    partition = nullptr;  // ROS 2 reads the default partition
+  } else if (const char* problem = partitionProblem(partition)) {
     return LoadError::failure(std::string("DDS partition '") + partition + "' " + problem);
+  }
   m_participant = dds_create_participant(static_cast<dds_domainid_t>(domain_id), nullptr, nullptr);
   if (m_participant < 0) {
     const dds_return_t code = m_participant;
@@ -88,15 +140,17 @@ LoadError Participant::init(int domain_id, const char* partition) {
     return ddsFailure("creating the DDS participant (check CYCLONEDDS_URI)", code);
   }
   dds_qos_t* qos = dds_create_qos();
-  dds_qset_partition1(qos, partition);
+  if (partition != nullptr) dds_qset_partition1(qos, partition);
   m_publisher = dds_create_publisher(m_participant, qos, nullptr);
   m_subscriber = dds_create_subscriber(m_participant, qos, nullptr);
   dds_delete_qos(qos);
   if (m_publisher < 0) return ddsFailure("creating the DDS publisher", m_publisher);
   if (m_subscriber < 0) return ddsFailure("creating the DDS subscriber", m_subscriber);
   for (int i = 0; i < kTopicCount; ++i) {
-    m_topics[i] = dds_create_topic(m_participant, kDescriptors[i], kTopicNames[i], nullptr, nullptr);
-    if (m_topics[i] < 0) return ddsFailure(kTopicNames[i], m_topics[i]);
+    const auto topic = static_cast<Topic>(i);
+    m_topics[i] = dds_create_topic(m_participant, topicDescriptor(topic, naming), topicName(topic, naming),
+                                   nullptr, nullptr);
+    if (m_topics[i] < 0) return ddsFailure(topicName(topic, naming), m_topics[i]);
   }
   return LoadError::success();
 }

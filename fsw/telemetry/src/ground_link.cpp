@@ -7,7 +7,7 @@ GroundLink::~GroundLink() {
 }
 
 LoadError GroundLink::init(const TelemetryParams& params, int reader_depth) {
-  if (LoadError e = m_participant.init(params.domain_id, params.partitionName()); !e.ok) return e;
+  if (LoadError e = m_participant.init(params); !e.ok) return e;  // domain, partition, naming
   m_waitset = dds_create_waitset(m_participant.handle());
   if (m_waitset < 0) return ddsFailure("creating the waitset", m_waitset);
   for (Topic topic : kFlightTopics) {

@@ -19,6 +19,7 @@
 
 #include "telemetry_test_data.hpp"
 #include "visnav/telemetry/telemetry_writer.hpp"
+#include "visnav/telemetry/telemetry_writer_dds.hpp"  // test-only: the DDS writers
 
 namespace {
 
@@ -84,7 +85,7 @@ int publish(const Args& a) {
   }
   for (Topic t : {Topic::kPose, Topic::kFarRange, Topic::kHealth}) {
     if (a.wait_readers > 0 &&
-        !waitForReaders(writer.writer(t), static_cast<std::uint32_t>(a.wait_readers), 10'000'000'000LL)) {
+        !waitForReaders(ddsWriter(writer, t), static_cast<std::uint32_t>(a.wait_readers), 10'000'000'000LL)) {
       std::fprintf(stderr, "telemetry_test_peer: no reader on %s within 10 s\n", topicName(t));
       return 3;
     }
@@ -103,7 +104,7 @@ int publish(const Args& a) {
     writer.publishHealth(test::makeHealthRecord(static_cast<std::uint64_t>(i)));
   }
   for (Topic t : {Topic::kPose, Topic::kFarRange, Topic::kHealth})
-    dds_wait_for_acks(writer.writer(t), DDS_SECS(5));
+    dds_wait_for_acks(ddsWriter(writer, t), DDS_SECS(5));
   std::printf("published %llu samples, %llu write failures\n",
               static_cast<unsigned long long>(writer.counters().samples_written),
               static_cast<unsigned long long>(writer.counters().write_failures));

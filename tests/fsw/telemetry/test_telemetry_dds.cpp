@@ -11,6 +11,7 @@
 #include "visnav/telemetry/ground_link.hpp"
 #include "visnav/telemetry/sample_mapping.hpp"
 #include "visnav/telemetry/telemetry_writer.hpp"
+#include "visnav/telemetry/telemetry_writer_dds.hpp"  // test-only: the DDS writers
 
 namespace visnav::telemetry {
 namespace {
@@ -66,7 +67,7 @@ class TelemetryDds : public ::testing::Test {
     const LoadError e = ground.init(params, 64);
     ASSERT_TRUE(e.ok) << e.message;
     for (Topic t : {Topic::kPose, Topic::kFarRange, Topic::kHealth})
-      ASSERT_TRUE(waitForReaders(writer.writer(t), 1, 5 * kSecond)) << topicName(t);
+      ASSERT_TRUE(waitForReaders(ddsWriter(writer, t), 1, 5 * kSecond)) << topicName(t);
     ASSERT_TRUE(waitForReaders(ground.commandWriter(), 1, 5 * kSecond));
   }
 

@@ -18,8 +18,10 @@
 #include "process_util.hpp"
 #include "telemetry_test_data.hpp"
 #include "visnav/telemetry/command_reader.hpp"
+#include "visnav/telemetry/pooled_sertype.hpp"
 #include "visnav/telemetry/sample_mapping.hpp"
 #include "visnav/telemetry/telemetry_writer.hpp"
+#include "visnav/telemetry/telemetry_writer_dds.hpp"  // test-only: the DDS writers
 
 namespace visnav::telemetry {
 namespace {
@@ -112,8 +114,8 @@ TEST(TelemetryNoAlloc, PublishToAReliableReaderInAnotherProcess) {
                           params.partitionName(), "--duration", "60", "--no-view"},
                          test::tempPath("noalloc-monitor"));
   ASSERT_GT(monitor, 0);
-  ASSERT_TRUE(waitForReaders(flight.writer.writer(Topic::kPose), 1, 10'000'000'000LL));
-  ASSERT_TRUE(waitForReaders(flight.writer.writer(Topic::kHealth), 1, 10'000'000'000LL));
+  ASSERT_TRUE(waitForReaders(ddsWriter(flight.writer, Topic::kPose), 1, 10'000'000'000LL));
+  ASSERT_TRUE(waitForReaders(ddsWriter(flight.writer, Topic::kHealth), 1, 10'000'000'000LL));
   measure(flight, "reliable remote reader", 500);  // spaced so acknowledgments flow back meanwhile
   kill(monitor, SIGTERM);
   EXPECT_EQ(test::waitProcess(monitor, 10.0), 0);
@@ -137,9 +139,9 @@ TEST(TelemetryNoAlloc, DefaultSertypeAllocatesWhereThePoolDoesNot) {
   if (visnav::test::countsMalloc()) {
     EXPECT_GE(plain_count, 2U * kCycles);  // the 2 per write of a sample over 256 bytes
   }
-  for (int i = 0; i < 100; ++i) dds_write(flight.writer.writer(Topic::kPose), &flight.pose);  // warm-up
+  for (int i = 0; i < 100; ++i) dds_write(ddsWriter(flight.writer, Topic::kPose), &flight.pose);  // warm-up
   const std::uint64_t pooled_before = visnav::test::threadAllocationCount();
-  for (int i = 0; i < kCycles; ++i) dds_write(flight.writer.writer(Topic::kPose), &flight.pose);
+  for (int i = 0; i < kCycles; ++i) dds_write(ddsWriter(flight.writer, Topic::kPose), &flight.pose);
   EXPECT_EQ(visnav::test::threadAllocationCount() - pooled_before, 0U);
 }
 

@@ -14,6 +14,7 @@
 #include "visnav/eval/replay_csv.hpp"
 #include "visnav/telemetry/command_reader.hpp"
 #include "visnav/telemetry/telemetry_writer.hpp"
+#include "visnav/telemetry/telemetry_writer_dds.hpp"  // test-only: the DDS writers
 
 namespace visnav::telemetry {
 namespace {
@@ -169,8 +170,8 @@ TEST(TelemetryProcesses, PublishNeverBlocksOnAStalledOrFrozenSubscriber) {
   TelemetryWriter writer;
   ASSERT_TRUE(flight.init(params.domain_id, params.partitionName()).ok);
   ASSERT_TRUE(writer.init(flight, params, 200'000'000).ok);
-  ASSERT_TRUE(waitForReaders(writer.writer(Topic::kPose), 1, 10 * kSecond)) << test::readText(ready);
-  ASSERT_TRUE(waitForReaders(writer.writer(Topic::kHealth), 1, 10 * kSecond));
+  ASSERT_TRUE(waitForReaders(ddsWriter(writer, Topic::kPose), 1, 10 * kSecond)) << test::readText(ready);
+  ASSERT_TRUE(waitForReaders(ddsWriter(writer, Topic::kHealth), 1, 10 * kSecond));
 
   constexpr int kCycles = 300;  // the stalled reader's one-sample history is full after the first
   WriteTimes stalled = publishCycles(writer, kCycles);
@@ -183,7 +184,7 @@ TEST(TelemetryProcesses, PublishNeverBlocksOnAStalledOrFrozenSubscriber) {
   EXPECT_EQ(test::waitProcess(peer, 10.0), 128 + SIGKILL);
   WriteTimes dead = publishCycles(writer, kCycles);
   dds_publication_matched_status_t matched{};
-  ASSERT_EQ(dds_get_publication_matched_status(writer.writer(Topic::kPose), &matched), DDS_RETCODE_OK);
+  ASSERT_EQ(dds_get_publication_matched_status(ddsWriter(writer, Topic::kPose), &matched), DDS_RETCODE_OK);
   EXPECT_EQ(matched.current_count, 1U);  // the dead reader was still matched for the whole phase
 
   EXPECT_EQ(writer.counters().write_failures, 0U);

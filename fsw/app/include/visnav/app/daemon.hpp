@@ -58,6 +58,7 @@ struct DaemonCounters {
   std::uint64_t watchdog_strokes =
       0;  ///< cycles every stage beat: WATCHDOG=1 was due (sent if systemd listens)
   std::uint64_t watchdog_withheld = 0;  ///< cycles a stage did not beat: no WATCHDOG=1
+  std::uint64_t faults_injected = 0;    ///< stage runs failed or hung by [daemon] fault_stage (0 in flight)
   bool end_of_stream = false;
 };
 
@@ -89,6 +90,8 @@ class Daemon final : private exec::ExecutiveObserver {
   Status healthTask(const exec::CycleInfo& cycle);
 
   exec::Executive& executive() { return m_executive; }
+  /// The cycle's clock (monotonic, or simulated with --simulated-clock); valid after init().
+  exec::Clock& clock() { return *m_clock; }
   /// The executive's id of a stage's task (invalid before init()).
   exec::TaskId taskId(CycleStage stage) const {
     return m_task_ids[static_cast<std::size_t>(stageIndex(stage))];
@@ -113,6 +116,7 @@ class Daemon final : private exec::ExecutiveObserver {
   void logTransitions();
   void logFaultOnsets(std::uint32_t faults, std::uint64_t frame);
   void endHeartbeatCycle(std::uint64_t minor_frame);
+  bool injectFault(CycleStage stage, const exec::CycleInfo& cycle);
   void handleCommands();
   void logStart();
   void logStatus();
@@ -153,6 +157,7 @@ class Daemon final : private exec::ExecutiveObserver {
   std::uint64_t m_camera_logs = 0;
   std::array<std::uint64_t, kCycleStageCount> m_heartbeat_logs{};
   std::array<bool, kCycleStageCount> m_heartbeat_onset_logged{};
+  bool m_fault_injected_logged = false;
   DaemonCounters m_counters;
   std::atomic<int> m_stop_signal{0};
   std::atomic<bool> m_status_requested{false};

@@ -39,6 +39,9 @@ struct FilesParams {
 
 enum class PlaybackPacing : int { kRecorded = 0, kAsFastAsPossible = 1 };
 
+/// [daemon] fault_kind: what an injected fault does to its stage (fault injection, off by default).
+enum class InjectedFault : int { kFail = 0, kHang = 1 };
+
 /// [daemon]: how visnavd runs its camera and reports (fsw/app/README.md).
 struct DaemonParams {
   int playback_pacing = static_cast<int>(PlaybackPacing::kRecorded);
@@ -46,8 +49,12 @@ struct DaemonParams {
   bool stop_at_end_of_stream = true;
   int log_throttle = 20;
   int camera_stall_cycles = 10;
+  int fault_stage = 0;  ///< fault injection: 0 none, else 1 + stageIndex() of the stage that fails or hangs
+  int fault_kind = static_cast<int>(InjectedFault::kFail);
+  int fault_from_cycle = 0;
 
   PlaybackPacing pacing() const { return static_cast<PlaybackPacing>(playback_pacing); }
+  InjectedFault faultKind() const { return static_cast<InjectedFault>(fault_kind); }
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -74,6 +81,20 @@ struct DaemonParams {
          "delivered no frame for more than this many cycles in a row (timeouts, errors, a lost device; "
          "not the end of a playback)"},
         camera_stall_cycles);
+    v.enumeration(
+        {"daemon", "fault_stage", "-", 0, 4,
+         "FAULT INJECTION (tests, watchdog rehearsals; none in flight): the cycle stage that fails or hangs "
+         "from fault_from_cycle on; logged at start (fault_injection_armed) and at onset (fault_injected, "
+         "STATUS= to systemd)"},
+        "none|acquire|process|publish|health", fault_stage);
+    v.enumeration({"daemon", "fault_kind", "-", 0, 1,
+                   "fault injection: fail = the stage does its work but reports a failure and does not beat "
+                   "its heartbeat, every cycle; hang = the stage blocks until a stop request (SIGTERM), as a "
+                   "deadlocked stage would; either way no WATCHDOG=1 is sent from then on"},
+                  "fail|hang", fault_kind);
+    v.integer({"daemon", "fault_from_cycle", "cycles", 0, 1000000000,
+               "fault injection: cycles that run normally before the injected fault starts"},
+              fault_from_cycle);
   }
   const char* crossCheck() const { return nullptr; }
 };

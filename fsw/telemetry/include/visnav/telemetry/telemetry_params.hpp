@@ -1,7 +1,7 @@
 // Parameters of the DDS telemetry (the [telemetry] table of a config; reference in config/PARAMETERS.md).
 // Header-only and DDS-free so config tools can load and document it without linking Cyclone DDS.
-// The partition is text, which the numeric visit() table cannot carry: applyTelemetryConfig() reads it next
-// to the table, and telemetryParametersMarkdown() documents it in the same format.
+// The partition and the naming are text, which the numeric visit() table cannot carry: applyTelemetryConfig()
+// reads them next to the table, and telemetryParametersMarkdown() documents them in the same format.
 #pragma once
 
 #include <array>
@@ -18,6 +18,15 @@ namespace visnav::telemetry {
 constexpr std::size_t kPartitionCapacity = 64;  ///< bytes, including the terminating NUL
 constexpr const char* kDefaultPartition = "visnav";
 
+/// Topic and type names on the wire ([telemetry] naming; fsw/telemetry/README.md, "ROS 2").
+enum class TopicNaming : int {
+  kVisnav = 0,  ///< "visnav": topics visnav_pose..., types visnav::PoseEstimate..., in the partition
+  kRos2 =
+      1,  ///< "ros2": topics rt/visnav_pose..., types visnav_msgs::msg::dds_::PoseEstimate_..., no partition
+};
+/// "visnav" or "ros2".
+inline const char* namingName(TopicNaming naming) { return naming == TopicNaming::kRos2 ? "ros2" : "visnav"; }
+
 struct TelemetryParams {
   bool enabled = true;
   int domain_id = 0;
@@ -26,6 +35,7 @@ struct TelemetryParams {
   double max_blocking_ms = 2.0;
   int command_depth = 8;
   int sample_pool_blocks = 8;
+  TopicNaming naming = TopicNaming::kVisnav;
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -80,7 +90,19 @@ inline bool setPartition(TelemetryParams& params, const char* name) {
   return true;
 }
 
-/// Loads [telemetry] (the table and the partition) from an open config. Init-time only.
+/// Sets the naming from its config spelling; false (params unchanged) for anything but "visnav" and "ros2".
+inline bool setNaming(TelemetryParams& params, const char* name) {
+  if (std::strcmp(name, "visnav") == 0) {
+    params.naming = TopicNaming::kVisnav;
+  } else if (std::strcmp(name, "ros2") == 0) {
+    params.naming = TopicNaming::kRos2;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+/// Loads [telemetry] (the table, the partition and the naming) from an open config. Init-time only.
 inline LoadError applyTelemetryConfig(io::ConfigFile& config, TelemetryParams& params) {
   TelemetryParams loaded = params;
   if (LoadError e = config.apply(loaded); !e.ok) return e;
@@ -90,16 +112,30 @@ inline LoadError applyTelemetryConfig(io::ConfigFile& config, TelemetryParams& p
   if (present && !setPartition(loaded, partition.c_str()))
     return LoadError::failure("[telemetry] partition '" + partition + "' " +
                               partitionProblem(partition.c_str()));
+  const bool partition_set = present;
+  std::string naming;
+  if (LoadError e = config.stringValue("telemetry", "naming", naming, present); !e.ok) return e;
+  if (present && !setNaming(loaded, naming.c_str()))
+    return LoadError::failure("[telemetry] naming '" + naming + "' must be \"visnav\" or \"ros2\"");
+  // ROS 2 nodes (rmw_cyclonedds) read the default partition only: a partition would hide the topics again.
+  if (loaded.naming == TopicNaming::kRos2 && partition_set)
+    return LoadError::failure(
+        "[telemetry] partition cannot be used with naming = \"ros2\" (ROS 2 reads the default partition; "
+        "separate vehicles or runs by domain_id)");
   params = loaded;
   return LoadError::success();
 }
 
-/// Markdown reference of [telemetry]: the visit() table plus the partition row.
+/// Markdown reference of [telemetry]: the visit() table plus the partition and naming rows.
 inline std::string telemetryParametersMarkdown() {
   return io::parameterTableMarkdown(TelemetryParams{}) + "| `[telemetry] partition` | string | \"" +
          kDefaultPartition +
          "\" | 1 .. 63 chars of A-Z a-z 0-9 _ - . | - | DDS partition of every telemetry topic: separates "
-         "several vehicles or test runs in one domain |\n";
+         "several vehicles or test runs in one domain (not with naming = \"ros2\") |\n"
+         "| `[telemetry] naming` | string | \"visnav\" | \"visnav\" or \"ros2\" | - | topic and type names: "
+         "visnav_pose / visnav::PoseEstimate in the partition, or ROS 2's rt/visnav_pose / "
+         "visnav_msgs::msg::dds_::PoseEstimate_ in the default partition, so a ROS 2 node can subscribe "
+         "(fsw/telemetry/README.md) |\n";
 }
 
 }  // namespace visnav::telemetry

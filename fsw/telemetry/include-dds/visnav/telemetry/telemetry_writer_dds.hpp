@@ -1,0 +1,27 @@
+// TEST-ONLY: the DDS entities behind TelemetryWriter and CommandReader, for tests and benchmarks that drive
+// Cyclone directly (match waits, dds_write controls, status queries). Flight code never includes it (fsw/app
+// does not have this include folder; scripts/check-deps.sh refuses it there): the flight interface is
+// telemetry_writer.hpp and command_reader.hpp.
+#pragma once
+
+#include <dds/dds.h>
+
+#include "visnav/telemetry/command_reader.hpp"
+#include "visnav/telemetry/dds_topics.hpp"
+#include "visnav/telemetry/telemetry_writer.hpp"
+
+namespace visnav::telemetry {
+
+struct DdsAccess {
+  /// The DDS writer of a flight topic (0: kModeCommand, or before init()).
+  static dds_entity_t writer(const TelemetryWriter& writer, Topic topic);
+  /// The ModeCommand reader (0 before init()).
+  static dds_entity_t reader(const CommandReader& reader);
+};
+
+inline dds_entity_t ddsWriter(const TelemetryWriter& writer, Topic topic) {
+  return DdsAccess::writer(writer, topic);
+}
+inline dds_entity_t ddsReader(const CommandReader& reader) { return DdsAccess::reader(reader); }
+
+}  // namespace visnav::telemetry
