@@ -4,7 +4,6 @@
 // boundary.
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
@@ -51,7 +50,7 @@ int trackStatus(const visnav::nav::NavSolution& sol, const visnav::NearRangeResu
 
 // NavSolution (and what the pipeline kept of this frame) -> the plain C struct. Allocation-free.
 void fill(const visnav_handle& h, const visnav::nav::NavSolution& sol, visnav_solution& out) {
-  std::memset(&out, 0, sizeof(out));
+  out = visnav_solution{};  // every field zero (value-initialised)
   const visnav::nav::NavigationPipeline& p = h.pipeline;
   out.cycle_number = sol.cycle_number;
   out.frame_number = sol.frame_number;
