@@ -221,6 +221,63 @@ TEST(Visnavd, NotifiesSystemdReadyOneWatchdogPerCycleAndStopping) {
   EXPECT_NE(log.find("watchdog_notifications="), std::string::npos) << log;
 }
 
+// Issue 14, "a hung stage must lead to the watchdog firing", from outside: visnavd as a process on the
+// simulated clock, its process stage made to hang at cycle 10 by fault injection ([daemon] fault_kind =
+// "hang": it blocks until SIGTERM, as a deadlocked stage would), $NOTIFY_SOCKET a socket of this test. The
+// datagrams say it in order: exactly 10 WATCHDOG=1 (cycles 0-9), the STATUS= of the injected hang, then
+// nothing for 2 x WatchdogSec (systemd would fire: it is never fed again), and after SIGTERM STOPPING=1
+// without a WATCHDOG=1 before it. The silence is waited for in real time, but only a daemon that strokes
+// while a stage hangs can fail it, however slow the machine.
+TEST(Visnavd, AHungStageStopsTheWatchdogUntilSystemdWouldFire) {
+  const std::string sequence = test::renderedApproachCi(VISNAV_APP_TEST_FRAMES);
+  ASSERT_FALSE(sequence.empty());
+  test::TempDir dir("visnavd");
+  const std::string config =
+      dir.write("hang.toml",
+                "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
+                    "\"\n[daemon]\nplayback_loop = true\nfault_stage = \"process\"\nfault_kind = \"hang\"\n"
+                    "fault_from_cycle = 10\n[telemetry]\nenabled = false\n");
+  NotifySocket systemd;
+  setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
+  setenv("WATCHDOG_USEC", "500000", 1);
+  const std::string log_path = dir.path() + "/log.txt";
+  const pid_t pid = spawnDaemon("--config " + config + " --simulated-clock --pace-ms 5", log_path);
+  unsetenv("NOTIFY_SOCKET");
+  unsetenv("WATCHDOG_USEC");
+  ASSERT_GT(pid, 0);
+  std::vector<std::string> before_hang;
+  std::string message = systemd.next(20000);
+  for (; !message.empty() && message.rfind("STATUS=fault injection", 0) != 0; message = systemd.next(10000))
+    before_hang.push_back(message);
+  ASSERT_EQ(message, "STATUS=fault injection: process stage hangs") << readText(log_path);
+  ASSERT_FALSE(before_hang.empty());
+  EXPECT_EQ(before_hang.front().rfind("READY=1", 0), 0U) << before_hang.front();
+  int watchdogs = 0;
+  for (const std::string& m : before_hang) watchdogs += m == "WATCHDOG=1" ? 1 : 0;
+  EXPECT_EQ(watchdogs, 10);
+  // systemd's WatchdogSec is 0.5 s here: twice that without a single datagram, so it would have fired.
+  EXPECT_EQ(systemd.next(1000), "") << "the daemon notified systemd while its process stage hung";
+  kill(pid, SIGTERM);
+  std::vector<std::string> after;
+  for (message = systemd.next(5000); !message.empty(); message = systemd.next(5000)) {
+    after.push_back(message);
+    if (message == "STOPPING=1") break;
+  }
+  EXPECT_EQ(waitProcess(pid, 10.0), 0) << readText(log_path);
+  ASSERT_FALSE(after.empty());
+  EXPECT_EQ(after.back(), "STOPPING=1");
+  for (const std::string& m : after) EXPECT_NE(m, "WATCHDOG=1");
+  const std::string log = readText(log_path);
+  EXPECT_NE(log.find("event=fault_injection_armed stage=process kind=hang from_cycle=10"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("event=fault_injected stage=process kind=hang"), std::string::npos) << log;
+  EXPECT_NE(log.find("event=stop reason=stop_request cycles=11 "), std::string::npos) << log;
+  EXPECT_NE(log.find(" watchdog_withheld=1 heartbeat_misses=acquire:0,process:1,publish:0,health:0 "
+                     "faults_injected=1 "),
+            std::string::npos)
+      << log;
+}
+
 TEST(Visnavd, StopsWithinOneCycleOnSigtermAndSigint) {
   const std::string sequence = test::renderedApproachCi(VISNAV_APP_TEST_FRAMES);
   test::TempDir dir("visnavd");
