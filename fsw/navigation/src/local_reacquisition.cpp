@@ -70,6 +70,22 @@ Pose LocalReacquisition::hypothesis(const Pose& predicted, int index) const {
   return h;
 }
 
+bool LocalReacquisition::consistentWithPrediction(const Pose& candidate) const {
+  const double range = m_predicted.t_c_m.norm();
+  if (!(range > 0.0) || !(candidate.t_c_m.norm() > 0.0)) return false;
+  // The prediction turned about the camera centre onto the candidate's line of sight: what a slew does.
+  const Mat3 r = rotationBetween(m_predicted.t_c_m / range, candidate.t_c_m.normalized());
+  Pose aligned;
+  aligned.R_c_m = r * m_predicted.R_c_m;
+  aligned.t_c_m = r * m_predicted.t_c_m;
+  PoseTolerance tol;
+  tol.position_m = m_params.reacquire_range_tolerance_rel * range;
+  tol.attitude_rad = (m_params.reacquire_attitude_tolerance_deg +
+                      m_params.reacquire_tolerance_growth_deg_per_frame * m_frames) *
+                     kRadPerDeg;
+  return m_symmetries.equivalent(candidate, aligned, tol);
+}
+
 bool LocalReacquisition::trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
                                    std::uint64_t frame_number, int passes, NearRangeResult& result) const {
   tracker.reset();
@@ -108,6 +124,7 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
     const Pose start = hypothesis(predicted, index);
     ++out.hypotheses;
     if (!trackFrom(m_wide, image, start, frame_number, kPassesPerStart, r)) continue;
+    if (!consistentWithPrediction(r.pose)) continue;
     if (!have_best) {
       best = r;
       have_best = true;
@@ -138,7 +155,7 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
   NearRangeResult r;
   m_flight.track(image, m_candidate, frame_number, r);
   const bool good = imageEvidenceGood(r, m_params);
-  const bool consistent = tolerance(r).holds(r.pose, m_candidate);
+  const bool consistent = tolerance(r).holds(r.pose, m_candidate) && consistentWithPrediction(r.pose);
   if (!good || !consistent) {
     m_confirming = false;  // back to searching on the next frame
     return;
@@ -158,6 +175,7 @@ void LocalReacquisition::step(const MonoImage& image, const Pose& predicted, std
                               ReacquisitionStep& out) {
   out = ReacquisitionStep{};
   if (!m_active) return;
+  m_predicted = predicted;
   if (m_confirming) {
     confirm(image, frame_number, out);
   } else {

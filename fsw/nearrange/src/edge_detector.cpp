@@ -1,5 +1,6 @@
 #include "visnav/nearrange/edge_detector.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace visnav {
@@ -44,6 +45,34 @@ bool sampleScanline(const MonoImage& image, const Vec2& centre, const Vec2& dire
       return false;
   }
   return true;
+}
+
+bool sampleScanlineBand(const MonoImage& image, const Vec2& centre, const Vec2& direction, int half_length,
+                        int band_half_width, double* samples) {
+  if (band_half_width <= 0) return sampleScanline(image, centre, direction, half_length, samples);
+  const Vec2 along(-direction.y(), direction.x());
+  const double scale = 1.0 / (2 * band_half_width + 1);
+  for (int k = -half_length; k <= half_length; ++k) {
+    const Vec2 p = centre + static_cast<double>(k) * direction;
+    double sum = 0.0;
+    for (int j = -band_half_width; j <= band_half_width; ++j) {
+      double v = 0.0;
+      if (!sampleBrightness(image, p + static_cast<double>(j) * along, v)) return false;
+      sum += v;
+    }
+    samples[k + half_length] = sum * scale;
+  }
+  return true;
+}
+
+double scanlineNoiseSigma(const double* samples, int count, double floor) {
+  if (count < 2 || count > kMaxScanlineSamples) return floor;
+  double diffs[kMaxScanlineSamples];
+  const int m = count - 1;
+  for (int k = 0; k < m; ++k) diffs[k] = std::fabs(samples[k + 1] - samples[k]);
+  std::nth_element(diffs, diffs + m / 2, diffs + m);
+  // For Gaussian noise sigma, |difference| has median 0.6745 * sqrt(2) * sigma.
+  return std::max(diffs[m / 2] / (0.6744897501960817 * 1.4142135623730951), floor);
 }
 
 namespace {
@@ -106,51 +135,105 @@ double textureSplit(const double* samples, int count, int bins, double* log_gain
   return best_n + 0.5;
 }
 
+namespace {
+
+/// Sub-pixel position of the step around difference index `best` (between samples best and best + 1):
+/// peak of the polarity-signed first differences smoothed by [1 2 1] / 4 (a blurred step's derivative is
+/// bell-shaped; smoothing keeps one noisy difference from deciding), refined by the Gaussian fit.
+double locateStep(const double* samples, int count, int best, int polarity, bool subpixel) {
+  const int nw = count - 1;
+  const auto diff = [&](int x) {
+    const int c = x < 0 ? 0 : (x >= nw ? nw - 1 : x);
+    return polarity * (samples[c + 1] - samples[c]);
+  };
+  const auto smooth = [&](int x) { return 0.25 * diff(x - 1) + 0.5 * diff(x) + 0.25 * diff(x + 1); };
+  int peak = best;
+  double peak_value = smooth(best);
+  for (int x = best - 1; x <= best + 1; x += 2) {
+    if (x < 0 || x >= nw) continue;
+    const double v = smooth(x);
+    if (v > peak_value) {
+      peak_value = v;
+      peak = x;
+    }
+  }
+  double offset = 0.0;
+  if (subpixel && peak > 0 && peak < nw - 1)
+    offset = peakOffset(smooth(peak - 1), peak_value, smooth(peak + 1));
+  return peak + 0.5 + offset;
+}
+
+}  // namespace
+
 EdgeHit findEdge(const double* samples, int count, const EdgeSearchParams& params, int expected_polarity) {
   EdgeHit hit;
-  if (count < 5 || count > kMaxScanlineSamples) return hit;
-  // Eq. 4: w(x) = s(x + 1) - s(x), oriented by the expected polarity.
-  double w[kMaxScanlineSamples];
-  const int nw = count - 1;
-  double sum = 0.0;
-  int best = 0;
-  double best_value = -1e300;
-  for (int x = 0; x < nw; ++x) {
-    const double d = samples[x + 1] - samples[x];
-    w[x] = expected_polarity > 0 ? d : (expected_polarity < 0 ? -d : std::fabs(d));
-    sum += w[x];
-    if (w[x] > best_value) {
-      best_value = w[x];
+  const int w = params.step_window;
+  if (count < 5 || count > kMaxScanlineSamples || w < 1 || 2 * w > count) return hit;
+  // Eq. 4 generalised: the step between samples x and x + 1 is the difference of the w-sample means on
+  // either side. w = 1 is the paper's w(x); w > 1 keeps the whole step of a blurred edge and averages the
+  // noise down by sqrt(w / 2) relative to one difference.
+  double left = 0.0, right = 0.0;
+  for (int i = 0; i < w; ++i) {
+    left += samples[i];
+    right += samples[w + i];
+  }
+  int best = -1;
+  double best_value = 0.0;
+  double best_step = 0.0;
+  for (int x = w - 1; x + w < count; ++x) {
+    if (x > w - 1) {  // slide both windows one sample
+      left += samples[x] - samples[x - w];
+      right += samples[x + w] - samples[x];
+    }
+    const double step = (right - left) / w;
+    const double value = expected_polarity > 0 ? step : (expected_polarity < 0 ? -step : std::fabs(step));
+    if (value > best_value) {
+      best_value = value;
+      best_step = step;
       best = x;
     }
   }
-  const double strength = best_value - sum / nw;
   const double centre_index = 0.5 * (count - 1);
-  if (strength >= params.contrast_delta) {
-    double offset = 0.0;
-    if (params.subpixel && best > 0 && best < nw - 1) offset = peakOffset(w[best - 1], w[best], w[best + 1]);
-    hit.method = EdgeMethod::kGradient;
-    hit.offset_px = best + 0.5 + offset - centre_index;
-    hit.strength = strength;
-    hit.polarity = samples[best + 1] >= samples[best] ? 1 : -1;
+  const double step_sigma = scanlineNoiseSigma(samples, count, params.noise_floor) * std::sqrt(2.0 / w);
+  if (best >= 0 && best_value >= params.step_min_z * step_sigma) {
+    hit.method = best_value >= params.contrast_delta ? EdgeMethod::kGradient : EdgeMethod::kStep;
+    hit.polarity = best_step >= 0.0 ? 1 : -1;
+    hit.strength = best_value;
+    hit.z = best_value / step_sigma;
+    hit.offset_px = locateStep(samples, count, best, hit.polarity, params.subpixel) - centre_index;
     return hit;
   }
-  // Contrast too weak: texture segmentation (eq. 5, Algorithm 1).
+  // No significant step: texture segmentation (eq. 5, Algorithm 1).
   double gain = 0.0;
   const double split = textureSplit(samples, count, params.texture_bins, &gain);
   if (gain < params.texture_min_log_gain) return hit;  // no edge on this scanline
   hit.method = EdgeMethod::kTexture;
   hit.strength = 0.0;
   const int n = static_cast<int>(split);
-  double left = 0.0, right = 0.0;
-  for (int i = 0; i <= n; ++i) left += samples[i];
-  for (int i = n + 1; i < count; ++i) right += samples[i];
-  hit.polarity = right / (count - n - 1) >= left / (n + 1) ? 1 : -1;
+  double left_sum = 0.0, right_sum = 0.0, left_sq = 0.0, right_sq = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    left_sum += samples[i];
+    left_sq += samples[i] * samples[i];
+  }
+  for (int i = n + 1; i < count; ++i) {
+    right_sum += samples[i];
+    right_sq += samples[i] * samples[i];
+  }
+  const double left_mean = left_sum / (n + 1), right_mean = right_sum / (count - n - 1);
+  const double floor2 = params.noise_floor * params.noise_floor;
+  const double left_var = std::max(left_sq / (n + 1) - left_mean * left_mean, floor2);
+  const double right_var = std::max(right_sq / (count - n - 1) - right_mean * right_mean, floor2);
+  if (std::max(left_var, right_var) < params.texture_min_variance_ratio * std::min(left_var, right_var)) {
+    hit.method = EdgeMethod::kNone;  // same spread on both sides and no significant step: noise
+    return hit;
+  }
+  hit.polarity = right_mean >= left_mean ? 1 : -1;
   hit.offset_px = split - centre_index;
   if (!params.subpixel) return hit;
   // The split is pixel-level and biased: blurred samples straddling the edge look unlikely under the class
   // with the narrower histogram and go to the other one (measured ~0.35 px towards the uniform target).
   // Localise within one sample of the split by the eq. 4 difference signed by the split's polarity.
+  const int nw = count - 1;
   int peak = -1;
   double peak_value = 0.0;
   for (int x = n - 1; x <= n + 1; ++x) {

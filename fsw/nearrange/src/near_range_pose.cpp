@@ -11,7 +11,7 @@ bool NearRangeTracker::fitPose(const Pose& predicted, Pose& pose, PoseFitResult&
   // Sec. II-G, then one wrong line may be dropped (rejectWorstLine) when the fit fails or stays high.
   bool solved = solvePose(predicted, -1, out.lines_used, pose, fit, out.vertices, out.flags);
   const bool solver_failed = !solved && (out.flags & kFlagTooFewLines) == 0U;
-  if (solver_failed || (solved && fit.rms_px > m_params.degraded_rms_px))
+  if (solver_failed || (solved && fit.rms_px > m_params.reject_line_trigger_rms_px))
     solved = rejectWorstLine(predicted, solved, pose, fit, out);
   out.rms_px = fit.rms_px;
   out.lm_iterations = fit.lm.iterations;
@@ -112,8 +112,15 @@ bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose&
     std::uint32_t trial_flags = 0;
     if (!solvePose(predicted, k, out.lines_used - 1, trial_pose, trial_fit, trial_vertices, trial_flags))
       continue;
-    const bool better =
-        best_slot < 0 && !solved ? true : trial_fit.rms_px < m_params.reject_line_rms_gain * best_fit.rms_px;
+    // A vertex fit (eq. 7) and the point-to-line fallback have residuals of different kinds: their rms are
+    // not compared. A trial that has to fall back wins only over nothing or another fallback (slew_box:
+    // dropping the one line that left 3 corners gave a point-to-line fit 8 deg off at 0.04 px rms).
+    const bool trial_fallback = (trial_flags & kFlagResidualFallback) != 0U;
+    const bool best_fallback = best_slot >= 0 ? (best_flags & kFlagResidualFallback) != 0U
+                                              : (out.flags & kFlagResidualFallback) != 0U;
+    if (trial_fallback && !best_fallback && (solved || best_slot >= 0)) continue;
+    const bool better = (best_slot < 0 && !solved) || (best_fallback && !trial_fallback) ||
+                        trial_fit.rms_px < m_params.reject_line_rms_gain * best_fit.rms_px;
     if (better) {
       best_slot = k;
       best_pose = trial_pose;

@@ -26,8 +26,11 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_model = model;
   m_params = params;
   m_edge_params.contrast_delta = params.contrast_delta;
+  m_edge_params.step_window = params.step_window_px;
+  m_edge_params.step_min_z = params.step_min_z;
   m_edge_params.texture_bins = params.texture_bins;
   m_edge_params.texture_min_log_gain = params.texture_min_log_gain;
+  m_edge_params.texture_min_variance_ratio = params.texture_min_variance_ratio;
   m_edge_params.subpixel = params.subpixel;
   m_visibility = {params.visibility_enter_low_deg, params.visibility_enter_high_deg,
                   params.visibility_exit_low_deg, params.visibility_exit_high_deg};
@@ -128,7 +131,9 @@ bool NearRangeTracker::measureScanline(const MonoImage& image, int model_edge, c
                            : 0;
   const int half = m_params.scanline_half_length_px;
   double samples[kMaxScanlineSamples];
-  if (!sampleScanline(image, sp.scan_centre_px, sp.scan_normal, half, samples)) return false;
+  if (!sampleScanlineBand(image, sp.scan_centre_px, sp.scan_normal, half,
+                          m_params.scanline_band_half_width_px, samples))
+    return false;
   const EdgeHit hit = findEdge(samples, 2 * half + 1, m_edge_params, expected);
   if (hit.method == EdgeMethod::kNone) return false;
   sp.method = hit.method;
@@ -155,9 +160,11 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
   const double length_px = (slot.predicted_b_px - slot.predicted_a_px).norm();
   if (length_px >= m_params.min_edge_length_px) {
     const double usable_px = length_px - 2.0 * m_params.vertex_margin_px;
-    const int count =
-        std::min(usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0,
-                 m_params.max_scanlines_per_edge);
+    // A short edge still gets min_scanlines_per_edge scanlines, packed no closer than 1 px.
+    int count = usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0;
+    if (usable_px > 0.0 && count < m_params.min_scanlines_per_edge)
+      count = std::min(m_params.min_scanlines_per_edge, static_cast<int>(usable_px) + 1);
+    count = std::min(count, m_params.max_scanlines_per_edge);
     out.scanlines += count;
     for (int i = 0; i < count; ++i) {
       const double along_px =
@@ -166,6 +173,7 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
       ScanPoint sp;
       if (!measureScanline(image, e, a_c, b_c, along_px / length_px, i, centroid_px, sp)) continue;
       if (sp.method == EdgeMethod::kTexture) ++out.texture_points;
+      if (sp.method == EdgeMethod::kStep) ++out.weak_step_points;
       if (!m_scan_points.push(sp)) break;
       m_points_ideal.push(m_camera.undistortPixel(sp.edge_px));
     }
@@ -300,6 +308,9 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
     finishLost(predicted, out);
     return Status::kInvalidArgument;
   }
+  // Quantisation noise of one band-averaged sample: the floor of the scanlines' own noise estimate.
+  m_edge_params.noise_floor = 1.0 / (std::max(static_cast<double>(image.max_code), 1.0) * std::sqrt(12.0)) /
+                              std::sqrt(2.0 * m_params.scanline_band_half_width_px + 1.0);
   updateSurfaces(predicted);  // 1 surfaces (sec. II-H)
   selectEdges(out);
   out.timing.project_us = elapsedUs(stamp);

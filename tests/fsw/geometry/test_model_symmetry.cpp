@@ -28,6 +28,15 @@ TEST(ModelSymmetries, PlateBoxAndCube) {
     EXPECT_NEAR((s[i] * s[i].transpose() - Mat3::Identity()).norm(), 0.0, 1e-12);
 }
 
+TEST(ModelSymmetries, NearSymmetriesWithinOnePercentCount) {
+  // Campaign box/2: x and z half sizes 1 mm apart; at 20 px across that is 0.02 px.
+  EXPECT_EQ(countFound(makeBox(0.848, 0.478, 0.847)), 8);
+  EXPECT_EQ(countFound(makeBox(0.848, 0.478, 0.80)), 4);  // 5 % apart: told apart
+  ModelSymmetries exact;
+  exact.find(makeBox(0.848, 0.478, 0.847), 1e-6);
+  EXPECT_EQ(exact.size(), 4);
+}
+
 TEST(ModelSymmetries, AOneSidedPlateTurnedOverIsNotASymmetry) {
   const PolygonModel plate = makeRectanglePlate(2.3, 1.8);
   const Mat3 flip = expSo3(Vec3::UnitX() * kPi);  // the vertices match, the face looks away

@@ -65,9 +65,14 @@ TEST(EdgeDetector, WeakContrastFallsBackToTextureSplit) {
   double s[kCount];
   Pcg32 rng(7);
   for (int k = 0; k < kCount; ++k) s[k] = k < 12 ? 0.5 + 0.01 * rng.uniform() : (k % 2 == 0 ? 0.35 : 0.62);
-  const EdgeHit hit = findEdge(s, kCount, EdgeSearchParams{}, 0);
+  // With the step test off, only Algorithm 1 can find it.
+  EdgeSearchParams texture_only;
+  texture_only.step_min_z = 1e9;
+  const EdgeHit hit = findEdge(s, kCount, texture_only, 0);
   EXPECT_EQ(hit.method, EdgeMethod::kTexture);
   EXPECT_NEAR(hit.offset_px + 10.0, 11.5, 1.01);
+  // With defaults the windowed means differ at the boundary too: either way the point lands on it.
+  EXPECT_NEAR(findEdge(s, kCount, EdgeSearchParams{}, 0).offset_px + 10.0, 11.5, 1.01);
 }
 
 /// Mean signed error of texture hits across a weak step from a uniform target (0.40, sigma 0.005) to a
@@ -76,6 +81,7 @@ double textureBias(bool subpixel, int& texture_hits) {
   constexpr int kCount = 21;
   EdgeSearchParams params;
   params.subpixel = subpixel;
+  params.step_min_z = 1e9;  // the texture path alone (a 0.1 step this clean is otherwise a weak step)
   Pcg32 rng(17);
   double sum = 0.0;
   texture_hits = 0;
@@ -109,6 +115,100 @@ TEST(EdgeDetector, UniformScanlineHasNoEdge) {
   Pcg32 rng(9);
   for (double& v : s) v = 0.3 + 0.02 * rng.uniform();
   EXPECT_EQ(findEdge(s, 15, EdgeSearchParams{}, 0).method, EdgeMethod::kNone);
+}
+
+/// Gaussian draw from two uniforms (Box-Muller), for noise models of the statistical tests below.
+double gaussian(Pcg32& rng) {
+  const double u1 = std::max(rng.uniform(), 1e-12);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * rng.uniform());
+}
+
+/// 21 samples: level + ramp * k + a step of `contrast` at `edge` blurred by a Gaussian of `blur` px, Gaussian
+/// noise `sigma`, quantised to 8 bits like a camera frame.
+void noisyStep(Pcg32& rng, double edge, double contrast, double blur, double ramp, double sigma, double* s) {
+  const double level = 0.2 + 0.4 * rng.uniform();
+  for (int k = 0; k < 21; ++k) {
+    const double v = level + ramp * k +
+                     contrast * 0.5 * (1.0 + std::erf((k - edge) / (blur * 1.4142135623730951))) +
+                     sigma * gaussian(rng);
+    s[k] = std::round(std::clamp(v, 0.0, 1.0) * 255.0) / 255.0;
+  }
+}
+
+TEST(EdgeDetector, NoiseAndRampsAloneRarelyGiveAPoint) {
+  // "The texture fallback must not pick noise": scanlines with no edge, noise sigma 0.02..0.12 over a
+  // background ramp of up to 0.005 per px. eq. 4 with delta 0.2 and the old 1-nat texture gain answered on
+  // 23 % of such scanlines; a point from nothing is what drags RANSAC onto a wrong line.
+  Pcg32 rng(23);
+  int hits = 0;
+  constexpr int kTrials = 4000;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    double s[21];
+    const double sigma = 0.02 + 0.1 * rng.uniform();
+    noisyStep(rng, 10.0, 0.0, 1.0, (rng.uniform() - 0.5) * 0.01, sigma, s);
+    if (findEdge(s, 21, EdgeSearchParams{}, 0).method != EdgeMethod::kNone) ++hits;
+  }
+  EXPECT_LT(hits, kTrials / 50);
+}
+
+TEST(EdgeDetector, BlurredStepBelowDeltaPerPixelIsFoundAndLocated) {
+  // A 0.27 step blurred over two pixels (campaign box/1: 0.37 -> 0.23 -> 0.10) never has a one-pixel
+  // difference of delta = 0.2: eq. 4 alone missed it on every scanline. The w-sample step finds it, and the
+  // smoothed-derivative peak puts it within 0.2 px on average (one scanline, no band averaging).
+  Pcg32 rng(29);
+  int found = 0;
+  double abs_error = 0.0;
+  constexpr int kTrials = 1000;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    double s[21];
+    const double edge = 8.0 + 4.0 * rng.uniform();
+    noisyStep(rng, edge, -0.27, 0.8, 0.0, 0.02, s);
+    const EdgeHit hit = findEdge(s, 21, EdgeSearchParams{}, 0);
+    if (hit.method == EdgeMethod::kNone || std::fabs(hit.offset_px + 10.0 - edge) > 1.0) continue;
+    ++found;
+    EXPECT_EQ(hit.polarity, -1);
+    abs_error += std::fabs(hit.offset_px + 10.0 - edge);
+  }
+  EXPECT_GE(found, kTrials * 99 / 100);
+  EXPECT_LT(abs_error / found, 0.2);
+}
+
+TEST(EdgeDetector, WeakSignificantStepIsReportedAsWeakContrast) {
+  double s[21];
+  for (int k = 0; k < 21; ++k) s[k] = k < 10 ? 0.30 : 0.38;
+  const EdgeHit hit = findEdge(s, 21, EdgeSearchParams{}, 0);
+  EXPECT_EQ(hit.method, EdgeMethod::kStep);
+  EXPECT_NEAR(hit.strength, 0.08, 1e-12);
+  EXPECT_NEAR(hit.offset_px + 10.0, 9.5, 0.05);
+  for (int k = 0; k < 21; ++k) s[k] = k < 10 ? 0.30 : 0.58;
+  EXPECT_EQ(findEdge(s, 21, EdgeSearchParams{}, 0).method, EdgeMethod::kGradient);
+}
+
+TEST(EdgeDetector, BandSamplesAverageAlongTheEdge) {
+  // 8x8 image, pixel value = 10 * row + col: the band mean along a vertical scanline direction's
+  // perpendicular (rows fixed, columns +-1) equals the centre column's value for a linear image, and a
+  // band of half-width 0 is the plain scanline.
+  std::uint8_t pixels[8 * 8];
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 8; ++c) pixels[r * 8 + c] = static_cast<std::uint8_t>(10 * r + c * c);
+  const MonoImage image = MonoImage::from8(ImageView8(pixels, 8, 8));
+  double band[5], plain[5], manual[5];
+  ASSERT_TRUE(sampleScanlineBand(image, Vec2(4.5, 4.5), Vec2(0.0, 1.0), 2, 1, band));
+  ASSERT_TRUE(sampleScanline(image, Vec2(4.5, 4.5), Vec2(0.0, 1.0), 2, plain));
+  for (int k = -2; k <= 2; ++k) {
+    double sum = 0.0;
+    for (int j = -1; j <= 1; ++j) {
+      double v = 0.0;
+      ASSERT_TRUE(sampleBrightness(image, Vec2(4.5 - j, 4.5 + k), v));
+      sum += v;
+    }
+    manual[k + 2] = sum / 3.0;
+  }
+  for (int k = 0; k < 5; ++k) EXPECT_NEAR(band[k], manual[k], 1e-12);
+  EXPECT_GT(band[2], plain[2]);  // c^2 is convex: the mean of columns 3..5 exceeds column 4's value
+  ASSERT_TRUE(sampleScanlineBand(image, Vec2(4.5, 4.5), Vec2(0.0, 1.0), 2, 0, band));
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(band[k], plain[k]);
+  EXPECT_FALSE(sampleScanlineBand(image, Vec2(1.0, 4.5), Vec2(0.0, 1.0), 2, 1, band));  // column -0.5
 }
 
 TEST(EdgeDetector, TextureLikelihoodIsDirichletMultinomial) {

@@ -24,7 +24,8 @@ struct NearRangeCheck {
 };
 
 /// Lines, inliers, residual and edge support of a near-range measurement all say the image holds the
-/// model where the tracker put it. Such a measurement wins over a filter that rejects it.
+/// model where the tracker put it, and the pose came from intersected vertices (eq. 7), not from the
+/// point-to-line fallback. Such a measurement wins over a filter that rejects it.
 bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params);
 
 class FdirMonitor {

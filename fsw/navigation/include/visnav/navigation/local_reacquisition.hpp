@@ -6,7 +6,8 @@
 // prediction leaves the target near where it was). A start is a candidate only with good image evidence
 // (lines, inliers, residual, edge support), and only when no distinct pose (modulo the model's symmetries)
 // tracks as well in the same frame; it is delivered after it keeps tracking with the flight settings and
-// moves consistently for reacquire_confirm_frames. Until then the answer is "lost", never a guess.
+// moves consistently for reacquire_confirm_frames, and only when its range and its look along the line of
+// sight agree with the prediction. Until then the answer is "lost", never a guess.
 // All memory is sized in init(); step() allocates nothing and is bounded by the parameters.
 #pragma once
 
@@ -48,6 +49,10 @@ class LocalReacquisition {
   Pose hypothesis(const Pose& predicted, int index) const;
   /// One hypothesis: within one frame's motion plus what the tracker cannot resolve around `r`.
   PoseTolerance tolerance(const NearRangeResult& r) const;
+  /// The candidate keeps the predicted range and look (attitude seen along its own line of sight, modulo
+  /// symmetries) within tolerances that widen with the frames searched: a slew or a missed prediction moves
+  /// the target across the image, but does not turn it over or move it in depth.
+  bool consistentWithPrediction(const Pose& candidate) const;
   static int hypothesesWithinRings(int rings) { return 1 + 3 * rings * (rings + 1); }
   bool trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
                  std::uint64_t frame_number, int passes, NearRangeResult& result) const;
@@ -67,6 +72,7 @@ class LocalReacquisition {
   int m_cursor = 0;
   int m_confirmed = 0;
   Pose m_candidate;
+  Pose m_predicted;  ///< this frame's prediction (step())
 };
 
 }  // namespace visnav::nav

@@ -36,7 +36,10 @@ struct NavigationParams {
   int reacquire_scanline_half_length_px = 24;
   double reacquire_step_rel = 0.8;              ///< lateral grid step / the wide tracker's capture range
   double reacquire_growth_px_per_frame = 40.0;  ///< the searched radius widens this much per frame
-  int reacquire_confirm_frames = 1;
+  int reacquire_confirm_frames = 2;
+  double reacquire_range_tolerance_rel = 0.1;      ///< a candidate's range against the prediction's
+  double reacquire_attitude_tolerance_deg = 15.0;  ///< its attitude in the line-of-sight frame
+  double reacquire_tolerance_growth_deg_per_frame = 1.0;
   double reacquire_max_motion_rel = 0.05;   ///< confirmation: position change / range per frame
   double reacquire_max_rotation_deg = 5.0;  ///< confirmation: attitude change per frame
   int reacquire_timeout_frames = 300;       ///< searching longer: hand over to far range
@@ -128,6 +131,21 @@ struct NavigationParams {
     v.integer({"navigation", "reacquire_confirm_frames", "count", 1, 100,
                "close-range reacquisition: frames a found pose must keep tracking before it is delivered"},
               reacquire_confirm_frames);
+    v.real(
+        {"navigation", "reacquire_range_tolerance_rel", "-", 0.001, 10.0,
+         "close-range reacquisition: a candidate whose range differs from the predicted range by more than "
+         "this share is not taken (a few outline lines of a small body also fit a mirrored pose at another "
+         "range: campaign box/1 was re-found 25 % off)"},
+        reacquire_range_tolerance_rel);
+    v.real({"navigation", "reacquire_attitude_tolerance_deg", "deg", 0.1, 180.0,
+            "close-range reacquisition: largest attitude difference between a candidate and the prediction, "
+            "both seen along their own line of sight (a slew moves the target, not its look), modulo the "
+            "model's symmetries"},
+           reacquire_attitude_tolerance_deg);
+    v.real({"navigation", "reacquire_tolerance_growth_deg_per_frame", "deg", 0.0, 180.0,
+            "close-range reacquisition: the attitude tolerance grows this much per frame searched (the "
+            "prediction ages; 1 deg/frame is the fastest tumble the campaign draws)"},
+           reacquire_tolerance_growth_deg_per_frame);
     v.real({"navigation", "reacquire_max_motion_rel", "-", 0.001, 1.0,
             "close-range reacquisition: largest position change per frame (share of the range) that counts "
             "as consistent motion while confirming"},

@@ -1,5 +1,6 @@
-// Edge point on one scanline (paper sec. II-D): brightness difference (eq. 4) with a sub-pixel refinement,
-// or, when the contrast is too weak, the texture split of eq. 5 / Algorithm 1. Pure math, no allocation.
+// Edge point on one scanline (paper sec. II-D): a noise-scaled step test (eq. 4 generalised to a w-sample
+// difference of means) with a sub-pixel refinement, or, when no step is significant, the texture split of
+// eq. 5 / Algorithm 1. Pure math, no allocation.
 #pragma once
 
 #include <cstdint>
@@ -19,25 +20,49 @@ bool sampleBrightness(const MonoImage& image, const Vec2& p, double& value);
 bool sampleScanline(const MonoImage& image, const Vec2& centre, const Vec2& direction, int half_length,
                     double* samples);
 
-enum class EdgeMethod : std::uint8_t { kNone = 0, kGradient = 1, kTexture = 2 };
+/// As sampleScanline, each sample the mean of 2 * band_half_width + 1 samples spaced 1 px along the edge
+/// (perpendicular to `direction`, a unit vector): an oriented mask like ViSP's moving edges, which lowers
+/// the noise by sqrt(2 b + 1) while a straight edge stays sharp. band_half_width 0 is sampleScanline.
+bool sampleScanlineBand(const MonoImage& image, const Vec2& centre, const Vec2& direction, int half_length,
+                        int band_half_width, double* samples);
+
+/// kGradient: a significant step of at least delta (the paper's strong edge, eq. 4); kStep: a significant
+/// step weaker than delta (the paper's "weak contrast"); kTexture: Algorithm 1's split.
+enum class EdgeMethod : std::uint8_t { kNone = 0, kGradient = 1, kTexture = 2, kStep = 3 };
 
 struct EdgeSearchParams {
-  double contrast_delta = 0.2;  ///< delta of sec. II-D
-  int texture_bins = 32;        ///< n_bins of Algorithm 1
+  double contrast_delta = 0.2;  ///< delta of sec. II-D: a step at least this large is a strong edge
+  int step_window = 4;          ///< w: samples averaged on each side of a candidate step
+  /// A step must exceed this many standard deviations of the w-sample difference of means, the noise
+  /// measured on the scanline itself (median absolute first difference).
+  double step_min_z = 5.0;
+  /// Lower bound of that noise estimate (brightness 0..1): quantisation, so an 8-bit flat patch whose
+  /// differences are mostly zero does not make every 1-code wiggle "significant".
+  double noise_floor = 1.0 / (255.0 * 3.4641016151377544);
+  int texture_bins = 32;  ///< n_bins of Algorithm 1
   /// A texture split must beat "one texture everywhere" by this log-likelihood margin [nats], else the
   /// scanline has no edge (a uniform patch must not produce a confident edge point).
   double texture_min_log_gain = 1.0;
+  /// ... and the two sides' variances must differ by at least this factor. Histograms ignore order, so a
+  /// noisy ramp that crosses a bin boundary scores like a clean step (gain <= 2.65 nats on 21 samples for
+  /// either); what a texture boundary with no step has that noise lacks is a change of spread.
+  double texture_min_variance_ratio = 10.0;
   bool subpixel = true;
 };
 
 struct EdgeHit {
   EdgeMethod method = EdgeMethod::kNone;
   double offset_px = 0.0;  ///< edge position along the scanline relative to its centre sample
-  double strength = 0.0;   ///< max(w) - mean(w) for gradient hits, 0 for texture hits
+  double strength = 0.0;   ///< |step| (difference of the w-sample means) for step hits, 0 for texture hits
+  double z = 0.0;          ///< strength over its noise standard deviation (step hits)
   int polarity = 0;        ///< sign of the brightness step along the scanline direction (+1 dark->bright)
 };
 
-/// `expected_polarity`: +1 / -1 searches argmax(+-w) only, 0 searches argmax |w| (unknown polarity).
+/// Robust noise standard deviation of a scanline: median |s(k+1) - s(k)| / (0.6745 sqrt 2), at least
+/// `floor`. One edge changes a few differences only, so the median still measures the noise.
+double scanlineNoiseSigma(const double* samples, int count, double floor);
+
+/// `expected_polarity`: +1 / -1 accepts only steps of that sign, 0 either (unknown polarity).
 EdgeHit findEdge(const double* samples, int count, const EdgeSearchParams& params, int expected_polarity);
 
 /// log f(S, x, y) of Algorithm 1 for every prefix: out[n] = log f(S, 0, n + 1), i.e. samples 0..n.

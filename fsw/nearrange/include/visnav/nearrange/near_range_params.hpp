@@ -16,9 +16,14 @@ struct NearRangeParams {
   double vertex_margin_px = 5.0;
   double min_edge_length_px = 12.0;
   // Edge point on a scanline (eq. 4, eq. 5 / Algorithm 1).
+  int min_scanlines_per_edge = 10;
+  int scanline_band_half_width_px = 2;
   double contrast_delta = 0.2;
+  int step_window_px = 4;
+  double step_min_z = 5.0;
   int texture_bins = 32;
   double texture_min_log_gain = 1.0;
+  double texture_min_variance_ratio = 10.0;
   bool subpixel = true;
   int polarity_mode = static_cast<int>(EdgePolarityMode::kLearned);
   // RANSAC line fit (sec. II-E).
@@ -34,6 +39,7 @@ struct NearRangeParams {
   double max_rms_px = 1.5;
   double degraded_rms_px = 0.6;
   double reject_line_rms_gain = 0.5;
+  double reject_line_trigger_rms_px = 0.2;
   // Surface switching (sec. II-H), viewing angle v of CONVENTIONS.md.
   double visibility_enter_low_deg = 45.0;
   double visibility_enter_high_deg = 135.0;
@@ -58,9 +64,27 @@ struct NearRangeParams {
     v.real({"nearrange", "min_edge_length_px", "px", 2.0, 1000.0,
             "projected edges shorter than this are not measured"},
            min_edge_length_px);
+    v.integer(
+        {"nearrange", "min_scanlines_per_edge", "count", 1, 4096,
+         "a measured edge gets at least this many scanlines (closer than scanline_spacing_px, never closer "
+         "than 1 px), so a short edge of a small target can still reach min_points_per_line"},
+        min_scanlines_per_edge);
+    v.integer({"nearrange", "scanline_band_half_width_px", "px", 0, 8,
+               "each scanline sample averages 2 b + 1 samples 1 px apart along the predicted edge (oriented "
+               "mask): noise down by sqrt(2 b + 1) while a straight edge stays sharp"},
+              scanline_band_half_width_px);
     v.real({"nearrange", "contrast_delta", "-", 0.0, 1.0,
-            "delta of sec. II-D: texture split (eq. 5) when max(w) - mean(w) < delta (brightness 0..1)"},
+            "delta of sec. II-D: a significant step at least this large (brightness 0..1) is a strong "
+            "(gradient) edge, a weaker one is reported as a weak-contrast step"},
            contrast_delta);
+    v.integer({"nearrange", "step_window_px", "px", 1, 16,
+               "w: the step between two samples is the difference of the means of w samples on either side "
+               "(eq. 4 is w = 1); covers a blurred edge and averages noise"},
+              step_window_px);
+    v.real({"nearrange", "step_min_z", "sigma", 0.0, 100.0,
+            "a step is an edge point when it exceeds this many standard deviations of its noise, measured on "
+            "the scanline (5: about 1 false point in 100 noise-only scanlines, campaign edge statistics)"},
+           step_min_z);
     v.integer({"nearrange", "texture_bins", "count", 2, 256, "brightness classes of Algorithm 1"},
               texture_bins);
     v.real(
@@ -68,6 +92,11 @@ struct NearRangeParams {
          "a texture split must explain the scanline better than one texture by this log-likelihood margin, "
          "else the scanline yields no point (a uniform patch has no edge)"},
         texture_min_log_gain);
+    v.real({"nearrange", "texture_min_variance_ratio", "-", 1.0, 1e6,
+            "a texture split is kept only when one side's variance is this many times the other's: a "
+            "histogram ignores order, so noise on a ramp scores like a clean step (both <= 2.65 nats on 21 "
+            "samples); a change of spread is what a texture edge without a step has and noise has not"},
+           texture_min_variance_ratio);
     v.boolean({"nearrange", "subpixel", "-", 0, 1,
                "refine the eq. 4 maximum to sub-pixel with a Gaussian/parabola fit of w"},
               subpixel);
@@ -103,6 +132,12 @@ struct NearRangeParams {
             "this fraction of the fit's (one wrong line, e.g. locked onto a neighbour, must explain a clear "
             "share of the residual to be dropped)"},
            reject_line_rms_gain);
+    v.real(
+        {"nearrange", "reject_line_trigger_rms_px", "px", 0.0, 100.0,
+         "leave-one-line-out is tried when the fit's residual exceeds this (or the fit failed): a face "
+         "entering at a grazing angle locked one edge onto its neighbour at 0.4 px rms where the track ran "
+         "at 0.01-0.03 px (slew_box), below degraded_rms_px"},
+        reject_line_trigger_rms_px);
     v.real({"nearrange", "visibility_enter_low_deg", "deg", 0.0, 90.0, "sec. II-H: start tracking above"},
            visibility_enter_low_deg);
     v.real({"nearrange", "visibility_enter_high_deg", "deg", 90.0, 180.0, "sec. II-H: start tracking below"},
@@ -129,6 +164,10 @@ struct NearRangeParams {
     if (!(visibility_enter_high_deg <= visibility_exit_high_deg))
       return "visibility_enter_high_deg must be <= visibility_exit_high_deg (hysteresis)";
     if (!(degraded_rms_px <= max_rms_px)) return "degraded_rms_px must be <= max_rms_px";
+    if (step_window_px > scanline_half_length_px)
+      return "step_window_px must be <= scanline_half_length_px (both windows lie on the scanline)";
+    if (min_scanlines_per_edge > max_scanlines_per_edge)
+      return "min_scanlines_per_edge must be <= max_scanlines_per_edge";
     return nullptr;
   }
 };

@@ -69,6 +69,7 @@ struct NearRangeResult {
   int edge_points = 0;
   int inlier_points = 0;
   int texture_points = 0;
+  int weak_step_points = 0;  ///< significant steps below contrast_delta (the paper's weak contrast)
   int vertices = 0;
   double rms_px = 0.0;
   int lm_iterations = 0;
