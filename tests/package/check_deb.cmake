@@ -1,17 +1,34 @@
-# ctest package_deb_contents: builds the Debian package of this build with cpack, unpacks it into a scratch
-# root with dpkg-deb -x (no root needed) and checks what an operator relies on: control fields, the
-# daemon/tools in usr/bin and runnable, the default config, every systemd unit under config/, the
-# ground-tool IDL and its header (self-contained C), the service's /etc/visnav config as conffiles (valid for
-# the packaged visnavd), nothing else outside /usr.
-# -DBUILD_DIR=... -DARCH=amd64 -DVERSION=x.y.z -DSOURCE_DIR=...
+# ctest package_deb_contents: builds the Debian packages of this build with cpack (visnav, visnav-dev,
+# visnav-dbgsym; libvisnav<N> and its -dbgsym when the C ABI library is built), unpacks them into scratch roots
+# with dpkg-deb -x (no root needed) and checks what an operator relies on: control fields, the daemon/tools
+# in usr/bin, stripped and runnable, their debug info in the -dbgsym package under the binaries' build ids,
+# the default config, every systemd unit under config/, the service's /etc/visnav config as conffiles (valid
+# for the packaged visnavd), nothing else outside /usr; in visnav-dev the IDL, its header (self-contained C,
+# no build-machine path), libvisnav-idl.a, the pkg-config and CMake files. The packages stay in
+# BUILD_DIR/package_test for the tests that need them (fixture visnav_debs: dev client, lintian).
+# -DBUILD_DIR=... -DARCH=amd64 -DVERSION=x.y.z -DSOURCE_DIR=... [-DCAPI_PACKAGE=libvisnav1]
 set(work ${BUILD_DIR}/package_test)
 file(REMOVE_RECURSE ${work})
 file(MAKE_DIRECTORY ${work})
 execute_process(COMMAND cpack -G DEB --config ${BUILD_DIR}/CPackConfig.cmake -B ${work}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 set(deb ${work}/visnav_${VERSION}_${ARCH}.deb)
-if(NOT rc EQUAL 0 OR NOT EXISTS ${deb})
-  message(FATAL_ERROR "cpack failed (${rc}) or ${deb} missing:\n${out}")
+set(dev_deb ${work}/visnav-dev_${VERSION}_${ARCH}.deb)
+set(dbgsym_deb ${work}/visnav-dbgsym_${VERSION}_${ARCH}.ddeb)
+foreach(file ${deb} ${dev_deb} ${dbgsym_deb})
+  if(NOT rc EQUAL 0 OR NOT EXISTS ${file})
+    message(FATAL_ERROR "cpack failed (${rc}) or ${file} missing:\n${out}")
+  endif()
+endforeach()
+file(GLOB made RELATIVE ${work} ${work}/*.deb ${work}/*.ddeb)
+list(SORT made)
+set(expected_made visnav-dbgsym_${VERSION}_${ARCH}.ddeb visnav-dev_${VERSION}_${ARCH}.deb visnav_${VERSION}_${ARCH}.deb)
+if(CAPI_PACKAGE)
+  list(APPEND expected_made ${CAPI_PACKAGE}-dbgsym_${VERSION}_${ARCH}.ddeb ${CAPI_PACKAGE}_${VERSION}_${ARCH}.deb)
+endif()
+list(SORT expected_made)
+if(NOT made STREQUAL expected_made)
+  message(FATAL_ERROR "cpack made ${made}, expected ${expected_made}")
 endif()
 
 function(control_field name var)
@@ -51,8 +68,7 @@ endif()
 set(expected usr/bin/visnavd usr/bin/visnav-replay usr/bin/visnav-synth usr/bin/visnav-eval usr/bin/visnav-params
              usr/bin/visnav-monitor usr/bin/visnav-command usr/share/visnav/config/visnav.toml
              usr/share/visnav/config/PARAMETERS.md usr/share/visnav/config/cyclonedds-loopback.xml
-             usr/share/visnav/config/scenarios/approach_ci.toml usr/include/visnav/idl/visnav.idl
-             usr/include/visnav/idl/visnav.h usr/share/doc/visnav/README.md etc/visnav/visnavd.toml
+             usr/share/visnav/config/scenarios/approach_ci.toml usr/share/doc/visnav/README.md etc/visnav/visnavd.toml
              etc/visnav/cyclonedds.xml usr/share/doc/visnav/copyright usr/share/doc/visnav/changelog.gz
              usr/lib/sysusers.d/visnav.conf)
 # A man page per binary when the build had help2man (MAN_PAGES).
@@ -88,9 +104,86 @@ execute_process(COMMAND ${root}/usr/bin/visnav-params --check ${root}/usr/share/
 if(NOT rc EQUAL 0)
   string(APPEND errors "packaged visnav-params --check on the packaged config failed (${rc}): ${out}\n")
 endif()
-# The ground-tool header compiles on its own against the installed Cyclone DDS headers.
+if(EXISTS ${root}/usr/include)
+  string(APPEND errors "visnav ships headers (they belong in visnav-dev)\n")
+endif()
+
+# visnav-dev: the ground clients' files, nothing else; Depends on Cyclone's -dev package.
+set(dev_root ${work}/dev_root)
+execute_process(COMMAND dpkg-deb -x ${dev_deb} ${dev_root} RESULT_VARIABLE rc)
+execute_process(COMMAND dpkg-deb -f ${dev_deb} Package Depends Section OUTPUT_VARIABLE dev_fields)
+if(NOT rc EQUAL 0 OR NOT dev_fields MATCHES "Package: visnav-dev\n" OR NOT dev_fields MATCHES "Depends: [^\n]*cyclonedds-dev")
+  string(APPEND errors "visnav-dev control fields: ${dev_fields}\n")
+endif()
+if(CAPI_PACKAGE AND NOT dev_fields MATCHES "${CAPI_PACKAGE} \\(= ${VERSION}\\)")
+  string(APPEND errors "visnav-dev does not depend on ${CAPI_PACKAGE} (= ${VERSION}): ${dev_fields}\n")
+endif()
+file(GLOB multiarch_dirs LIST_DIRECTORIES true ${dev_root}/usr/lib/*-linux-gnu*)
+list(LENGTH multiarch_dirs n_multiarch)
+if(NOT n_multiarch EQUAL 1)
+  string(APPEND errors "visnav-dev: expected one multiarch library folder, found '${multiarch_dirs}'\n")
+else()
+  file(RELATIVE_PATH libdir ${dev_root} ${multiarch_dirs})
+  foreach(path usr/include/visnav/idl/visnav.idl usr/include/visnav/idl/visnav.h ${libdir}/libvisnav-idl.a
+               ${libdir}/pkgconfig/visnav-idl.pc ${libdir}/cmake/visnav-idl/visnav-idl-config.cmake
+               ${libdir}/cmake/visnav-idl/visnav-idl-config-version.cmake usr/share/doc/visnav-dev/copyright
+               usr/share/doc/visnav-dev/changelog.gz)
+    if(NOT EXISTS ${dev_root}/${path})
+      string(APPEND errors "visnav-dev: missing ${path}\n")
+    endif()
+  endforeach()
+endif()
+file(GLOB_RECURSE dev_files RELATIVE ${dev_root} ${dev_root}/*)
+foreach(path IN LISTS dev_files)
+  if(NOT path MATCHES "^usr/(include|lib|share/doc/visnav-dev)/")
+    string(APPEND errors "visnav-dev: unexpected ${path}\n")
+  endif()
+  # No build-machine path in any text file it ships (idlc writes absolute paths; CMake's export files must
+  # compute their prefix).
+  if(NOT path MATCHES "\\.(a|gz)$" AND NOT IS_SYMLINK ${dev_root}/${path})
+    file(READ ${dev_root}/${path} text)
+    foreach(machine_path ${SOURCE_DIR} ${BUILD_DIR})
+      string(FIND "${text}" "${machine_path}" at)
+      if(NOT at EQUAL -1)
+        string(APPEND errors "visnav-dev: ${path} names the build machine's ${machine_path}\n")
+      endif()
+    endforeach()
+  endif()
+endforeach()
+# The C ABI library: libvisnav.so.N (and nothing but its docs) in libvisnav<N>, header and namelink in visnav-dev.
+if(CAPI_PACKAGE)
+  string(REGEX REPLACE "^libvisnav" "" soversion ${CAPI_PACKAGE})
+  set(lib_root ${work}/lib_root)
+  execute_process(COMMAND dpkg-deb -x ${work}/${CAPI_PACKAGE}_${VERSION}_${ARCH}.deb ${lib_root} RESULT_VARIABLE rc)
+  file(GLOB_RECURSE lib_files RELATIVE ${lib_root} ${lib_root}/*)
+  set(sonames "")
+  foreach(path IN LISTS lib_files)
+    if(path MATCHES "^usr/lib/(.*/)?libvisnav\\.so\\.${soversion}$")
+      list(APPEND sonames ${path})
+    elseif(NOT path MATCHES "^usr/lib/(.*/)?libvisnav\\.so\\.${soversion}\\.[0-9.]+$"
+           AND NOT path MATCHES "^usr/share/doc/${CAPI_PACKAGE}/(copyright|changelog\\.gz)$")
+      string(APPEND errors "${CAPI_PACKAGE}: unexpected ${path}\n")
+    endif()
+  endforeach()
+  if(NOT sonames)
+    string(APPEND errors "${CAPI_PACKAGE}: no libvisnav.so.${soversion} (${lib_files})\n")
+  endif()
+  execute_process(COMMAND dpkg-deb --ctrl-tarfile ${work}/${CAPI_PACKAGE}_${VERSION}_${ARCH}.deb
+                  COMMAND tar -t OUTPUT_VARIABLE lib_control)
+  if(NOT lib_control MATCHES "shlibs" OR NOT lib_control MATCHES "triggers")
+    string(APPEND errors "${CAPI_PACKAGE}: no shlibs or triggers control file: ${lib_control}\n")
+  endif()
+  if(NOT EXISTS ${dev_root}/usr/include/visnav/visnav.h)
+    string(APPEND errors "visnav-dev: missing usr/include/visnav/visnav.h\n")
+  endif()
+  file(GLOB_RECURSE namelinks LIST_DIRECTORIES false ${dev_root}/usr/lib/*libvisnav.so)
+  if(NOT namelinks)
+    string(APPEND errors "visnav-dev: no libvisnav.so link\n")
+  endif()
+endif()
+# The IDL header compiles on its own against the installed Cyclone DDS headers.
 file(WRITE ${work}/idl_header.c "#include \"visnav/idl/visnav.h\"\nint main(void) { return 0; }\n")
-execute_process(COMMAND cc -fsyntax-only -Wall -Werror -I${root}/usr/include ${work}/idl_header.c
+execute_process(COMMAND cc -fsyntax-only -Wall -Werror -I${dev_root}/usr/include ${work}/idl_header.c
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT rc EQUAL 0)
   string(APPEND errors "usr/include/visnav/idl/visnav.h does not compile on its own: ${out}\n")
@@ -130,17 +223,44 @@ foreach(script postinst prerm postrm)
     string(APPEND errors "no ${script} maintainer script\n")
   endif()
 endforeach()
-# Stripped executables (lintian: unstripped-binary-or-object).
+# Stripped executables (lintian: unstripped-binary-or-object), each with its debug info in visnav-dbgsym at
+# usr/lib/debug/.build-id/<first 2 hex digits>/<rest>.debug, the path gdb looks up by the binary's build id.
+set(dbg_root ${work}/dbgsym_root)
+execute_process(COMMAND dpkg-deb -x ${dbgsym_deb} ${dbg_root} RESULT_VARIABLE rc)
+execute_process(COMMAND dpkg-deb -f ${dbgsym_deb} Package Depends OUTPUT_VARIABLE dbg_fields)
+if(NOT rc EQUAL 0 OR NOT dbg_fields MATCHES "Package: visnav-dbgsym\n" OR NOT dbg_fields MATCHES "Depends: visnav \\(= ${VERSION}\\)")
+  string(APPEND errors "visnav-dbgsym control fields: ${dbg_fields}\n")
+endif()
+set(elf_count 0)
 foreach(path IN LISTS all_files)
   if(path MATCHES "^usr/bin/")
-    execute_process(COMMAND readelf -S ${root}/${path} OUTPUT_VARIABLE sections)
+    math(EXPR elf_count "${elf_count} + 1")
+    execute_process(COMMAND readelf -S -n ${root}/${path} OUTPUT_VARIABLE sections)
     if(sections MATCHES "\\.debug_info|\\.symtab")
       string(APPEND errors "not stripped: ${path}\n")
     endif()
+    if(NOT sections MATCHES "Build ID: ([0-9a-f][0-9a-f])([0-9a-f]+)")
+      string(APPEND errors "no build id: ${path}\n")
+      continue()
+    endif()
+    set(debug_file ${dbg_root}/usr/lib/debug/.build-id/${CMAKE_MATCH_1}/${CMAKE_MATCH_2}.debug)
+    if(NOT EXISTS ${debug_file})
+      string(APPEND errors "no debug info for ${path} in visnav-dbgsym (${debug_file})\n")
+      continue()
+    endif()
+    execute_process(COMMAND readelf -S ${debug_file} OUTPUT_VARIABLE debug_sections ERROR_QUIET)
+    if(NOT debug_sections MATCHES "\\.debug_info")
+      string(APPEND errors "${debug_file} (${path}) holds no .debug_info\n")
+    endif()
   endif()
 endforeach()
+if(elf_count LESS 12)
+  string(APPEND errors "only ${elf_count} binaries in usr/bin\n")
+endif()
 list(LENGTH all_files file_count)
 if(errors)
   message(FATAL_ERROR "visnav_${VERSION}_${ARCH}.deb (${file_count} files):\n${errors}")
 endif()
-message(STATUS "visnav_${VERSION}_${ARCH}.deb: ${file_count} files, Depends: ${depends}")
+list(LENGTH dev_files dev_file_count)
+message(STATUS "visnav_${VERSION}_${ARCH}.deb: ${file_count} files, Depends: ${depends}; visnav-dev: "
+               "${dev_file_count} files; visnav-dbgsym: debug info of ${elf_count} binaries")

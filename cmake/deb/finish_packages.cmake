@@ -1,0 +1,78 @@
+# Run by cpack after it made the Debian packages (CPACK_POST_BUILD_SCRIPTS, cmake/visnav_packaging.cmake);
+# CPACK_PACKAGE_FILES lists the .deb files. Repairs what CPack 3.25 gets wrong, so lintian passes:
+#  - <package>-dbgsym_*.ddeb: CPack writes its md5sums with the absolute paths of its staging folder
+#    (lintian: md5sums-lists-nonexistent-file, file-missing-in-md5sums) and ships no copyright or changelog.
+#    The md5sums are rewritten relative to the root, and usr/share/doc/<package>-dbgsym becomes a symlink
+#    to usr/share/doc/<package> (as Debian's own dbgsym packages do; the .ddeb depends on that exact package).
+#  - libvisnav<N>_*.deb: CPack adds a postinst and postrm that call ldconfig whenever a package has a shared
+#    library in /usr/lib, although the package's triggers file (activate-noawait ldconfig) already does it
+#    (lintian: maintscript-calls-ldconfig). They are removed; nothing else is in them.
+# Each repaired package is unpacked with dpkg-deb -R and rebuilt with dpkg-deb -b (root:root, gzip like CPack: xz took minutes for the 370 MB of debug info).
+set(packages "")
+foreach(deb IN LISTS CPACK_PACKAGE_FILES)
+  list(APPEND packages ${deb})
+  string(REGEX REPLACE "^(.*)/([^/_]+)_([^_]+_[^_]+)\\.deb$" "\\1/\\2-dbgsym_\\3.ddeb" ddeb ${deb})
+  if(EXISTS ${ddeb})
+    list(APPEND packages ${ddeb})
+  endif()
+endforeach()
+list(REMOVE_DUPLICATES packages)  # CPack lists the .ddeb files too
+foreach(package IN LISTS packages)
+  get_filename_component(name ${package} NAME)
+  get_filename_component(dir ${package} DIRECTORY)
+  set(tree ${dir}/_finish/${name})
+  file(MAKE_DIRECTORY ${dir}/_finish)
+  set(repaired "")
+  if(name MATCHES "^([^_]+)-dbgsym_[^_]+_[^_]+\\.ddeb$")
+    set(parent ${CMAKE_MATCH_1})
+    file(REMOVE_RECURSE ${tree})
+    execute_process(COMMAND dpkg-deb -R ${package} ${tree} RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "dpkg-deb -R ${package} failed")
+    endif()
+    file(GLOB_RECURSE files LIST_DIRECTORIES false RELATIVE ${tree} ${tree}/usr/*)
+    list(SORT files)
+    set(md5sums "")
+    foreach(path IN LISTS files)
+      if(NOT IS_SYMLINK ${tree}/${path})
+        file(MD5 ${tree}/${path} sum)
+        string(APPEND md5sums "${sum}  ${path}\n")
+      endif()
+    endforeach()
+    file(WRITE ${tree}/DEBIAN/md5sums "${md5sums}")
+    file(MAKE_DIRECTORY ${tree}/usr/share/doc)
+    file(CREATE_LINK ${parent} ${tree}/usr/share/doc/${parent}-dbgsym SYMBOLIC)
+    set(repaired "md5sums relative, usr/share/doc/${parent}-dbgsym -> ${parent}")
+  elseif(name MATCHES "^libvisnav[0-9]+_[^_]+_[^_]+\\.deb$")
+    file(REMOVE_RECURSE ${tree})
+    execute_process(COMMAND dpkg-deb -R ${package} ${tree} RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "dpkg-deb -R ${package} failed")
+    endif()
+    foreach(script postinst postrm)
+      if(EXISTS ${tree}/DEBIAN/${script})
+        file(READ ${tree}/DEBIAN/${script} text)
+        # Only CPack's own ldconfig script goes; anything else would be someone's real maintainer script.
+        string(REGEX REPLACE "#!/bin/sh|set -e|if \\[ \"\\$1\" = \"(configure|remove)\" \\]; then|ldconfig|fi|[ \t\n]" ""
+               rest "${text}")
+        if(NOT rest STREQUAL "")
+          message(FATAL_ERROR "${name}: DEBIAN/${script} is not CPack's ldconfig call:\n${text}")
+        endif()
+        file(REMOVE ${tree}/DEBIAN/${script})
+        string(APPEND repaired "${script} (ldconfig) removed; ")
+      endif()
+    endforeach()
+  endif()
+  if(repaired)
+    execute_process(COMMAND dpkg-deb --root-owner-group -Zgzip -b ${tree} ${package}
+                    RESULT_VARIABLE rc OUTPUT_QUIET)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "dpkg-deb -b ${tree} failed")
+    endif()
+    file(REMOVE_RECURSE ${tree})
+    message(STATUS "finish_packages: ${name}: ${repaired}")
+  endif()
+endforeach()
+if(packages)
+  file(REMOVE_RECURSE ${dir}/_finish)
+endif()
