@@ -5,11 +5,13 @@
 #                                      # (ctest -R package_deb_contents in build/release makes it)
 # Root: `debootstrap --variant=minbase bookworm` plus systemd (for systemctl's offline unit-file operations,
 # systemd-sysusers, deb-systemd-helper) and the package's run-time Depends, taken from the machine's own
-# Debian mirror (its apt sources) once and cached in build/package-root/base.tar; every run unpacks a fresh
-# copy. No systemd runs in a chroot, so /usr/bin/systemctl is diverted to a stand-in (below) that records
+# Debian mirror (its apt sources) once and cached in /var/cache/visnav/package-root/base.tar (outside the
+# clone, so CI on the same machine reuses it: first run about 4 min, then about 20 s; VISNAV_PACKAGE_CACHE
+# moves it); every run unpacks a fresh copy into build/package-root/root. No systemd runs in a chroot, so /usr/bin/systemctl is diverted to a stand-in (below) that records
 # every call: unit-file verbs (enable, disable, is-enabled, mask, ...) go to the real systemctl, which edits
 # the links offline; runtime verbs (start, stop, try-restart, is-active, daemon-reload) are recorded and
 # answered from a state file. /run/systemd/system exists, so the maintainer scripts act as on a booted system.
+# Depends built beside the .deb (libvisnav<N>) are installed from their .deb with it and purged after it.
 # Checks: the visnav user (sysusers) in group video; conffiles; enable makes the multi-user.target.wants
 # link; an upgrade (the same package repacked as <version>+1) try-restarts the running service and does not
 # stop it; remove stops it; purge removes the enable link, /etc/visnav and the helper's state, and leaves no
@@ -24,6 +26,7 @@ t0=$(date +%s)
 version=$(sed -n 's/^project(visnav VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
 deb=$(realpath -m "${1:-build/release/package_test/visnav_${version}_amd64.deb}")
 cache=build/package-root
+base_cache=${VISNAV_PACKAGE_CACHE:-/var/cache/visnav/package-root}
 root=$PWD/$cache/root
 if [ "$(id -u)" -ne 0 ] || ! command -v debootstrap >/dev/null; then
   echo "test-package: needs root and debootstrap (scripts/install-deps.sh)" >&2
@@ -48,12 +51,17 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# 1. The base root, cached: minbase + systemd + the package's Depends (from dpkg-deb, versions dropped).
-depends=$(dpkg-deb -f "$deb" Depends | tr ',' '\n' | sed -e 's/[(|].*//' -e 's/ //g' | grep -v '^$' | sort -u |
-  paste -sd, -)
+# 1. The base root, cached: minbase + systemd + the package's Depends (from dpkg-deb, versions dropped) that
+# Debian has; a Depends built beside it (libvisnav<N>, the C ABI library) is installed from its .deb instead.
+siblings=()
+depends=""
+for dep in $(dpkg-deb -f "$deb" Depends | tr ',' '\n' | sed -e 's/[(|].*//' -e 's/ //g' | grep -v '^$' | sort -u); do
+  sibling=$(ls "$(dirname "$deb")/${dep}_"*.deb 2>/dev/null | head -n 1 || true)
+  if [ -n "$sibling" ]; then siblings+=("$sibling"); else depends+="${depends:+,}$dep"; fi
+done
 include="systemd,$depends"
-mkdir -p "$cache"
-if [ ! -f "$cache/base.tar" ] || [ "$(cat "$cache/base.include" 2>/dev/null)" != "$include" ]; then
+mkdir -p "$cache" "$base_cache"
+if [ ! -f "$base_cache/base.tar" ] || [ "$(cat "$base_cache/base.include" 2>/dev/null)" != "$include" ]; then
   mirror=$(sed -n 's/^URIs: *\([^ ]*\).*/\1/p' /etc/apt/sources.list.d/debian.sources 2>/dev/null | head -n 1)
   [ -n "$mirror" ] || mirror=$(awk '$1 == "deb" && $3 == "bookworm" {print $2; exit}' /etc/apt/sources.list 2>/dev/null)
   if [ -z "$mirror" ]; then
@@ -69,14 +77,14 @@ if [ ! -f "$cache/base.tar" ] || [ "$(cat "$cache/base.include" 2>/dev/null)" !=
     exit 3
   fi
   rm -rf "$cache/base/var/cache/apt/archives/"*.deb
-  tar -C "$cache/base" -cf "$cache/base.tar" .
-  echo "$include" >"$cache/base.include"
+  tar -C "$cache/base" -cf "$base_cache/base.tar" .
+  echo "$include" >"$base_cache/base.include"
   rm -rf "$cache/base"
-  echo "test-package: base root cached ($(du -m "$cache/base.tar" | cut -f1) MB) at $(( $(date +%s) - t0 )) s"
+  echo "test-package: base root cached in $base_cache ($(du -m "$base_cache/base.tar" | cut -f1) MB) at $(( $(date +%s) - t0 )) s"
 fi
 rm -rf "$root"
 mkdir -p "$root"
-tar -C "$root" -xf "$cache/base.tar"
+tar -C "$root" -xf "$base_cache/base.tar"
 mount -t proc proc "$root/proc"
 mount --bind /dev "$root/dev"
 in_root() { chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin "$@"; }
@@ -119,15 +127,26 @@ snapshot() {  # every path in the root but dpkg's/apt's records, logs, caches an
 }
 snapshot >"$cache/before.txt"
 
-# 3. Install.
+# 3. Install (with the sibling packages it depends on).
 cp "$deb" "$root/tmp/visnav.deb"
-echo "test-package: dpkg -i $(basename "$deb")"
-in_root dpkg -i /tmp/visnav.deb >"$cache/install.log" 2>&1 || { cat "$cache/install.log"; exit 1; }
+sibling_names=()
+for sibling in "${siblings[@]}"; do
+  cp "$sibling" "$root/tmp/"
+  sibling_names+=("$(dpkg-deb -f "$sibling" Package)")
+done
+echo "test-package: dpkg -i $(basename "$deb") ${siblings[*]/#*\//}"
+in_root sh -c 'dpkg -i /tmp/*.deb' >"$cache/install.log" 2>&1 || { cat "$cache/install.log"; exit 1; }
 ok "installed: dpkg status 'install ok installed'" \
   test "$(in_root dpkg-query -W -f='${Status}' visnav)" = "install ok installed"
 ok "sysusers: user visnav exists, in group video" sh -c "chroot '$root' id -nG visnav | grep -qw video"
 ok "visnavd --check accepts the packaged /etc/visnav/visnavd.toml" \
   in_root /usr/bin/visnavd --check /etc/visnav/visnavd.toml
+for name in "${sibling_names[@]}"; do
+  case "$name" in libvisnav[0-9]*)
+    ok "$name: its ldconfig trigger put libvisnav.so.${name#libvisnav} in the linker cache" \
+      sh -c "chroot '$root' /sbin/ldconfig -p | grep -q 'libvisnav.so.${name#libvisnav} '" ;;
+  esac
+done
 ok "not enabled on install (no enable link)" test ! -e "$root/etc/systemd/system/multi-user.target.wants/visnavd.service"
 ok "conffiles registered" sh -c "chroot '$root' dpkg-query -W -f='\${Conffiles}' visnav | grep -q /etc/visnav/visnavd.toml"
 
@@ -169,6 +188,9 @@ ok "purge: /etc/visnav gone" test ! -e "$root/etc/visnav"
 ok "purge: no mask link left" test ! -e "$root/etc/systemd/system/visnavd.service"
 ok "purge: package unknown to dpkg" sh -c "! chroot '$root' dpkg-query -W visnav >/dev/null 2>&1"
 ok "purge: the visnav user stays (policy)" sh -c "chroot '$root' getent passwd visnav >/dev/null"
+if [ ${#sibling_names[@]} -gt 0 ]; then
+  in_root dpkg --purge "${sibling_names[@]}" >>"$cache/purge.log" 2>&1 || { cat "$cache/purge.log"; exit 1; }
+fi
 snapshot >"$cache/after.txt"
 # Allowed differences: the user's lines live in these files, which exist before and after (same paths), and
 # deb-systemd-helper's state folders (empty after purge; checked below).
