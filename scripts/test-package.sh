@@ -46,7 +46,10 @@ ok() {  # ok DESCRIPTION COMMAND...: one line per check, counted
   fi
 }
 cleanup() {
-  for m in proc dev/pts dev; do mountpoint -q "$root/$m" 2>/dev/null && umount -l "$root/$m"; done
+  local m
+  for m in proc dev; do
+    if mountpoint -q "$root/$m" 2>/dev/null; then umount -l "$root/$m"; fi
+  done
   return 0
 }
 trap cleanup EXIT
@@ -82,7 +85,8 @@ if [ ! -f "$base_cache/base.tar" ] || [ "$(cat "$base_cache/base.include" 2>/dev
   rm -rf "$cache/base"
   echo "test-package: base root cached in $base_cache ($(du -m "$base_cache/base.tar" | cut -f1) MB) at $(( $(date +%s) - t0 )) s"
 fi
-rm -rf "$root"
+cleanup  # a run killed before its trap leaves /proc and /dev mounted: never delete through them
+rm -rf --one-file-system "$root"
 mkdir -p "$root"
 tar -C "$root" -xf "$base_cache/base.tar"
 mount -t proc proc "$root/proc"
