@@ -20,8 +20,32 @@
 # elsewhere; the postrm says so).
 # Needs root (chroot), debootstrap (scripts/install-deps.sh) and the Debian mirror on the first run.
 # Exit 0 all checks passed, 1 a check failed, 3 cannot run here (no root, no debootstrap, no mirror).
+#   scripts/test-package.sh --self-test [DEB]   # the checks can fail: the same package with prerm and postrm
+#                                      # emptied must fail the stop-on-remove and clean-purge checks (exit 0 if so)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = --self-test ]; then
+  shift
+  version=$(sed -n 's/^project(visnav VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
+  deb=$(realpath -m "${1:-build/release/package_test/visnav_${version}_amd64.deb}")
+  mutant=build/package-root/mutant
+  rm -rf "$mutant" && mkdir -p "$mutant"
+  dpkg-deb -R "$deb" "$mutant/pkg"
+  for script in prerm postrm; do printf '#!/bin/sh\nexit 0\n' >"$mutant/pkg/DEBIAN/$script"; done
+  # Beside it the same sibling packages (libvisnav<N>), so only the maintainer scripts differ.
+  for sibling in "$(dirname "$deb")"/libvisnav[0-9]*_*.deb; do [ -f "$sibling" ] && cp "$sibling" "$mutant/"; done
+  dpkg-deb --root-owner-group -b "$mutant/pkg" "$mutant/$(basename "$deb")" >/dev/null
+  status=0
+  "$0" "$mutant/$(basename "$deb")" >"$mutant/run.log" 2>&1 || status=$?
+  grep -E 'FAIL' "$mutant/run.log" || true
+  if [ "$status" -eq 1 ] && grep -q 'FAIL remove: visnavd stopped' "$mutant/run.log" &&
+    grep -q 'FAIL purge: no multi-user.target.wants link' "$mutant/run.log"; then
+    echo "test-package: self-test passed: emptied prerm/postrm are caught"
+    exit 0
+  fi
+  echo "test-package: self-test FAILED: emptied prerm/postrm went unnoticed (exit $status)"
+  exit 1
+fi
 t0=$(date +%s)
 version=$(sed -n 's/^project(visnav VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
 deb=$(realpath -m "${1:-build/release/package_test/visnav_${version}_amd64.deb}")

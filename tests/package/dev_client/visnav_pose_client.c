@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
   dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
   dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, 16);
   dds_qset_durability(qos, DDS_DURABILITY_VOLATILE);
-  const dds_entity_t topic = dds_create_topic(participant, &visnav_PoseEstimate_desc, "visnav_pose", NULL, NULL);
+  const dds_entity_t topic =
+      dds_create_topic(participant, &visnav_PoseEstimate_desc, "visnav_pose", NULL, NULL);
   const dds_entity_t reader = dds_create_reader(subscriber, topic, qos, NULL);
   /* Readers on the other two flight topics too (a ground client watches health as well), so that
    * `visnavd --wait-subscribers N` counts this client on every topic it publishes. */
@@ -44,7 +45,8 @@ int main(int argc, char** argv) {
       dds_create_topic(participant, &visnav_FarRangeEstimate_desc, "visnav_far_range", NULL, NULL);
   const dds_entity_t far_reader = dds_create_reader(subscriber, far_topic, qos, NULL);
   dds_qset_durability(qos, DDS_DURABILITY_TRANSIENT_LOCAL);
-  const dds_entity_t health_topic = dds_create_topic(participant, &visnav_Health_desc, "visnav_health", NULL, NULL);
+  const dds_entity_t health_topic =
+      dds_create_topic(participant, &visnav_Health_desc, "visnav_health", NULL, NULL);
   const dds_entity_t health_reader = dds_create_reader(subscriber, health_topic, qos, NULL);
   dds_delete_qos(qos);
   if (subscriber < 0 || topic < 0 || reader < 0 || far_reader < 0 || health_reader < 0) {
@@ -70,8 +72,9 @@ int main(int argc, char** argv) {
       if (!info.valid_data) continue;
       const int finite = isfinite(sample.position_m[0]) && isfinite(sample.position_m[1]) &&
                          isfinite(sample.position_m[2]) && isfinite(sample.quaternion[0]);
-      const int sane = sample.sample_number > last_sample_number && sample.mode <= visnav_NAV_MODE_NEAR_RANGE &&
-                       sample.status <= visnav_TRACK_INIT && finite;
+      const int sane = sample.sample_number > last_sample_number &&
+                       sample.mode <= visnav_NAV_MODE_NEAR_RANGE && sample.status <= visnav_TRACK_INIT &&
+                       finite;
       printf("pose sample_number %llu frame %llu mode %u status %u t_c_m %.3f %.3f %.3f m\n",
              (unsigned long long)sample.sample_number, (unsigned long long)sample.frame_number,
              (unsigned)sample.mode, (unsigned)sample.status, sample.position_m[0], sample.position_m[1],
