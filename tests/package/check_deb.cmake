@@ -217,6 +217,16 @@ execute_process(COMMAND ${root}/usr/bin/visnavd --check ${work}/visnavd-rooted.t
 if(NOT rc EQUAL 0)
   string(APPEND errors "packaged visnavd --check on etc/visnav/visnavd.toml failed (${rc}): ${out}\n")
 endif()
+# One exit-code table (README "Exit codes"): the same invalid config is exit 3 for visnavd --check and for
+# visnav-params --check.
+file(WRITE ${work}/invalid.toml "[nearrange]\nno_such_key = 1\n")
+foreach(tool visnavd visnav-params)
+  execute_process(COMMAND ${root}/usr/bin/${tool} --check ${work}/invalid.toml RESULT_VARIABLE rc
+                  OUTPUT_QUIET ERROR_VARIABLE out)
+  if(NOT rc EQUAL 3 OR NOT out MATCHES "no_such_key")
+    string(APPEND errors "${tool} --check on a config with an unknown key: exit ${rc} (expected 3): ${out}\n")
+  endif()
+endforeach()
 # Maintainer scripts: systemd-sysusers, deb-systemd-helper / deb-systemd-invoke (stop on remove, purge).
 foreach(script postinst prerm postrm)
   if(NOT EXISTS ${work}/control/${script})

@@ -1,4 +1,5 @@
-# visnav-replay's command line: bad values are exit 2 with a message naming the option; a good run with
+# visnav-replay's command line: bad values are exit 2 with a message naming the option, an input that does
+# not load exit 3; a good run with
 # --max-frames N writes exactly N rows. Invoked as:
 #   cmake -DSYNTH=<exe> -DREPLAY=<exe> -DSCENARIO=<toml> -DOUT=<dir> -P replay_cli.cmake
 file(REMOVE_RECURSE "${OUT}")
@@ -20,6 +21,17 @@ foreach(bad "--max-frames;0" "--max-frames;-2" "--max-frames;3x" "--overlay-ever
     message(FATAL_ERROR "visnav-replay ${bad}: message does not name ${option}: ${err}")
   endif()
 endforeach()
+# An input that does not load is exit 3, as for visnavd and visnav-params (README "Exit codes").
+execute_process(COMMAND "${REPLAY}" --sequence "${OUT}/seq" --out "${OUT}/r.csv" --no-progress
+                        --config "${OUT}/no-such-config.toml" RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
+if(NOT rc EQUAL 3 OR NOT err MATCHES "no-such-config.toml")
+  message(FATAL_ERROR "visnav-replay --config <missing>: exit ${rc}, expected 3 naming the file: ${err}")
+endif()
+execute_process(COMMAND "${REPLAY}" --sequence "${OUT}/no-such-sequence" --out "${OUT}/r.csv" --no-progress
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(NOT rc EQUAL 3)
+  message(FATAL_ERROR "visnav-replay --sequence <missing>: exit ${rc}, expected 3")
+endif()
 execute_process(COMMAND "${REPLAY}" --sequence "${OUT}/seq" --out "${OUT}/r.csv" --no-progress --max-frames 3
                 RESULT_VARIABLE rc OUTPUT_QUIET)
 if(NOT rc EQUAL 0)

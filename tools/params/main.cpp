@@ -22,7 +22,7 @@ const char* const kUsage =
     "usage: visnav-params              print the parameter reference (config/PARAMETERS.md, Markdown)\n"
     "       visnav-params --check FILE validate a config file and the files it names\n"
     "       visnav-params --help | --version\n"
-    "  exit code: 0 ok (valid), 2 usage or config invalid\n";
+    "  exit code: 0 ok (valid), 2 usage, 3 config invalid (as visnavd --check)\n";
 
 }  // namespace
 
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     if (e.ok) e = visnav::app::loadConfiguredFiles(config, intrinsics, have_camera, model, have_model);
     if (!e.ok) {
       std::fprintf(stderr, "visnav-params: %s\n", e.message.c_str());
-      return 2;
+      return visnav::cli::kExitInvalidInput;
     }
     std::printf("visnav-params: %s is valid\n", argv[2]);
     return 0;

@@ -19,7 +19,8 @@ void usage(std::FILE* stream) {
       "                     [--no-timing] [--no-progress]\n"
       "       visnav-replay --help | --version\n"
       "Runs the flight pipeline over a recorded sequence as fast as possible; one CSV row per frame\n"
-      "(tools/replay/README.md). Exit code: 0 done, 2 usage or bad input.\n",
+      "(tools/replay/README.md). Exit code: 0 done, 2 usage, 3 an input that does not load or an output\n"
+      "that cannot be written.\n",
       stream);
 }
 
@@ -97,7 +98,7 @@ int main(int argc, char** argv) {
   const visnav::LoadError error = visnav::replay_tool::runReplay(options, summary);
   if (!error.ok) {
     std::fprintf(stderr, "visnav-replay: %s\n", error.message.c_str());
-    return 2;
+    return visnav::cli::kExitInvalidInput;
   }
   std::printf(
       "visnav-replay: %d frames: far range %d, acquisition %d, near range: tracking %d, degraded %d, lost "

@@ -12,7 +12,14 @@
 
 namespace visnav::cli {
 
-constexpr int kExitUsage = 2;
+// Exit codes, one table for every visnav binary (README.md "Exit codes"; what 4 and 5 cover in visnavd:
+// fsw/app/README.md):
+constexpr int kExitOk = 0;            // done; the check or gate asked for holds
+constexpr int kExitFailed = 1;        // ran, and the result is negative (a gate or requirement failed)
+constexpr int kExitUsage = 2;         // command line: unknown, incomplete or out-of-range argument
+constexpr int kExitInvalidInput = 3;  // a config or input file that does not load or is invalid
+constexpr int kExitStartup = 4;       // could not start: device, DDS, or the other side never answered
+constexpr int kExitRealtime = 5;      // a realtime setting was refused and asked to be fatal (visnavd)
 constexpr int kNotStandard = -1;
 
 /// Writes a tool's usage text to `stream` (stdout for --help, stderr on a usage error).
