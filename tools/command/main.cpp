@@ -1,6 +1,6 @@
 // visnav-command: sends one ModeCommand and waits (bounded) for its acknowledgment in Health.
 //   visnav-command force-far-range|reacquire|standby|resume [--id N] [--timeout S] [--config FILE] ...
-// Exit code: 0 accepted, 1 rejected, 2 usage or setup error, 3 timeout (no flight software listening, or no
+// Exit code: 0 accepted, 1 rejected, 2 usage or setup error, 4 timeout (no flight software listening, or no
 // acknowledgment in time).
 #include <unistd.h>
 
@@ -19,10 +19,11 @@ namespace {
 
 using visnav::telemetry::GroundLink;
 
-constexpr int kExitAccepted = 0;
-constexpr int kExitRejected = 1;
-constexpr int kExitUsage = 2;
-constexpr int kExitTimeout = 3;
+// The shared table (README "Exit codes"): a timeout is "the other side never answered".
+constexpr int kExitAccepted = visnav::cli::kExitOk;
+constexpr int kExitRejected = visnav::cli::kExitFailed;
+constexpr int kExitUsage = visnav::cli::kExitUsage;
+constexpr int kExitTimeout = visnav::cli::kExitStartup;
 
 void usage(std::FILE* stream) {
   std::fprintf(
@@ -32,7 +33,7 @@ void usage(std::FILE* stream) {
       "Sends one mode command to visnavd over DDS and waits for its acknowledgment.\n"
       "  --id N       command id echoed in the acknowledgment (1..4294967295; default: from time and pid)\n"
       "  --timeout S  longest wait for the flight software and its acknowledgment (default 5)\n"
-      "  exit code: 0 accepted, 1 rejected, 2 usage or setup error, 3 timeout\n",
+      "  exit code: 0 accepted, 1 rejected, 2 usage or setup error, 4 timeout\n",
       visnav::monitor::kLinkUsage);
 }
 

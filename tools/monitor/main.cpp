@@ -26,7 +26,7 @@ void usage(std::FILE* stream) {
                "  --duration S   stop after S seconds\n"
                "  --ready-file FILE  create FILE once every reader has matched a writer (a publisher that\n"
                "                 waits for it loses nothing: visnavd --wait-file)\n"
-               "  exit code: 0 done, 1 --samples not reached, 2 usage or setup error, 3 no sample at all\n",
+               "  exit code: 0 done, 1 --samples not reached, 2 usage or setup error, 4 no sample at all\n",
                visnav::monitor::kLinkUsage);
 }
 
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
                  "visnav-monitor: no sample on any topic in %.1f s (domain %d, partition '%s'): is visnavd "
                  "running, and do CYCLONEDDS_URI, --domain and --partition match its [telemetry]?\n",
                  result.elapsed_s, options.link.domain_id, options.link.partitionName());
-    return 3;
+    return visnav::cli::kExitStartup;  // the other side never answered (README "Exit codes")
   }
   return options.stop_after_pose_samples > 0 && !result.reached_sample_limit && !g_stop.load() ? 1 : 0;
 }

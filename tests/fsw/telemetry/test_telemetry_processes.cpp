@@ -110,7 +110,7 @@ TEST(TelemetryProcesses, MonitorThatHearsNothingSaysSoAndFails) {
       {"/bin/sh", "-c",
        std::string(VISNAV_MONITOR) + " --partition " + partition + " --duration 1 --no-view 2> " + err});
   ASSERT_GT(monitor, 0);
-  EXPECT_EQ(test::waitProcess(monitor, 30.0), 3);
+  EXPECT_EQ(test::waitProcess(monitor, 30.0), 4);  // README "Exit codes": nobody answered
   EXPECT_NE(test::readText(err).find("no sample on any topic"), std::string::npos) << test::readText(err);
   EXPECT_NE(test::readText(err).find("partition '" + partition + "'"), std::string::npos);
 }
@@ -129,10 +129,10 @@ TEST(TelemetryProcesses, VisnavCommandExitCodeReflectsTheAcknowledgment) {
     EXPECT_EQ(test::waitProcess(pid, 15.0), 1);
     EXPECT_NE(test::readText(out).find("#78 resume rejected: not in standby"), std::string::npos);
   }
-  // Nobody listening: bounded wait, then exit code 3.
+  // Nobody listening: bounded wait, then exit code 4 (README "Exit codes").
   const std::int64_t start = monotonicNowNs();
   pid_t pid = test::spawnProcess({VISNAV_COMMAND, "reacquire", "--partition", partition, "--timeout", "1"});
-  EXPECT_EQ(test::waitProcess(pid, 15.0), 3);
+  EXPECT_EQ(test::waitProcess(pid, 15.0), 4);
   EXPECT_LT(monotonicNowNs() - start, 8 * kSecond);
   pid = test::spawnProcess({VISNAV_COMMAND, "warp-drive", "--partition", partition});
   EXPECT_EQ(test::waitProcess(pid, 15.0), 2);
