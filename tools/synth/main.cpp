@@ -24,7 +24,7 @@ void usage(std::FILE* stream) {
                "  --frames N  render at most N frames     --stride K  every K-th trajectory frame\n"
                "  --seed S    noise seed (overrides the scenario's)\n"
                "  --dry-run   only check that the target stays inside the image; write nothing\n"
-               "  exit code: 0 done, 1 load or write error, 2 usage, 3 target outside the image\n");
+               "  exit code: 0 done, 1 target outside the image, 2 usage, 3 load or write error\n");
 }
 
 bool parseCount(const char* text, long long& out) {
@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
   }
   if (!e.ok) {
     std::fprintf(stderr, "visnav-synth: %s\n", e.message.c_str());
-    return 1;
+    return visnav::cli::kExitInvalidInput;
   }
   if (seed >= 0) sc.seed = static_cast<std::uint64_t>(seed);
 
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
     }
     if (!e.ok) {
       std::fprintf(stderr, "visnav-synth: %s\n", e.message.c_str());
-      return 1;
+      return visnav::cli::kExitInvalidInput;
     }
     writer.addFrame(frame, sc.trajectory.timestampNs(frame), &pose);
     rendered.push_back(frame);
@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
   if (e.ok && !dry_run) e = synth::writeClutterCsv(out_dir, sc.render, rendered, w, h);
   if (!e.ok) {
     std::fprintf(stderr, "visnav-synth: %s\n", e.message.c_str());
-    return 1;
+    return visnav::cli::kExitInvalidInput;
   }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   std::printf(
@@ -157,5 +157,5 @@ int main(int argc, char** argv) {
       written > 0 && !dry_run ? 1e3 * render_s / static_cast<double>(written) : 0.0, outside);
   if (first_outside >= 0) std::printf(" (first: %d)", first_outside);
   std::printf("\n");
-  return outside > 0 ? 3 : 0;
+  return outside > 0 ? visnav::cli::kExitFailed : visnav::cli::kExitOk;  // README "Exit codes"
 }
