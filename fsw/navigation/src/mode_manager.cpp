@@ -20,6 +20,8 @@ void ModeManager::reset() {
   m_frames_in_mode = 0;
   m_close_count = 0;
   m_far_count = 0;
+  m_acquisition_failures = 0;
+  m_holdoff_frames = 0;
   m_last = ModeTransition{};
   m_last.from = m_mode;
   m_last.to = m_mode;
@@ -40,6 +42,17 @@ void ModeManager::transition(NavMode to, const char* reason, std::uint64_t frame
   m_far_count = 0;
 }
 
+void ModeManager::backOff() {
+  // 5, 10, 20, 40, 80, 80, ... frames: bounded shifts, no overflow.
+  m_holdoff_frames = m_params.acquire_retry_holdoff_frames;
+  for (int i = 0; i < m_acquisition_failures && m_holdoff_frames < m_params.acquire_retry_holdoff_max_frames;
+       ++i)
+    m_holdoff_frames *= 2;
+  if (m_holdoff_frames > m_params.acquire_retry_holdoff_max_frames)
+    m_holdoff_frames = m_params.acquire_retry_holdoff_max_frames;
+  if (m_acquisition_failures < 1000) ++m_acquisition_failures;
+}
+
 bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
   const NavMode before = m_mode;
   ++m_frames_in_mode;
@@ -47,15 +60,20 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
     case NavMode::kStandby: break;  // only a resume command leaves standby
     case NavMode::kFarRange:
       m_close_count = in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
-      if (m_close_count >= m_params.enter_frames)
+      if (m_close_count >= m_params.enter_frames &&
+          m_frames_in_mode > static_cast<std::uint32_t>(m_holdoff_frames))
         transition(NavMode::kAcquisition, "far range: target close enough", frame_number);
       break;
     case NavMode::kAcquisition:
       if (in.acquisition_succeeded) {
+        m_acquisition_failures = 0;
+        m_holdoff_frames = 0;
         transition(NavMode::kNearRange, "acquisition: first pose confirmed", frame_number);
       } else if (in.acquisition_failed) {
+        backOff();
         transition(NavMode::kFarRange, "acquisition: failed", frame_number);
       } else if (m_frames_in_mode >= static_cast<std::uint32_t>(m_params.acquisition_timeout_frames)) {
+        backOff();
         transition(NavMode::kFarRange, "acquisition: timeout", frame_number);
       }
       break;

@@ -135,6 +135,9 @@ bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck&
   // The filter judges the measurement (NIS gate), but an innovation fault alone never throws away a
   // measurement whose image evidence is good: the image wins and the filter restarts from it.
   if (!(m_filter.initialised() && m_filter.attitudeKnown())) {
+    // Nothing to check it against: an ambiguous fit does not start a track (box/9 began 20 deg off on a
+    // flat-lit outline whose depth-mirrored pose fitted as well, and the filter then defended that pose).
+    if ((r.flags & kFlagAmbiguous) != 0U) return false;
     m_filter.initialise(r.pose, r.covariance);
     return true;
   }

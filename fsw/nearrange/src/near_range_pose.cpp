@@ -1,6 +1,7 @@
 // The near-range tracker's pose from its fitted lines (paper sec. II-F/G): vertices where measured lines of
 // adjacent edges meet (eq. 6), the LM fit over them (eq. 7) or over every inlier edge point, and the
 // leave-one-line-out refit that drops one wrong line. Measuring the lines: near_range_tracker.cpp.
+#include <algorithm>
 #include <cmath>
 
 #include "visnav/nearrange/near_range_tracker.hpp"
@@ -19,7 +20,59 @@ bool NearRangeTracker::fitPose(const Pose& predicted, Pose& pose, PoseFitResult&
   if (solved && fit.rms_px > m_params.max_rms_px) out.flags |= kFlagResidualTooHigh;
   if (solved && fit.rms_px > m_params.degraded_rms_px) out.flags |= kFlagResidualHigh;
   if (solved && !(pose.t_c_m.z() > 0.0)) out.flags |= kFlagOutOfImage;
+  if (solved && (out.flags & kFlagResidualTooHigh) == 0U && mirroredRivalFits(pose, fit, out.lines_used))
+    out.flags |= kFlagAmbiguous;
   return solved;
+}
+
+void NearRangeTracker::findModelMirrors() {
+  m_symmetries.find(m_model);
+  m_mirror_count = 0;
+  const double tol_m = ModelSymmetries::kIndistinguishableRel * std::max(1.0, m_model.boundingRadius());
+  for (int axis = 0; axis < 3; ++axis) {
+    Mat3 mirror = Mat3::Identity();
+    mirror(axis, axis) = -1.0;
+    bool maps = true;
+    for (const Vec3& v : m_model.vertices()) {
+      bool found = false;
+      for (const Vec3& w : m_model.vertices()) found = found || (mirror * v - w).norm() <= tol_m;
+      if (!found) {
+        maps = false;
+        break;
+      }
+    }
+    if (maps) m_mirrors[static_cast<std::size_t>(m_mirror_count++)] = mirror;
+  }
+}
+
+bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used) {
+  // Under weak perspective the depth-mirrored shape projects onto the same image: F R M with F the mirror
+  // along the line of sight and M a mirror symmetry of the model (so det = +1) is a pose the outline alone
+  // cannot tell from R (a box's Necker reversal, a plate's second tilt). LM from there finds its exact
+  // optimum under perspective; if that fits about as well and is a distinct pose, the frame is ambiguous.
+  const double range = pose.t_c_m.norm();
+  if (!(range > 0.0)) return false;
+  const Vec3 los = pose.t_c_m / range;
+  const Mat3 depth_mirror = Mat3::Identity() - 2.0 * los * los.transpose();
+  PoseTolerance distinct;
+  distinct.position_m = kRivalDistinctRel * range;
+  distinct.attitude_rad = kRivalDistinctDeg * kRadPerDeg;
+  const double as_good = std::max(kRivalRmsFactor * fit.rms_px, fit.rms_px + m_params.pixel_sigma_px);
+  bool ambiguous = false;
+  for (int k = 0; k < m_mirror_count && !ambiguous; ++k) {
+    Pose start;
+    start.R_c_m = depth_mirror * pose.R_c_m * m_mirrors[static_cast<std::size_t>(k)];
+    start.t_c_m = pose.t_c_m;
+    Pose rival;
+    PoseFitResult rival_fit;
+    int vertices = 0;
+    std::uint32_t flags = 0;
+    if (!solvePose(start, -1, lines_used, rival, rival_fit, vertices, flags)) continue;
+    ambiguous = rival_fit.rms_px <= as_good && rival.t_c_m.z() > 0.0 &&
+                !m_symmetries.equivalent(rival, pose, distinct);
+  }
+  collectVertices(-1);  // leave the buffers as the kept solution saw them
+  return ambiguous;
 }
 
 int NearRangeTracker::collectVertices(int excluded_slot) {

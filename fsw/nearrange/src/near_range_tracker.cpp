@@ -67,6 +67,7 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
     m_polarity.push(0);
     m_polarity_next.push(0);
   }
+  findModelMirrors();
   reset();
   return LoadError::success();
 }
@@ -292,9 +293,10 @@ void NearRangeTracker::finishMeasured(const Pose& predicted, const Pose& pose, c
   out.covariance = fit.covariance * residualVarianceFactor(fit, m_params.pixel_sigma_px);
   const double r = fit.rms_px / m_params.degraded_rms_px;
   out.quality *= 1.0 / (1.0 + r * r);
-  out.status = (out.flags & (kFlagLineRejected | kFlagResidualHigh | kFlagResidualFallback)) != 0U
-                   ? TrackStatus::kDegraded
-                   : TrackStatus::kTracking;
+  out.status =
+      (out.flags & (kFlagLineRejected | kFlagResidualHigh | kFlagResidualFallback | kFlagAmbiguous)) != 0U
+          ? TrackStatus::kDegraded
+          : TrackStatus::kTracking;
   // Only a trusted frame teaches the polarity of the next one.
   for (std::size_t i = 0; i < m_polarity.size(); ++i) m_polarity[i] = m_polarity_next[i];
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "visnav/core/rng.hpp"
 #include "visnav/navigation/fdir_monitor.hpp"
@@ -54,6 +55,48 @@ TEST(ModeManager, FarRangeHandsOverOnlyAfterEnterFramesBelowTheThreshold) {
   EXPECT_EQ(m.lastTransition().frame_number, 6U);
   EXPECT_STREQ(m.lastTransition().reason.data(), "far range: target close enough");
   EXPECT_EQ(m.transitionCount(), 1U);
+}
+
+TEST(ModeManager, FailedAcquisitionsBackOffExponentially) {
+  // A far-range cue that keeps fooling acquisition (campaign box/2: a 750 m approach that flipped far range
+  // <-> acquisition 60 times): every failure doubles the wait before the next hand-over, 5, 10, 20, ...
+  ModeManager m;
+  ASSERT_TRUE(m.init(plateHandover()).ok);
+  ModeInputs failed;
+  failed.acquisition_failed = true;
+  std::uint64_t frame = 0;
+  std::vector<std::uint64_t> far_frames;  // frames spent in far range before each hand-over
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    std::uint64_t waited = 0;
+    while (m.mode() == NavMode::kFarRange && waited < 1000) {
+      m.step(farAt(10.0), ++frame);
+      ++waited;
+    }
+    ASSERT_EQ(m.mode(), NavMode::kAcquisition);
+    far_frames.push_back(waited);
+    m.step(failed, ++frame);
+    ASSERT_EQ(m.mode(), NavMode::kFarRange);
+  }
+  // The first hand-over needs enter_frames (3); then the hold-off (5, 10, 20, 40, 80 frames) plus one.
+  const std::vector<std::uint64_t> expected = {3, 6, 11, 21, 41, 81};
+  EXPECT_EQ(far_frames, expected);
+  // Success clears it: the next failure waits the base hold-off again.
+  m.step(farAt(10.0), ++frame);
+  for (int i = 0; i < 100 && m.mode() == NavMode::kFarRange; ++i) m.step(farAt(10.0), ++frame);
+  ModeInputs ok;
+  ok.acquisition_succeeded = true;
+  m.step(ok, ++frame);
+  ASSERT_EQ(m.mode(), NavMode::kNearRange);
+  ModeInputs persisted;
+  persisted.near_fault_persisted = true;
+  m.step(persisted, ++frame);
+  ASSERT_EQ(m.mode(), NavMode::kFarRange);
+  std::uint64_t waited = 0;
+  while (m.mode() == NavMode::kFarRange && waited < 1000) {
+    m.step(farAt(10.0), ++frame);
+    ++waited;
+  }
+  EXPECT_EQ(waited, 3U);
 }
 
 TEST(ModeManager, NoiseAroundAThresholdNeverChatters) {

@@ -42,6 +42,9 @@ class ModeManager {
                std::uint64_t frame_number, CommandAck& ack);
   /// Forces a transition (e.g. the pipeline's own fault handling); no-op when already in `to`.
   void transition(NavMode to, const char* reason, std::uint64_t frame_number);
+  /// After a failed acquisition: the next hand-over waits acquire_retry_holdoff_frames, doubled per
+  /// consecutive failure up to acquire_retry_holdoff_max_frames.
+  void backOff();
 
   const ModeTransition& lastTransition() const { return m_last; }
   std::uint64_t transitionCount() const { return m_transitions; }
@@ -50,8 +53,10 @@ class ModeManager {
   NavigationParams m_params;
   NavMode m_mode = NavMode::kFarRange;
   std::uint32_t m_frames_in_mode = 0;
-  int m_close_count = 0;  ///< consecutive frames below acquire_below_m (far range)
-  int m_far_count = 0;    ///< consecutive frames above far_range_above_m (near range)
+  int m_close_count = 0;           ///< consecutive frames below acquire_below_m (far range)
+  int m_far_count = 0;             ///< consecutive frames above far_range_above_m (near range)
+  int m_acquisition_failures = 0;  ///< consecutive failed or timed-out acquisitions (reset by success)
+  int m_holdoff_frames = 0;        ///< far range may hand over again after this many frames in far range
   ModeTransition m_last;
   std::uint64_t m_transitions = 0;
 };

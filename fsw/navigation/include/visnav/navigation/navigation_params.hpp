@@ -14,9 +14,11 @@ struct NavigationParams {
   double handover_radius_px = 50.0;  ///< derived hand-over: where the target's bounding radius spans this
   double handover_hysteresis = 4.0 / 3.0;  ///< derived: far_range_above_m = this x acquire_below_m
   int enter_frames = 3;                    ///< consecutive frames a distance condition must hold
-  int acquisition_timeout_frames = 25;  ///< acquisition gives up (back to far range) after this many frames
-  int fault_persistence_frames = 5;     ///< a near-range fault held this long falls back to far range
-  int coast_frames = 3;                 ///< frames the filter may propagate without a usable measurement
+  int acquisition_timeout_frames = 25;   ///< acquisition gives up (back to far range) after this many frames
+  int acquire_retry_holdoff_frames = 5;  ///< far range waits this long after a failed acquisition...
+  int acquire_retry_holdoff_max_frames = 80;  ///< ... doubling per consecutive failure up to this
+  int fault_persistence_frames = 5;           ///< a near-range fault held this long falls back to far range
+  int coast_frames = 3;  ///< frames the filter may propagate without a usable measurement
   // FDIR thresholds (near range).
   double min_inlier_ratio = 0.5;  ///< edge-point inliers / points over the used lines, below: fault
   int min_usable_lines = 3;       ///< fewer used lines: fault
@@ -66,6 +68,14 @@ struct NavigationParams {
     v.integer({"navigation", "enter_frames", "count", 1, 1000,
                "consecutive frames a distance condition must hold before the mode changes"},
               enter_frames);
+    v.integer({"navigation", "acquire_retry_holdoff_frames", "frames", 0, 100000,
+               "after a failed or timed-out acquisition, far range does not hand over again for this many "
+               "frames; the wait doubles with every consecutive failure (exponential back-off: a far-range "
+               "cue that keeps fooling acquisition must not flip the mode every few frames)"},
+              acquire_retry_holdoff_frames);
+    v.integer({"navigation", "acquire_retry_holdoff_max_frames", "frames", 0, 100000,
+               "upper bound of that back-off (80 frames: 16 s at 5 Hz)"},
+              acquire_retry_holdoff_max_frames);
     v.integer({"navigation", "acquisition_timeout_frames", "count", 1, 10000,
                "acquisition returns to far range when it has not succeeded within this many frames"},
               acquisition_timeout_frames);

@@ -4,6 +4,7 @@
 // nothing, throws nothing and every loop in it is bounded by a capacity fixed at init.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "visnav/core/status.hpp"
 #include "visnav/geometry/camera.hpp"
 #include "visnav/geometry/line2d.hpp"
+#include "visnav/geometry/model_symmetry.hpp"
 #include "visnav/geometry/polygon_model.hpp"
 #include "visnav/geometry/pose.hpp"
 #include "visnav/nearrange/edge_detector.hpp"
@@ -42,6 +44,9 @@ enum TrackFlag : std::uint32_t {
   kFlagTextureFallback = 1U << 7,   ///< some edge points came from the texture split (information)
   kFlagResidualFallback = 1U << 8,  ///< vertex residual lacked corners: point-to-line residual used instead
   kFlagSilhouetteOnly = 1U << 9,    ///< no surface passes the sec. II-H gate: only the outline was measured
+  /// The depth-mirrored pose (Necker reversal; a plate's other tilt) explains the lines as well: the image
+  /// does not say which is true (status degraded; never good evidence on its own).
+  kFlagAmbiguous = 1U << 10,
 };
 
 /// Per-stage execution time of one track() call [us] (zeros when no clock is set).
@@ -133,6 +138,12 @@ class NearRangeTracker {
   static constexpr double kMinVertexSinAngle = 0.05;
   /// Point-to-line with three non-parallel lines still fixes 6 DOF (the vertex residual's fallback).
   static constexpr int kMinLinesForPointToLine = 3;
+  /// A mirrored rival is "as good" when its rms is at most this multiple of the fit's (or within one
+  /// pixel_sigma_px of it), and "distinct" when it differs by more than these (modulo symmetries): what the
+  /// campaign counts as wrong (5 % of the range, 5 deg).
+  static constexpr double kRivalRmsFactor = 2.0;
+  static constexpr double kRivalDistinctRel = 0.05;
+  static constexpr double kRivalDistinctDeg = 5.0;
 
   double elapsedUs(std::int64_t& since) const;
   void updateSurfaces(const Pose& predicted);
@@ -152,6 +163,10 @@ class NearRangeTracker {
                  int& vertices, std::uint32_t& flags);
   bool rejectWorstLine(const Pose& predicted, bool solved, Pose& pose, PoseFitResult& fit,
                        NearRangeResult& out);
+  /// True when a start mirrored in depth about the target (composed with a mirror symmetry of the model, so
+  /// a rotation) converges to a distinct pose that fits the same lines about as well.
+  bool mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used);
+  void findModelMirrors();
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
 
   static constexpr int kPolarityBins = 16;
@@ -179,6 +194,9 @@ class NearRangeTracker {
   BoundedBuffer<double> m_vertex_best_sin;  ///< per model vertex: best |sin| of a measured line pair
   BoundedBuffer<Vec2> m_vertex_best_px;
   BoundedBuffer<EdgePointObservation> m_edge_obs;
+  ModelSymmetries m_symmetries;
+  std::array<Mat3, 3> m_mirrors{};  ///< axis reflections of the model frame that map the model onto itself
+  int m_mirror_count = 0;
   bool m_first_frame = true;
 };
 
