@@ -3,6 +3,12 @@
 // rmw_cyclonedds would create it, receives the flight writer's samples on real Cyclone DDS (loopback, a
 // domain of this test process's own); a ModeCommand written under the ROS 2 names reaches the flight
 // CommandReader; the shipped .msg files match idl/visnav.idl field by field; the config option is validated.
+// GCC 12 at -O1 with ASan (debug preset) warns maybe-uninitialized inside libstdc++'s <regex> (the
+// std::function of a moved _NFA state: a false positive in the library, not in this test code);
+// set before any include, because the warning is placed at the library's lines.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <gtest/gtest.h>
 
 #include <cstring>
