@@ -135,6 +135,16 @@ TEST_F(TrackerTest, InitRejectsBrokenHysteresis) {
   EXPECT_NE(e.message.find("visibility_exit_low_deg"), std::string::npos);
 }
 
+TEST_F(TrackerTest, AFaceOnPlateIsNotAmbiguous) {
+  // The mirrored start of a face-on plate is the same pose: no rival, no flag.
+  const Pose truth = test::plateAt(12.0);
+  const test::RenderedFrame frame = test::renderFrame(renderer, truth, 5);
+  NearRangeResult r;
+  ASSERT_EQ(tracker.track(frame.image(), truth, 0, r), Status::kOk);
+  ASSERT_NE(r.status, TrackStatus::kLost);
+  EXPECT_EQ(r.flags & kFlagAmbiguous, 0U);
+}
+
 }  // namespace
 }  // namespace visnav
 
