@@ -1,7 +1,7 @@
 // The daemon's cycle in-process: a replay camera on the simulated clock (deterministic), real DDS on loopback
 // read back by a GroundLink in the same process. Checks the wiring against the pipeline driven directly, the
-// command path, slips and task timings in Health, the bounded camera wait on the real clock, the log, and the
-// systemd watchdog withheld while a stage keeps failing (a real datagram socket stands in for systemd).
+// command path, slips and task timings in Health, the bounded camera wait on the real clock and the log. The
+// systemd watchdog: test_daemon_watchdog.cpp.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/socket.h>
@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "app_test_support.hpp"
+#include "daemon_test_support.hpp"
 #include "visnav/app/daemon.hpp"
 #include "visnav/executive/clock.hpp"
 #include "visnav/replay/replay_camera.hpp"
@@ -29,29 +29,10 @@
 namespace visnav::app {
 namespace {
 
-constexpr int kFrames = VISNAV_APP_TEST_FRAMES;  // far range, acquisition, near range
-
-std::string partitionFor(const char* name) { return std::string(name) + "-" + std::to_string(getpid()); }
-
-std::string replayConfig(const std::string& sequence, const std::string& partition, bool telemetry,
-                         const std::string& extra = "") {
-  return "[camera]\ndriver = \"replay\"\ndevice = \"" + sequence +
-         "\"\n[telemetry]\nenabled = " + (telemetry ? "true" : "false") + "\npartition = \"" + partition +
-         "\"\n" + extra;
-}
-
-/// The log of a test: a file the EventLog writes to, read back as text.
-struct LogFile {
-  test::TempDir dir{"log"};
-  std::string path = dir.path() + "/log.txt";
-  int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  EventLog log{fd, false};
-  ~LogFile() { ::close(fd); }
-  std::string text() const {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-};
+using test::kFrames;
+using test::LogFile;
+using test::partitionFor;
+using test::replayConfig;
 
 template <typename Sample, typename Take>
 std::vector<Sample> drain(telemetry::GroundLink& link, Take take, std::size_t expected) {
@@ -246,183 +227,6 @@ TEST(Daemon, ACameraSlowerThanTheCycleNeverBlocksIt) {
 }
 
 /// systemd's end of $NOTIFY_SOCKET: a datagram socket bound at a path of the test.
-class NotifySocket {
- public:
-  NotifySocket() {
-    m_path = "/tmp/visnav-daemon-notify-" + std::to_string(getpid());
-    m_fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-    sockaddr_un address{};
-    address.sun_family = AF_UNIX;
-    std::memcpy(address.sun_path, m_path.c_str(), m_path.size() + 1);
-    unlink(m_path.c_str());
-    EXPECT_EQ(bind(m_fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)), 0);
-  }
-  ~NotifySocket() {
-    close(m_fd);
-    unlink(m_path.c_str());
-  }
-  const std::string& path() const { return m_path; }
-  /// Takes every datagram waiting and returns how many were "WATCHDOG=1".
-  int drainWatchdogs() {
-    int count = 0;
-    char buffer[512];
-    for (ssize_t n; (n = recv(m_fd, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0;)
-      count += std::string(buffer, static_cast<std::size_t>(n)) == "WATCHDOG=1" ? 1 : 0;
-    return count;
-  }
-
- private:
-  std::string m_path;
-  int m_fd = -1;
-};
-
-// The watchdog means health (fsw/app/README.md, "Watchdog"): frames 20..29 of the replay are unreadable, so
-// the camera delivers nothing for 10 cycles; past [daemon] camera_stall_cycles = 2 the acquire stage stops
-// beating and WATCHDOG=1 stops, one cycle at a time, until frames come again. Simulated clock: exact counts.
-TEST(Daemon, AStageThatKeepsFailingWithholdsTheWatchdog) {
-  const std::string source = test::renderedApproachCi(kFrames);
-  ASSERT_FALSE(source.empty());
-  test::TempDir dir("daemon");
-  const std::string sequence = dir.path() + "/sequence";
-  std::filesystem::copy(source, sequence, std::filesystem::copy_options::recursive);
-  {
-    replay::ReplayCamera copy({sequence, camera::Pacing::kAsFastAsPossible, false, 2});
-    ASSERT_TRUE(copy.open().ok);
-    for (std::size_t i = 20; i < 30; ++i) std::ofstream(copy.sequence().frames[i].file) << "not a PGM\n";
-  }
-  const VisnavConfig config = test::configFromText(
-      dir,
-      replayConfig(sequence, partitionFor("daemon-watchdog"), false, "[daemon]\ncamera_stall_cycles = 2\n"));
-  NotifySocket systemd;
-  setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
-  setenv("WATCHDOG_USEC", "2000000", 1);
-  LogFile log;
-  Daemon daemon(log.log);
-  DaemonOptions options;
-  options.simulated_clock = true;
-  const int init = daemon.init(config, options);
-  unsetenv("NOTIFY_SOCKET");
-  unsetenv("WATCHDOG_USEC");
-  ASSERT_EQ(init, kExitOk) << log.text();
-  ASSERT_TRUE(daemon.notifier().active());
-
-  std::vector<int> strokes;  // WATCHDOG=1 per cycle
-  for (int cycle = 0; cycle < 40; ++cycle) {
-    ASSERT_EQ(daemon.executive().run(1), exec::StopReason::kCycleLimit);
-    strokes.push_back(systemd.drainWatchdogs());
-  }
-  std::vector<int> expected(40, 1);
-  for (std::size_t i = 22; i < 30; ++i) expected[i] = 0;  // cycles 20, 21 are within the stall allowance
-  EXPECT_EQ(strokes, expected);
-  EXPECT_EQ(daemon.counters().frames, 30U);
-  EXPECT_EQ(daemon.camera().counters().errors, 10U);
-  EXPECT_EQ(daemon.counters().watchdog_withheld, 8U);
-  EXPECT_EQ(daemon.counters().watchdog_strokes, 32U);
-  const HeartbeatMonitor& heartbeat = daemon.heartbeat();
-  EXPECT_EQ(heartbeat.stage(CycleStage::kAcquire).missed, 8U);
-  for (CycleStage stage : {CycleStage::kProcess, CycleStage::kPublish, CycleStage::kHealth})
-    EXPECT_EQ(heartbeat.stage(stage).missed, 0U) << stageName(stage);  // no frame is not processing's failure
-  const std::string text = log.text();
-  EXPECT_NE(text.find("event=heartbeat_missed stage=acquire minor_frame="), std::string::npos) << text;
-  EXPECT_NE(text.find("event=heartbeat_restored stage=acquire minor_frame="), std::string::npos) << text;
-  EXPECT_NE(text.find("missed_in_a_row=8 missed=8"), std::string::npos) << text;
-}
-
-/// systemd's side of WatchdogSec (service_dispatch_watchdog): every WATCHDOG=1 re-arms a timer of
-/// `watchdog_ns`; it fires once that much time passes without one. Time is the daemon's simulated clock, read
-/// by the test after each cycle, so the verdict is exact and owes nothing to the machine's speed.
-struct SystemdWatchdogStandIn {
-  std::int64_t watchdog_ns = 0;
-  std::int64_t armed_at_ns = 0;
-  /// Feeds the strokes received during a cycle that ended at `now_ns`; true once the watchdog fired.
-  bool cycleEnded(int strokes, std::int64_t now_ns) {
-    if (strokes > 0) armed_at_ns = now_ns;
-    return now_ns - armed_at_ns >= watchdog_ns;
-  }
-};
-
-// Issue 14, "a repeatedly failing stage must lead to the watchdog firing": fault injection ([daemon]
-// fault_stage, off by default) makes the process stage report a failure every cycle from cycle 10 on. The
-// daemon runs on the simulated clock with every task charged 50 ms (one 200 ms period per cycle, no slip);
-// systemd's end is the real notify socket plus the stand-in above, with WatchdogSec = 1 s (5 cycles).
-TEST(Daemon, AProcessStageThatFailsEveryCycleLetsSystemdsWatchdogFire) {
-  const std::string sequence = test::renderedApproachCi(kFrames);
-  ASSERT_FALSE(sequence.empty());
-  test::TempDir dir("daemon");
-  const VisnavConfig config = test::configFromText(
-      dir, replayConfig(sequence, partitionFor("daemon-fault"), false,
-                        "[daemon]\nfault_stage = \"process\"\nfault_kind = \"fail\"\nfault_from_cycle = 10\n"
-                        "[executive]\nsim_task_time = \"fixed\"\nsim_task_us = 50000.0\n"));
-  NotifySocket systemd;
-  setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
-  setenv("WATCHDOG_USEC", "1000000", 1);
-  LogFile log;
-  Daemon daemon(log.log);
-  DaemonOptions options;
-  options.simulated_clock = true;
-  const int init = daemon.init(config, options);
-  unsetenv("NOTIFY_SOCKET");
-  unsetenv("WATCHDOG_USEC");
-  ASSERT_EQ(init, kExitOk) << log.text();
-  ASSERT_EQ(daemon.notifier().watchdogUsec(), 1000000U);
-
-  SystemdWatchdogStandIn watchdog{static_cast<std::int64_t>(daemon.notifier().watchdogUsec()) * 1000,
-                                  daemon.clock().nowNs()};
-  std::vector<int> strokes;  // WATCHDOG=1 per cycle
-  int fired_in_cycle = -1;
-  for (int cycle = 0; cycle < 30; ++cycle) {
-    ASSERT_EQ(daemon.executive().run(1), exec::StopReason::kCycleLimit);
-    strokes.push_back(systemd.drainWatchdogs());
-    if (watchdog.cycleEnded(strokes.back(), daemon.clock().nowNs()) && fired_in_cycle < 0)
-      fired_in_cycle = cycle;
-  }
-  std::vector<int> expected(30, 0);
-  for (std::size_t i = 0; i < 10; ++i) expected[i] = 1;
-  EXPECT_EQ(strokes, expected);
-  EXPECT_EQ(fired_in_cycle, 14);  // last stroke at the end of cycle 9, + 1 s = 5 cycles
-  EXPECT_EQ(daemon.executive().counters().slips, 0U);
-  EXPECT_EQ(daemon.counters().faults_injected, 20U);
-  EXPECT_EQ(daemon.counters().watchdog_withheld, 20U);
-  EXPECT_EQ(daemon.heartbeat().stage(CycleStage::kProcess).missed, 20U);
-  for (CycleStage stage : {CycleStage::kAcquire, CycleStage::kPublish, CycleStage::kHealth})
-    EXPECT_EQ(daemon.heartbeat().stage(stage).missed, 0U) << stageName(stage);
-  EXPECT_EQ(daemon.executive().taskStats(daemon.taskId(CycleStage::kProcess)).failures, 20U);
-  const std::string text = log.text();
-  EXPECT_NE(text.find("event=fault_injected stage=process kind=fail minor_frame=0 cycle=10"),
-            std::string::npos)
-      << text;
-  EXPECT_NE(text.find("event=heartbeat_missed stage=process"), std::string::npos) << text;
-}
-
-// Without fault injection the same run strokes every cycle and the stand-in never fires: the test above
-// fails for the reason it names, not because of the stand-in or the clock.
-TEST(Daemon, WithoutTheInjectedFaultTheWatchdogIsFedEveryCycle) {
-  const std::string sequence = test::renderedApproachCi(kFrames);
-  test::TempDir dir("daemon");
-  const VisnavConfig config = test::configFromText(
-      dir, replayConfig(sequence, partitionFor("daemon-nofault"), false,
-                        "[executive]\nsim_task_time = \"fixed\"\nsim_task_us = 50000.0\n"));
-  NotifySocket systemd;
-  setenv("NOTIFY_SOCKET", systemd.path().c_str(), 1);
-  setenv("WATCHDOG_USEC", "1000000", 1);
-  LogFile log;
-  Daemon daemon(log.log);
-  DaemonOptions options;
-  options.simulated_clock = true;
-  const int init = daemon.init(config, options);
-  unsetenv("NOTIFY_SOCKET");
-  unsetenv("WATCHDOG_USEC");
-  ASSERT_EQ(init, kExitOk) << log.text();
-  SystemdWatchdogStandIn watchdog{1'000'000'000, daemon.clock().nowNs()};
-  for (int cycle = 0; cycle < 30; ++cycle) {
-    ASSERT_EQ(daemon.executive().run(1), exec::StopReason::kCycleLimit);
-    const int strokes = systemd.drainWatchdogs();
-    EXPECT_EQ(strokes, 1) << cycle;
-    EXPECT_FALSE(watchdog.cycleEnded(strokes, daemon.clock().nowNs())) << cycle;
-  }
-  EXPECT_EQ(daemon.counters().faults_injected, 0U);
-  EXPECT_EQ(log.text().find("fault_inject"), std::string::npos) << log.text();
-}
 
 TEST(Daemon, AStopRequestEndsTheLoopWithinOneCycle) {
   const std::string sequence = test::renderedApproachCi(kFrames);
