@@ -215,8 +215,10 @@ int Daemon::run() {
   m_notifier.ready(status);
   const exec::StopReason reason = m_executive.run(m_options.max_cycles);
   m_notifier.stopping();
-  if (m_telemetry_on)  // let the last samples reach the readers before the participant goes
+  if (m_telemetry_on) {  // the queue written, the last samples acknowledged, before the participant goes
     m_writer.waitForAcks(kFinalAckWaitNs);
+    m_writer.stop();  // joins the publisher thread: the stop line's counts are final
+  }
   logStopSummary(reason);
   return kExitOk;
 }
@@ -224,7 +226,7 @@ int Daemon::run() {
 void Daemon::logStopSummary(exec::StopReason reason) {
   const exec::ExecutiveCounters& c = m_executive.counters();
   const camera::CameraCounters& cam = m_camera.source->counters();
-  const telemetry::WriterCounters& w = m_writer.counters();
+  const telemetry::WriterCounters w = m_writer.counters();
   std::array<char, 160> misses{};  // "acquire:0,process:0,publish:0,health:0": cycles each stage did not beat
   std::size_t used = 0;
   for (int i = 0; i < kCycleStageCount && used < misses.size(); ++i) {
@@ -239,18 +241,20 @@ void Daemon::logStopSummary(exec::StopReason reason) {
               " camera_dropped=%" PRIu64 " camera_timeouts=%" PRIu64 " camera_errors=%" PRIu64
               " slips=%" PRIu64 " releases_skipped=%" PRIu64 " worst_overrun_ms=%.3f task_failures=%" PRIu64
               " mode=%s transitions=%" PRIu64 " commands=%" PRIu64 " commands_accepted=%" PRIu64
-              " fault_onsets=%" PRIu64 " samples_written=%" PRIu64 " write_failures=%" PRIu64
-              " sample_pool_misses=%" PRIu64 " watchdog_notifications=%" PRIu64 " watchdog_withheld=%" PRIu64
+              " fault_onsets=%" PRIu64 " samples_queued=%" PRIu64 " samples_dropped=%" PRIu64
+              " samples_written=%" PRIu64 " write_failures=%" PRIu64 " sample_pool_misses=%" PRIu64
+              " watchdog_notifications=%" PRIu64 " watchdog_withheld=%" PRIu64
               " heartbeat_misses=%s faults_injected=%" PRIu64 " log_suppressed=%" PRIu64
               " log_dropped=%" PRIu64 " signal=%s elapsed_s=%.3f",
               stopReasonName(reason, m_counters.end_of_stream), c.cycles, m_counters.frames,
               m_counters.cycles_without_frame, cam.frames_dropped, cam.timeouts, cam.errors, c.slips,
               c.releases_skipped, static_cast<double>(c.worst_overrun_ns) * 1e-6, c.task_failures,
               nav::toString(m_pipeline.mode()), m_pipeline.modes().transitionCount(), m_counters.commands,
-              m_counters.commands_accepted, m_counters.fault_onsets, w.samples_written, w.write_failures,
-              m_writer.samplePoolMisses(), m_notifier.sent(), m_counters.watchdog_withheld, misses.data(),
-              m_counters.faults_injected, m_counters.log_suppressed + c.events_suppressed,
-              m_log.droppedLines(), signalName(), m_log.elapsedS());
+              m_counters.commands_accepted, m_counters.fault_onsets, w.samples_queued, w.samples_dropped,
+              w.samples_written, w.write_failures, m_writer.samplePoolMisses(), m_notifier.sent(),
+              m_counters.watchdog_withheld, misses.data(), m_counters.faults_injected,
+              m_counters.log_suppressed + c.events_suppressed, m_log.droppedLines(), signalName(),
+              m_log.elapsedS());
   const exec::DurationStats& jitter = m_executive.releaseJitter();
   const exec::DurationStats& busy = m_executive.cycleBusy();
   const exec::DurationStats& acquire = m_executive.taskStats(taskId(CycleStage::kAcquire)).exec;
@@ -281,13 +285,16 @@ void Daemon::logStatus() {
   // SIGUSR1: where the daemon stands, without stopping it.
   const exec::ExecutiveCounters& c = m_executive.counters();
   const camera::CameraCounters& cam = m_camera.source->counters();
+  const telemetry::WriterCounters w = m_writer.counters();  // a snapshot: the publisher thread counts too
   m_log.event(LogLevel::kNotice, "status",
               "cycles=%" PRIu64 " frames=%" PRIu64 " cycles_without_frame=%" PRIu64 " camera_dropped=%" PRIu64
               " camera_errors=%" PRIu64 " slips=%" PRIu64 " mode=%s faults=0x%x transitions=%" PRIu64
-              " log_dropped=%" PRIu64,
+              " samples_queued=%" PRIu64 " samples_dropped=%" PRIu64 " samples_written=%" PRIu64
+              " write_failures=%" PRIu64 " log_dropped=%" PRIu64,
               c.cycles, m_counters.frames, m_counters.cycles_without_frame, cam.frames_dropped, cam.errors,
               c.slips, nav::toString(m_pipeline.mode()), m_health.fault_bits,
-              m_pipeline.modes().transitionCount(), m_log.droppedLines());
+              m_pipeline.modes().transitionCount(), w.samples_queued, w.samples_dropped, w.samples_written,
+              w.write_failures, m_log.droppedLines());
 }
 
 void Daemon::onSlip(const exec::SlipEvent& event) {

@@ -80,11 +80,12 @@ const char* topicLabel(Topic topic) { return kTopicLabels[static_cast<int>(topic
 dds_qos_t* makeWriterQos(Topic topic, const TelemetryParams& params, std::int64_t cycle_period_ns) {
   dds_qos_t* qos = dds_create_qos();
   const auto max_blocking_ns = static_cast<dds_duration_t>(std::llround(params.max_blocking_ms * 1e6));
-  // Reliable: a reliable ground reader gets every sample the writer still holds. Keep-last never waits for
-  // acknowledgments (a newer sample replaces an unacknowledged one), so a dead reader cannot block a write;
-  // max_blocking_time bounds the remaining case (resource limits) all the same.
+  // Reliable: a reliable ground reader gets every sample the writer still holds (the last history_depth).
+  // Keep-last never waits for acknowledgments (the oldest unacknowledged sample is replaced), so a dead
+  // reader cannot block a write; max_blocking_time bounds the remaining case (resource limits) all the same.
   dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, max_blocking_ns);
-  dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, topic == Topic::kModeCommand ? params.command_depth : 1);
+  dds_qset_history(qos, DDS_HISTORY_KEEP_LAST,
+                   topic == Topic::kModeCommand ? params.command_depth : params.history_depth);
   dds_qset_durability(qos,
                       topic == Topic::kHealth ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
   if ((topic == Topic::kPose || topic == Topic::kFarRange) && cycle_period_ns > 0) {

@@ -103,7 +103,11 @@ TEST(Daemon, PublishesWhatThePipelineComputesForEveryFrame) {
   EXPECT_TRUE(daemon.counters().end_of_stream);
   EXPECT_EQ(daemon.executive().counters().cycles,
             static_cast<std::uint64_t>(kFrames + 1));  // + end of stream
-  EXPECT_EQ(daemon.telemetryWriter().counters().samples_written, 3U * kFrames);
+  // run() wrote the queue and joined the publisher thread: every sample queued, none dropped, all written.
+  const telemetry::WriterCounters w = daemon.telemetryWriter().counters();
+  EXPECT_EQ(w.samples_queued, 3U * kFrames);
+  EXPECT_EQ(w.samples_dropped, 0U);
+  EXPECT_EQ(w.samples_written, 3U * kFrames);
 
   const std::string text = log.text();
   EXPECT_NE(text.find("event=subscribers_matched readers=1"), std::string::npos) << text;
@@ -114,6 +118,11 @@ TEST(Daemon, PublishesWhatThePipelineComputesForEveryFrame) {
       << text;
   EXPECT_NE(text.find("event=stop reason=end_of_stream cycles=" + std::to_string(kFrames + 1) +
                       " frames=" + frames + " cycles_without_frame=0"),
+            std::string::npos)
+      << text;
+  const std::string samples = std::to_string(3 * kFrames);
+  EXPECT_NE(text.find(" samples_queued=" + samples + " samples_dropped=0 samples_written=" + samples +
+                      " write_failures=0 "),
             std::string::npos)
       << text;
   EXPECT_NE(text.find("event=stop_timing clock=simulated"), std::string::npos) << text;

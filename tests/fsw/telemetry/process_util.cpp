@@ -42,6 +42,15 @@ int waitProcess(pid_t pid, double timeout_s) {
     const timespec ten_ms{0, 10'000'000};
     nanosleep(&ten_ms, nullptr);
   }
+  // Timed out: SIGINT first, so a tool that ends cleanly on it (visnav-monitor) still prints its summary
+  // for the failure message; SIGKILL when it has not ended 5 s later.
+  kill(pid, SIGINT);
+  for (int i = 0; i < 500; ++i) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return -1;
+    const timespec ten_ms{0, 10'000'000};
+    nanosleep(&ten_ms, nullptr);
+  }
   kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);

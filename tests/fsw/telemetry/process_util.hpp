@@ -12,7 +12,8 @@ namespace visnav::telemetry::test {
 /// failure). The child inherits the environment (CYCLONEDDS_URI set by ctest).
 pid_t spawnProcess(const std::vector<std::string>& argv, const std::string& stdout_path = "");
 /// Waits up to `timeout_s` for the child to exit. Returns its exit code, 128 + signal when killed by one, or
-/// -1 on timeout (the child is then killed with SIGKILL and reaped).
+/// -1 on timeout (the child then gets SIGINT, so it can still write its summary, and SIGKILL 5 s later;
+/// it is reaped either way).
 int waitProcess(pid_t pid, double timeout_s);
 /// Whole text of a file ("" when missing).
 std::string readText(const std::string& path);

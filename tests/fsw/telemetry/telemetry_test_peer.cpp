@@ -102,13 +102,22 @@ int publish(const Args& a) {
     if (a.live_exposure) nav.exposure_time_ns = monotonicNowNs() - 1'000'000;
     writer.publishNav(nav);
     writer.publishHealth(test::makeHealthRecord(static_cast<std::uint64_t>(i)));
+    // A reader that has just matched starts out of sync with a Cyclone writer and takes the first samples
+    // through a heartbeat / acknack round trip: wait for it once, so a loaded machine cannot lose sample 1
+    // from the writer's history before the reader asked for it (tests count every sample from 1).
+    if (i == 1 && a.wait_readers > 0) {
+      writer.waitForAcks(10'000'000'000LL);
+      next_ns = monotonicNowNs() + period_ns;
+    }
   }
-  for (Topic t : {Topic::kPose, Topic::kFarRange, Topic::kHealth})
-    dds_wait_for_acks(ddsWriter(writer, t), DDS_SECS(5));
-  std::printf("published %llu samples, %llu write failures\n",
-              static_cast<unsigned long long>(writer.counters().samples_written),
-              static_cast<unsigned long long>(writer.counters().write_failures));
-  return writer.counters().write_failures == 0 ? 0 : 1;
+  writer.waitForAcks(5'000'000'000LL);  // the queue written, then acknowledged
+  writer.stop();
+  const WriterCounters c = writer.counters();
+  std::printf("published %llu samples, %llu dropped, %llu write failures\n",
+              static_cast<unsigned long long>(c.samples_written),
+              static_cast<unsigned long long>(c.samples_dropped),
+              static_cast<unsigned long long>(c.write_failures));
+  return c.write_failures == 0 && c.samples_dropped == 0 ? 0 : 1;
 }
 
 int stallReader(const Args& a) {

@@ -131,7 +131,10 @@ TEST_F(TelemetryDds, PoseAndFarRangeRoundTripFieldByField) {
     EXPECT_EQ(f.cluster_count, n.far.cluster_count);
     EXPECT_EQ(f.quality, n.far.quality);
   }
+  ASSERT_TRUE(writer.flush(5 * kSecond));  // counted after dds_write returns, maybe after the reader got it
+  EXPECT_EQ(writer.counters().samples_queued, 2 * kCount);
   EXPECT_EQ(writer.counters().samples_written, 2 * kCount);
+  EXPECT_EQ(writer.counters().samples_dropped, 0U);
   EXPECT_EQ(writer.counters().write_failures, 0U);
 }
 
@@ -173,7 +176,8 @@ TEST_F(TelemetryDds, LateReaderGetsTheLastHealthButNoOldPose) {
     ASSERT_TRUE(writer.publishHealth(test::makeHealthRecord(i)));
     ASSERT_TRUE(writer.publishNav(test::makeNavSolution(i)));
   }
-  connectGround();  // joins after everything was written
+  ASSERT_TRUE(writer.flush(5 * kSecond));  // the publisher thread has written all of it
+  connectGround();                         // joins after everything was written
   const auto health = receiveHealth(ground, 1, 5 * kSecond);
   ASSERT_EQ(health.size(), 1U);
   EXPECT_EQ(health[0].sample_number, 5U);  // keep-last 1: the current state only

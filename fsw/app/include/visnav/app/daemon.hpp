@@ -2,13 +2,14 @@
 // Per minor frame, in this fixed order:
 //   acquire  camera.acquire() bounded by min([camera] acquire_timeout_ms, time left to the deadline)
 //   process  pipeline.process(frame or none, now) -> NavSolution; the frame goes back to the driver
-//   publish  TelemetryWriter::publishNav (PoseEstimate + FarRangeEstimate)
+//   publish  TelemetryWriter::publishNav (PoseEstimate + FarRangeEstimate, queued for its publisher thread)
 //   health   poll ModeCommands -> pipeline.command -> acknowledgment; fillHealth + the executive's task
 //            timings + camera drops + cycle slips -> publishHealth; WATCHDOG=1 to systemd only when every
 //            stage beat its heartbeat this cycle (heartbeat_monitor.hpp)
-// Everything is sized in init(); the tasks allocate nothing of their own (Cyclone 0.10.2 allocates inside
-// dds_write for samples over 256 bytes: fsw/telemetry/README.md). Events (mode transitions, commands, fault
-// onsets, camera loss, slips) are logged as key=value lines (event_log.hpp). Design note: fsw/app/README.md.
+// Everything is sized in init(); the tasks allocate nothing, and call no dds_write: telemetry's publisher
+// thread does, where Cyclone 0.10.2's own occasional allocations stay (fsw/telemetry/README.md). Events
+// (mode transitions, commands, fault onsets, camera loss, slips) are logged as key=value lines
+// (event_log.hpp). Design note: fsw/app/README.md.
 #pragma once
 
 #include <array>

@@ -21,9 +21,9 @@ namespace visnav::telemetry {
 /// the visnav:: types), so types match by name as they do with rmw_cyclonedds.
 const dds_topic_descriptor_t* topicDescriptor(Topic topic, TopicNaming naming = TopicNaming::kVisnav);
 
-/// Writer QoS of a topic: reliable with max_blocking_ms, keep-last 1 (commands: command_depth), Health
-/// transient-local, pose and far range with a deadline of deadline_periods * `cycle_period_ns` (none when
-/// `cycle_period_ns` <= 0). Caller deletes the QoS with dds_delete_qos.
+/// Writer QoS of a topic: reliable with max_blocking_ms, keep-last history_depth (commands: command_depth),
+/// Health transient-local, pose and far range with a deadline of deadline_periods * `cycle_period_ns` (none
+/// when `cycle_period_ns` <= 0). Caller deletes the QoS with dds_delete_qos.
 dds_qos_t* makeWriterQos(Topic topic, const TelemetryParams& params, std::int64_t cycle_period_ns);
 /// Reader QoS: always reliable (a reliable reader gets every sample a reliable writer keeps), keep-last
 /// `depth`, transient-local for Health (a late reader gets the current state). Caller deletes the QoS.

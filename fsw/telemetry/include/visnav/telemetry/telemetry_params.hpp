@@ -34,7 +34,8 @@ struct TelemetryParams {
   double deadline_periods = 1.5;
   double max_blocking_ms = 2.0;
   int command_depth = 8;
-  int sample_pool_blocks = 8;
+  int history_depth = 8;
+  int sample_pool_blocks = 12;
   TopicNaming naming = TopicNaming::kVisnav;
 
   template <typename Visitor>
@@ -57,13 +58,25 @@ struct TelemetryParams {
                "keep-last depth of the ModeCommand reader = most commands taken in one cycle"},
               command_depth);
     v.integer(
+        {"telemetry", "history_depth", "samples", 1, 64,
+         "keep-last depth of the pose, far-range and health writers: the samples a reliable reader can still "
+         "have resent; the publisher thread writes a backlog back to back, and with 1 a reader that missed "
+         "one sample of a burst lost it for good (keep-last never waits for a reader, whatever the depth)"},
+        history_depth);
+    v.integer(
         {"telemetry", "sample_pool_blocks", "count", 2, 1024,
          "serialized samples each flight writer holds without allocating (writer history, transmit "
          "queue, retransmissions); beyond it a sample takes a heap block and is counted as a pool miss"},
         sample_pool_blocks);
   }
 
-  const char* crossCheck() const { return nullptr; }
+  const char* crossCheck() const {
+    // The writer history holds history_depth serialized samples, the write in progress one more.
+    if (sample_pool_blocks < history_depth + 1)
+      return "[telemetry] sample_pool_blocks must be at least history_depth + 1 (the writer history and the "
+             "sample being written come from the pool)";
+    return nullptr;
+  }
 
   const char* partitionName() const { return partition.data(); }
 };
