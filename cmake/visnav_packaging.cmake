@@ -14,6 +14,8 @@
 #   include/visnav/idl/           visnav.idl and the header idlc makes from it (no build-machine paths)
 #   lib/<multiarch>/libvisnav-idl.a   the types' DDS topic descriptors (idl/CMakeLists.txt)
 #   lib/<multiarch>/pkgconfig/visnav-idl.pc, lib/<multiarch>/cmake/visnav-idl/   pkg-config and CMake package
+#   share/visnav/ros2/visnav_msgs/  the ROS 2 message package of the same types (msg/*.msg, package.xml,
+#                                 CMakeLists.txt: copy into a colcon workspace; idl/README.md)
 # and visnav-dbgsym: the binaries' debug info (.build-id/xx/yyyy.debug), split off by CPack.
 # The flight libraries are static and linked into the executables.
 set(VISNAV_UNIT_PATTERNS *.service *.socket *.timer)
@@ -45,6 +47,9 @@ install(TARGETS visnav_idl_types EXPORT visnav-idl-targets
         ARCHIVE DESTINATION ${VISNAV_INSTALL_LIBDIR} COMPONENT dev
         PUBLIC_HEADER DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/visnav/idl COMPONENT dev)
 install(FILES ${PROJECT_SOURCE_DIR}/idl/visnav.idl DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/visnav/idl COMPONENT dev)
+# The ROS 2 .msg files with their package files, for `naming = "ros2"` subscribers (idl/ros2/visnav_msgs).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/idl/ros2/visnav_msgs DESTINATION ${CMAKE_INSTALL_DATADIR}/visnav/ros2
+        COMPONENT dev)
 install(EXPORT visnav-idl-targets NAMESPACE visnav:: DESTINATION ${VISNAV_INSTALL_LIBDIR}/cmake/visnav-idl
         COMPONENT dev)
 include(CMakePackageConfigHelpers)
@@ -135,8 +140,9 @@ filter and FDIR, run by the visnavd daemon at 5 Hz with DDS telemetry.
 The ground tools replay and score recorded or synthetic sequences, watch the
 telemetry and send mode commands.")
 # Run-time dependencies from the ELF files (dpkg-shlibdeps: libc6, libstdc++6, libgcc-s1, Cyclone DDS
-# libddsc0debian, libtomlplusplus3; libcamera once an installed executable links it); works for the arm64
-# binaries too because the arm64 libraries are installed as multiarch packages.
+# libddsc0debian, libtomlplusplus3, zlib1g (the plots' PNG writer, tools/png); libcamera once an installed
+# executable links it); works for the arm64 binaries too because the arm64 libraries are installed as
+# multiarch packages.
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
 # What CPack 3.25 gets wrong in the -dbgsym and library packages is repaired after it made them (the script says
 # what and why).
@@ -166,6 +172,8 @@ The IDL of the visnav DDS telemetry (pose, far-range estimate, health, mode
 commands), the C header Cyclone DDS idlc makes from it and libvisnav-idl.a
 with the topic descriptors, so a C or C++ client subscribes to visnavd's
 topics. Found with pkg-config (visnav-idl) or CMake (find_package(visnav-idl)).
+The same types as the ROS 2 message package visnav_msgs (.msg files) in
+/usr/share/visnav/ros2, to build in a colcon workspace.
 With the C API: include/visnav/visnav.h and the libvisnav.so link.")
 
 if(VISNAV_CAPI_PACKAGE)

@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 host_packages=(g++-aarch64-linux-gnu binutils-aarch64-linux-gnu qemu-user binfmt-support)
 # The arm64 libraries the build links (find_package/pkg_check_modules in the CMakeLists.txt files): toml++,
-# GoogleTest + GoogleMock, Google Benchmark, zlib (tests), libcamera (drivers/libcamera), Cyclone DDS
+# GoogleTest + GoogleMock, Google Benchmark, zlib (tools/png, tests), libcamera (drivers/libcamera), Cyclone DDS
 # (fsw/telemetry); pkgconf:arm64 provides aarch64-linux-gnu-pkg-config. Eigen is header-only and
 # arch-independent (the host libeigen3-dev serves both). linux-libc-dev:arm64 gives the V4L2 headers.
 arm64_packages=(libtomlplusplus-dev libgtest-dev libgmock-dev libbenchmark-dev zlib1g-dev libcamera-dev

@@ -10,8 +10,8 @@ if [ "${1:-}" = "--kernel-cameras" ]; then
   packages=(qemu-system-x86 busybox-static v4l-utils libcamera-tools libcamera-ipa build-essential xz-utils)
 else
   packages=(build-essential cmake ninja-build pkgconf libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
-            libtomlplusplus-dev zlib1g-dev
-            libcamera-dev linux-libc-dev)
+            libtomlplusplus-dev libcamera-dev linux-libc-dev)
+  packages+=(zlib1g-dev)                       # the PNG writer of the plots (tools/png) and the tests' reader
   packages+=(cyclonedds-dev cyclonedds-tools)  # DDS telemetry: Cyclone DDS C library and idlc (fsw/telemetry)
   packages+=(git clang-format cppcheck)        # static checks (scripts/lint.sh); CI runs format_check and cppcheck
   packages+=(clang libclang-rt-14-dev)         # fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer

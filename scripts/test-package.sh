@@ -12,7 +12,8 @@
 # the links offline; runtime verbs (start, stop, try-restart, is-active, daemon-reload) are recorded and
 # answered from a state file. /run/systemd/system exists, so the maintainer scripts act as on a booted system.
 # Depends built beside the .deb (libvisnav<N>) are installed from their .deb with it and purged after it.
-# Checks: the visnav user (sysusers) in group video; conffiles; enable makes the multi-user.target.wants
+# Checks: the visnav user (sysusers) in group video; conffiles; visnav-dev beside it ships the ROS 2 .msg
+# files (its file list: it is not installed); enable makes the multi-user.target.wants
 # link; an upgrade (the same package repacked as <version>+1) try-restarts the running service and does not
 # stop it; remove stops it; purge removes the enable link, /etc/visnav and the helper's state, and leaves no
 # file of the package: the root's file list after purge equals the one before install, except for dpkg's and
@@ -32,8 +33,10 @@ if [ "${1:-}" = --self-test ]; then
   rm -rf "$mutant" && mkdir -p "$mutant"
   dpkg-deb -R "$deb" "$mutant/pkg"
   for script in prerm postrm; do printf '#!/bin/sh\nexit 0\n' >"$mutant/pkg/DEBIAN/$script"; done
-  # Beside it the same sibling packages (libvisnav<N>), so only the maintainer scripts differ.
-  for sibling in "$(dirname "$deb")"/libvisnav[0-9]*_*.deb; do [ -f "$sibling" ] && cp "$sibling" "$mutant/"; done
+  # Beside it the same sibling packages (libvisnav<N>, visnav-dev), so only the maintainer scripts differ.
+  for sibling in "$(dirname "$deb")"/libvisnav[0-9]*_*.deb "$(dirname "$deb")"/visnav-dev_*.deb; do
+    [ -f "$sibling" ] && cp "$sibling" "$mutant/"
+  done
   dpkg-deb --root-owner-group -b "$mutant/pkg" "$mutant/$(basename "$deb")" >/dev/null
   status=0
   "$0" "$mutant/$(basename "$deb")" >"$mutant/run.log" 2>&1 || status=$?
@@ -177,6 +180,19 @@ for name in "${sibling_names[@]}"; do
 done
 ok "not enabled on install (no enable link)" test ! -e "$root/etc/systemd/system/multi-user.target.wants/visnavd.service"
 ok "conffiles registered" sh -c "chroot '$root' dpkg-query -W -f='\${Conffiles}' visnav | grep -q /etc/visnav/visnavd.toml"
+# visnav-dev, built beside it, is not installed here (it depends on the build machine's -dev packages); its
+# file list must hold the ROS 2 message package: every .msg of idl/ros2/visnav_msgs/msg, and package.xml.
+dev_deb=$(ls "$(dirname "$deb")"/visnav-dev_*.deb 2>/dev/null | head -n 1 || true)
+ros2_msgs_shipped() {
+  [ -n "$dev_deb" ] || return 1
+  local listing file
+  listing=$(dpkg-deb -c "$dev_deb") || return 1
+  for file in idl/ros2/visnav_msgs/msg/*.msg idl/ros2/visnav_msgs/package.xml; do
+    grep -q " \./usr/share/visnav/ros2/${file#idl/ros2/}\$" <<<"$listing" || { echo "  missing: $file" >&2; return 1; }
+  done
+}
+ok "visnav-dev ships the ROS 2 .msg files in /usr/share/visnav/ros2/visnav_msgs ($(ls idl/ros2/visnav_msgs/msg/*.msg | wc -l) of them)" \
+  ros2_msgs_shipped
 
 # 4. Enable and start as an operator would.
 in_root systemctl enable visnavd.service >>"$cache/install.log" 2>&1

@@ -4,8 +4,9 @@
 # in usr/bin, stripped and runnable, their debug info in the -dbgsym package under the binaries' build ids,
 # the default config, every systemd unit under config/, the service's /etc/visnav config as conffiles (valid
 # for the packaged visnavd), nothing else outside /usr; in visnav-dev the IDL, its header (self-contained C,
-# no build-machine path), libvisnav-idl.a, the pkg-config and CMake files. The packages stay in
-# BUILD_DIR/package_test for the tests that need them (fixture visnav_debs: dev client, lintian).
+# no build-machine path), libvisnav-idl.a, the pkg-config and CMake files, the ROS 2 message package. The
+# packages stay in BUILD_DIR/package_test for the tests that need them (fixture visnav_debs: dev client,
+# lintian).
 # -DBUILD_DIR=... -DARCH=amd64 -DVERSION=x.y.z -DSOURCE_DIR=... [-DCAPI_PACKAGE=libvisnav1]
 set(work ${BUILD_DIR}/package_test)
 file(REMOVE_RECURSE ${work})
@@ -54,7 +55,7 @@ if(NOT version STREQUAL VERSION)
   string(APPEND errors "Version is '${version}', expected ${VERSION}\n")
 endif()
 # shlibdeps found the shared libraries the executables link.
-foreach(lib libc6 libstdc\\+\\+6 libddsc libtomlplusplus)
+foreach(lib libc6 libstdc\\+\\+6 libddsc libtomlplusplus zlib1g)  # zlib1g: the plots' PNG writer (tools/png)
   if(NOT depends MATCHES "(${lib})")
     string(APPEND errors "Depends lacks ${lib}: ${depends}\n")
   endif()
@@ -133,9 +134,24 @@ else()
     endif()
   endforeach()
 endif()
+# The ROS 2 message package (idl/ros2/visnav_msgs), every file of it, byte for byte, in share/visnav/ros2.
+set(ros2_dir usr/share/visnav/ros2/visnav_msgs)
+file(GLOB_RECURSE ros2_sources RELATIVE ${SOURCE_DIR}/idl/ros2/visnav_msgs ${SOURCE_DIR}/idl/ros2/visnav_msgs/*)
+list(FILTER ros2_sources INCLUDE REGEX "\\.msg$|^package\\.xml$|^CMakeLists\\.txt$")
+list(LENGTH ros2_sources n_ros2)
+if(n_ros2 LESS 3)
+  string(APPEND errors "idl/ros2/visnav_msgs: expected .msg files, package.xml and CMakeLists.txt\n")
+endif()
+foreach(path IN LISTS ros2_sources)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${SOURCE_DIR}/idl/ros2/visnav_msgs/${path}
+                          ${dev_root}/${ros2_dir}/${path} RESULT_VARIABLE differs)
+  if(NOT differs EQUAL 0)
+    string(APPEND errors "visnav-dev: ${ros2_dir}/${path} missing or not the source's\n")
+  endif()
+endforeach()
 file(GLOB_RECURSE dev_files RELATIVE ${dev_root} ${dev_root}/*)
 foreach(path IN LISTS dev_files)
-  if(NOT path MATCHES "^usr/(include|lib|share/doc/visnav-dev)/")
+  if(NOT path MATCHES "^usr/(include|lib|share/doc/visnav-dev|share/visnav/ros2)/")
     string(APPEND errors "visnav-dev: unexpected ${path}\n")
   endif()
   # No build-machine path in any text file it ships (idlc writes absolute paths; CMake's export files must

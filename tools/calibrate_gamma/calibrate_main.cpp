@@ -1,6 +1,7 @@
 // visnav-calibrate-gamma: gamma of eq. 16 (d = gamma / sqrt(n)) from frames at known distance, as the paper
 // did at 25 m (1/30 scale: 750 m) with 16 px -> 3000. Usage and method: README.md in this folder.
-// Exit codes: 0 ok, 1 no usable frame, 2 bad input.
+// Exit codes (README.md "Exit codes", visnav::cli): 0 ok, 1 no usable frame, 2 usage, 3 a config, camera,
+// sequence or frame that does not load, or --out that cannot be written.
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -22,7 +23,13 @@ const char* const kUsage =
     "       visnav-calibrate-gamma --help | --version\n"
     "Calibrates eq. 16's gamma (d = gamma / sqrt(n)) from frames at known distance\n"
     "(tools/calibrate_gamma/README.md).\n"
-    "  exit code: 0 ok, 1 no usable frame, 2 usage or bad input\n";
+    "  exit code: 0 ok, 1 no usable frame, 2 usage, 3 a config, camera, sequence or frame that does not\n"
+    "  load, or --out that cannot be written\n";
+
+using visnav::cli::kExitFailed;
+using visnav::cli::kExitInvalidInput;
+using visnav::cli::kExitOk;
+using visnav::cli::kExitUsage;
 
 }  // namespace
 
@@ -39,7 +46,7 @@ int main(int argc, char** argv) {
       return code;
     if (i + 1 >= argc) {
       std::fprintf(stderr, "visnav-calibrate-gamma: missing value for %s\n%s", opt.c_str(), kUsage);
-      return 2;
+      return kExitUsage;
     }
     const std::string v = argv[++i];
     double x = 0.0;
@@ -66,23 +73,33 @@ int main(int argc, char** argv) {
       max_range = x;
     else {
       std::fprintf(stderr, "visnav-calibrate-gamma: bad option %s %s\n%s", opt.c_str(), v.c_str(), kUsage);
-      return 2;
+      return kExitUsage;
     }
+  }
+  // The command line first (usage, exit 2), then the config (a file that does not load, exit 3).
+  LoadError usage_error;
+  if (!method.empty() && far_eval::methodIndex(method) < 0)
+    usage_error = LoadError::failure("--method must be paper or robust");
+  const int modes = (sequence_dir.empty() ? 0 : 1) + (frames.empty() ? 0 : 1) + (pixels.empty() ? 0 : 1);
+  if (usage_error.ok && modes != 1)
+    usage_error = LoadError::failure("give exactly one of --sequence, --frame, --pixels");
+  if (usage_error.ok && (!frames.empty() || !pixels.empty()) &&
+      distances.size() != (frames.empty() ? pixels.size() : frames.size()))
+    usage_error = LoadError::failure("every --frame / --pixels needs its --distance");
+  if (usage_error.ok && !frames.empty() && camera_path.empty())
+    usage_error = LoadError::failure("--frame needs --camera");
+  if (!usage_error.ok) {
+    std::fprintf(stderr, "visnav-calibrate-gamma: %s\n%s", usage_error.message.c_str(), kUsage);
+    return kExitUsage;
   }
   far::FarRangeParams params;
   LoadError e = far_eval::loadFarParams(config_path, params);
-  if (!method.empty()) params.method = far_eval::methodIndex(method);
-  if (e.ok && params.method < 0) e = LoadError::failure("--method must be paper or robust");
-  method = params.method == static_cast<int>(far::FarRangeMethod::kPaper) ? "paper" : "robust";
-  const int modes = (sequence_dir.empty() ? 0 : 1) + (frames.empty() ? 0 : 1) + (pixels.empty() ? 0 : 1);
-  if (e.ok && modes != 1) e = LoadError::failure("give exactly one of --sequence, --frame, --pixels");
-  if (e.ok && (!frames.empty() || !pixels.empty()) &&
-      distances.size() != (frames.empty() ? pixels.size() : frames.size()))
-    e = LoadError::failure("every --frame / --pixels needs its --distance");
   if (!e.ok) {
-    std::fprintf(stderr, "visnav-calibrate-gamma: %s\n%s", e.message.c_str(), kUsage);
-    return 2;
+    std::fprintf(stderr, "visnav-calibrate-gamma: %s\n", e.message.c_str());
+    return kExitInvalidInput;
   }
+  if (!method.empty()) params.method = far_eval::methodIndex(method);
+  method = params.method == static_cast<int>(far::FarRangeMethod::kPaper) ? "paper" : "robust";
 
   std::vector<far::GammaSample> samples;
   far::GammaEstimate estimate;
@@ -109,7 +126,7 @@ int main(int argc, char** argv) {
     if (e.ok) e = far_eval::runSequence(seq, params, true, records);
     if (!e.ok) {
       std::fprintf(stderr, "visnav-calibrate-gamma: %s\n", e.message.c_str());
-      return 2;
+      return kExitInvalidInput;
     }
     // Explicit frames carry no true direction: every found target counts.
     if (sequence_dir.empty()) {
@@ -119,7 +136,7 @@ int main(int argc, char** argv) {
   }
   if (!estimate.ok) {
     std::fprintf(stderr, "visnav-calibrate-gamma: no frame with a target in range\n");
-    return 1;
+    return kExitFailed;
   }
   std::printf("gamma = %.6g  (%s method; %d of %d frames averaged; median %.6g; robust spread %.1f %%)\n",
               estimate.gamma, method.c_str(), estimate.inliers, estimate.samples, estimate.median,
@@ -131,8 +148,8 @@ int main(int argc, char** argv) {
         << "gamma = " << estimate.gamma << "\n";
     if (!out) {
       std::fprintf(stderr, "visnav-calibrate-gamma: cannot write %s\n", out_path.c_str());
-      return 2;
+      return kExitInvalidInput;
     }
   }
-  return 0;
+  return kExitOk;
 }

@@ -1,7 +1,9 @@
 // visnav-far-eval: runs the far-range estimator (paper and/or robust method) over a sequence with truth and
 // prints direction error, distance error and how often the right target was chosen (all frames, frames
 // with the clutter object in view, frames with glints). README.md in this folder.
-// Exit codes: 0 all requested requirements hold, 1 a requirement failed, 2 bad input.
+// Exit codes (README.md "Exit codes", visnav::cli): 0 all requested requirements hold, 1 a requirement failed
+// (or the calibration sequence has no frame with the target), 2 usage, 3 a config, sequence or frame that
+// does not load, or --csv that cannot be written.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -21,7 +23,14 @@ const char* const kUsage =
     "Runs the far-range estimator over a sequence with truth: direction and distance errors, right-target\n"
     "fraction (tools/calibrate_gamma/README.md).\n"
     "  requirements apply to the robust method (or the one method given)\n"
-    "  exit code: 0 all requested requirements hold, 1 a requirement failed, 2 usage or bad input\n";
+    "  exit code: 0 all requested requirements hold, 1 a requirement failed (or no calibration frame\n"
+    "  with the target), 2 usage, 3 a config, sequence or frame that does not load, or --csv that cannot\n"
+    "  be written\n";
+
+using visnav::cli::kExitFailed;
+using visnav::cli::kExitInvalidInput;
+using visnav::cli::kExitOk;
+using visnav::cli::kExitUsage;
 
 struct Requirements {
   double direction_median_deg = -1.0;
@@ -47,7 +56,7 @@ int main(int argc, char** argv) {
     if (const int code = cli::standardOption(argv[i], "visnav-far-eval", kUsage); code >= 0) return code;
     if (i + 1 >= argc) {
       std::fprintf(stderr, "visnav-far-eval: missing value for %s\n%s", opt.c_str(), kUsage);
-      return 2;
+      return kExitUsage;
     }
     const std::string v = argv[++i];
     double x = 0.0;
@@ -74,18 +83,21 @@ int main(int argc, char** argv) {
       req.clutter_right_fraction = x;
     else {
       std::fprintf(stderr, "visnav-far-eval: bad option %s %s\n%s", opt.c_str(), v.c_str(), kUsage);
-      return 2;
+      return kExitUsage;
     }
+  }
+  if (sequence_dir.empty()) {
+    std::fprintf(stderr, "visnav-far-eval: --sequence is required\n%s", kUsage);
+    return kExitUsage;
   }
   far::FarRangeParams base;
   LoadError e = far_eval::loadFarParams(config_path, base);
-  if (e.ok && sequence_dir.empty()) e = LoadError::failure("--sequence is required");
   replay::Sequence seq, calibration;
   if (e.ok) e = replay::loadSequence(sequence_dir, seq);
   if (e.ok && !calibration_dir.empty()) e = replay::loadSequence(calibration_dir, calibration);
   if (!e.ok) {
-    std::fprintf(stderr, "visnav-far-eval: %s\n%s", e.message.c_str(), kUsage);
-    return 2;
+    std::fprintf(stderr, "visnav-far-eval: %s\n", e.message.c_str());
+    return kExitInvalidInput;
   }
   std::vector<std::string> methods;
   if (method == "both" || method == "paper") methods.emplace_back("paper");
@@ -103,7 +115,11 @@ int main(int argc, char** argv) {
       // One calibration per method over the whole calibration sequence (its n definitions differ).
       e = far_eval::runSequence(calibration, params, true, records);  // independent frames
       const far::GammaEstimate g = far_eval::calibrateFromRecords(records, 0.0, 1e12);
-      if (e.ok && !g.ok) e = LoadError::failure(calibration_dir + ": no calibration frame with the target");
+      if (e.ok && !g.ok) {  // it ran, and found nothing to calibrate on: a negative result
+        std::fprintf(stderr, "visnav-far-eval: %s: no calibration frame with the target (%s method)\n",
+                     calibration_dir.c_str(), methods[m].c_str());
+        return kExitFailed;
+      }
       if (e.ok) params.gamma = g.gamma;
       gamma_note = "calibrated on " + calibration.name + ": " + std::to_string(g.inliers) +
                    " frames, spread " + std::to_string(100.0 * g.spread).substr(0, 4) + " %";
@@ -113,7 +129,7 @@ int main(int argc, char** argv) {
       e = far_eval::writeRecordsCsv(csv_path, methods[m].c_str(), records, m > 0);
     if (!e.ok) {
       std::fprintf(stderr, "visnav-far-eval: %s\n", e.message.c_str());
-      return 2;
+      return kExitInvalidInput;
     }
     const far_eval::Summary s = far_eval::summarise(records);
     double range_min = 1e12, range_max = 0.0;
@@ -162,5 +178,5 @@ int main(int argc, char** argv) {
       all_ok &= check(s.clutterRightFraction() >= req.clutter_right_fraction, "clutter right-target fraction",
                       s.clutterRightFraction(), req.clutter_right_fraction);
   }
-  return all_ok ? 0 : 1;
+  return all_ok ? kExitOk : kExitFailed;
 }

@@ -24,11 +24,17 @@ void usage(std::FILE* stream) {
       "and\n"
       "closedloop.png (tools/closedloop/README.md). Exit code: 0 done, 1 --require-arrival and the visnav "
       "run\n"
-      "did not arrive within the gates, 2 usage or bad input. --config-dir: the folder with "
-      "closedloop.toml,\n"
+      "did not arrive within the gates, 2 usage, 3 a config, camera or model that does not load, or an "
+      "output\n"
+      "that cannot be written. --config-dir: the folder with closedloop.toml,\n"
       "cameras/ and models/ (default: the source tree's config/, else the installed share/visnav/config).\n",
       stream);
 }
+
+using visnav::cli::kExitFailed;
+using visnav::cli::kExitInvalidInput;
+using visnav::cli::kExitOk;
+using visnav::cli::kExitUsage;
 
 }  // namespace
 
@@ -53,23 +59,23 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr, "visnav-closedloop: unknown or incomplete argument '%s'\n", arg.c_str());
       usage(stderr);
-      return 2;
+      return kExitUsage;
     }
   }
   visnav::closedloop::ScenarioParams params;
   if (!visnav::closedloop::presetScenario(scenario, config_dir, params)) {
     std::fprintf(stderr, "visnav-closedloop: --scenario must be ci, 200 or 750 (got '%s')\n",
                  scenario.c_str());
-    return 2;
+    return kExitUsage;
   }
   visnav::closedloop::RunResult with_visnav, with_truth;
   if (visnav::LoadError e = visnav::closedloop::runClosedLoop(params, true, with_visnav); !e.ok) {
     std::fprintf(stderr, "visnav-closedloop: %s\n", e.message.c_str());
-    return 2;
+    return kExitInvalidInput;
   }
   if (visnav::LoadError e = visnav::closedloop::runClosedLoop(params, false, with_truth); !e.ok) {
     std::fprintf(stderr, "visnav-closedloop: %s\n", e.message.c_str());
-    return 2;
+    return kExitInvalidInput;
   }
   visnav::closedloop::printSummary(stdout, params, with_visnav, with_truth);
   if (!out_dir.empty()) {
@@ -80,7 +86,7 @@ int main(int argc, char** argv) {
                                                                          with_visnav, with_truth))}) {
       if (!e.ok) {
         std::fprintf(stderr, "visnav-closedloop: %s: %s\n", name, e.message.c_str());
-        return 2;
+        return kExitInvalidInput;
       }
     }
     std::printf("  wrote %s/closedloop.csv and %s/closedloop.png\n", out_dir.c_str(), out_dir.c_str());
@@ -89,7 +95,7 @@ int main(int argc, char** argv) {
                   with_visnav.final_attitude_error_deg < params.gate_attitude_deg;
   if (require && !ok) {
     std::fputs("visnav-closedloop: the visnav run did not arrive within the gates\n", stderr);
-    return 1;
+    return kExitFailed;
   }
-  return 0;
+  return kExitOk;
 }

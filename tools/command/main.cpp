@@ -1,7 +1,7 @@
 // visnav-command: sends one ModeCommand and waits (bounded) for its acknowledgment in Health.
 //   visnav-command force-far-range|reacquire|standby|resume [--id N] [--timeout S] [--config FILE] ...
-// Exit code: 0 accepted, 1 rejected, 2 usage or setup error, 4 timeout (no flight software listening, or no
-// acknowledgment in time).
+// Exit code: 0 accepted, 1 rejected, 2 usage, 3 a --config that does not load, 4 DDS did not start, the write
+// failed, or timeout (no flight software listening, or no acknowledgment in time).
 #include <unistd.h>
 
 #include <array>
@@ -24,6 +24,7 @@ constexpr int kExitAccepted = visnav::cli::kExitOk;
 constexpr int kExitRejected = visnav::cli::kExitFailed;
 constexpr int kExitUsage = visnav::cli::kExitUsage;
 constexpr int kExitTimeout = visnav::cli::kExitStartup;
+constexpr int kExitNoLink = visnav::cli::kExitStartup;  // DDS did not start, or refused the write
 
 void usage(std::FILE* stream) {
   std::fprintf(
@@ -33,7 +34,8 @@ void usage(std::FILE* stream) {
       "Sends one mode command to visnavd over DDS and waits for its acknowledgment.\n"
       "  --id N       command id echoed in the acknowledgment (1..4294967295; default: from time and pid)\n"
       "  --timeout S  longest wait for the flight software and its acknowledgment (default 5)\n"
-      "  exit code: 0 accepted, 1 rejected, 2 usage or setup error, 4 timeout\n",
+      "  exit code: 0 accepted, 1 rejected, 2 usage, 3 a config that does not load, 4 DDS did not start\n"
+      "  or timeout\n",
       visnav::monitor::kLinkUsage);
 }
 
@@ -93,12 +95,13 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
     visnav::LoadError error;
+    int error_code = kExitUsage;
     if (const int code = visnav::cli::standardOption(argv[i], "visnav-command", usage); code >= 0)
       return code;
-    if (visnav::monitor::parseLinkArgument(argc, argv, i, link_params, error)) {
+    if (visnav::monitor::parseLinkArgument(argc, argv, i, link_params, error, error_code)) {
       if (!error.ok) {
         std::fprintf(stderr, "visnav-command: %s\n", error.message.c_str());
-        return kExitUsage;
+        return error_code;
       }
     } else if (arg == "--id" && has_value) {
       char* end = nullptr;
@@ -132,7 +135,7 @@ int main(int argc, char** argv) {
   GroundLink link;
   if (visnav::LoadError e = link.init(link_params, 16); !e.ok) {
     std::fprintf(stderr, "visnav-command: %s\n", e.message.c_str());
-    return kExitUsage;
+    return kExitNoLink;
   }
   const auto timeout_ns = static_cast<std::int64_t>(timeout_s * 1e9);
   const std::int64_t deadline_ns = visnav::telemetry::monotonicNowNs() + timeout_ns;
@@ -145,7 +148,7 @@ int main(int argc, char** argv) {
   }
   if (const dds_return_t rc = link.sendCommand(command_id, kind); rc != DDS_RETCODE_OK) {
     std::fprintf(stderr, "visnav-command: write failed: %s\n", dds_strretcode(rc));
-    return kExitUsage;
+    return kExitNoLink;
   }
   std::printf("visnav-command: sent #%u %s\n", command_id, visnav::telemetry::commandKindName(kind));
   visnav_CommandAck ack{};

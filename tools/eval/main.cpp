@@ -1,5 +1,7 @@
 // visnav-eval: scores a visnav-replay CSV against a sequence's truth (README.md in this folder).
-// Exit codes: 0 all requested requirements hold, 1 a requirement failed, 2 bad input.
+// Exit codes (README.md "Exit codes", visnav::cli): 0 all requested requirements hold, 1 a requirement
+// failed, 2 usage, 3 an input that does not load or has nothing to score, or an output that cannot be
+// written.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,8 +19,10 @@
 
 namespace {
 
-constexpr int kExitFail = 1;
-constexpr int kExitBadInput = 2;
+using visnav::cli::kExitFailed;
+using visnav::cli::kExitInvalidInput;
+using visnav::cli::kExitOk;
+using visnav::cli::kExitUsage;
 
 const char* const kUsage =
     "usage: visnav-eval --sequence DIR --replay replay.csv [--far-range FILE] [--plot errors.png]\n"
@@ -30,7 +34,8 @@ const char* const kUsage =
     "                   [--max-far-distance-median-pct X] [--require-final-mode MODE]\n"
     "       visnav-eval --help | --version\n"
     "Scores a visnav-replay CSV against a sequence's truth (tools/eval/README.md).\n"
-    "  exit code: 0 all requested requirements hold, 1 a requirement failed, 2 usage or bad input\n";
+    "  exit code: 0 all requested requirements hold, 1 a requirement failed, 2 usage, 3 an input that does\n"
+    "  not load or has nothing to score (empty replay), or an output that cannot be written\n";
 
 struct Args {
   std::string sequence, replay, far_range, plot, timeline, csv, json;
@@ -145,32 +150,32 @@ int main(int argc, char** argv) {
     return cli::standardOption(arg_error == "help" ? "--help" : "--version", "visnav-eval", kUsage);
   if (!arg_error.empty()) {
     std::cerr << "visnav-eval: " << arg_error << '\n' << kUsage;
-    return kExitBadInput;
+    return kExitUsage;
   }
 
   replay::Sequence seq;
   LoadError err = replay::loadSequence(args.sequence, seq);
   if (!err.ok) {
     std::cerr << "visnav-eval: " << err.message << '\n';
-    return kExitBadInput;
+    return kExitInvalidInput;
   }
   if (seq.truth.empty()) {
     std::cerr << "visnav-eval: " << args.sequence
               << ": sequence has no truth (truth.csv), nothing to score\n";
-    return kExitBadInput;
+    return kExitInvalidInput;
   }
   std::vector<eval::ReplayRow> rows;
   err = eval::loadReplayCsv(args.replay, rows);
   if (!err.ok) {
     std::cerr << "visnav-eval: " << err.message << '\n';
-    return kExitBadInput;
+    return kExitInvalidInput;
   }
   if (!args.far_range.empty()) {
     int unmatched = 0;
     err = eval::joinFarRangeCsv(args.far_range, rows, unmatched);
     if (!err.ok) {
       std::cerr << "visnav-eval: " << err.message << '\n';
-      return kExitBadInput;
+      return kExitInvalidInput;
     }
     if (unmatched > 0) std::cout << "far-range rows without a replay row (ignored): " << unmatched << '\n';
   }
@@ -183,7 +188,7 @@ int main(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (const char* problem = eval::nothingToScore(ev.summary)) {
     std::cerr << "visnav-eval: " << args.replay << ": " << problem << '\n';
-    return kExitBadInput;
+    return kExitInvalidInput;
   }
   const std::vector<eval::RequirementResult> req = eval::checkRequirements(ev, args.req);
 
@@ -199,7 +204,7 @@ int main(int argc, char** argv) {
     err = eval::writeSummaryJson(args.json, ev, req, args.sequence, args.replay);
   if (!err.ok) {
     std::cerr << "visnav-eval: " << err.message << '\n';
-    return kExitBadInput;
+    return kExitInvalidInput;
   }
 
   bool passed = true;
@@ -207,5 +212,5 @@ int main(int argc, char** argv) {
     std::cout << (r.passed ? "PASSED" : "FAILED") << " requirement " << r.name << ": " << r.detail << '\n';
     passed = passed && r.passed;
   }
-  return passed ? 0 : kExitFail;
+  return passed ? kExitOk : kExitFailed;
 }

@@ -1,7 +1,9 @@
 // visnav-jitter: runs the cyclic executive on the real clock (CLOCK_MONOTONIC, absolute-deadline sleeps) for
 // N cycles with one task (empty, or busy-waiting a given time) and prints the release jitter (wake time
 // minus ideal release) p50/p99/max, the task time and the slips. Ctrl-C ends it early with the figures so
-// far. Usage: fsw/executive/README.md.
+// far. Usage: fsw/executive/README.md. Exit codes (README.md "Exit codes", visnav::cli): 0 done, 1 p99 above
+// --max-p99-us, 2 usage, 3 a --config that does not load (or executive parameters it refuses), 5 a refused
+// realtime setting with --fatal (or realtime_fatal in the config).
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +17,11 @@
 
 namespace {
 
+using visnav::cli::kExitFailed;
+using visnav::cli::kExitInvalidInput;
+using visnav::cli::kExitOk;
+using visnav::cli::kExitRealtime;
+using visnav::cli::kExitUsage;
 using visnav::exec::DurationStats;
 
 visnav::exec::Executive* g_executive = nullptr;
@@ -44,9 +51,10 @@ void usage(std::FILE* stream) {
       "  --config FILE   read the [executive] table of a visnav config (other tables are ignored)\n"
       "  --priority P    SCHED_FIFO priority   --cpu C  pin to CPU C   --lock-memory  mlockall\n"
       "  --slack-ns N    timer slack of the loop thread (default 1000; 0: the OS default, 50 us)\n"
-      "  --fatal         a refused realtime setting is an error (exit 2)\n"
+      "  --fatal         a refused realtime setting is an error (exit 5)\n"
       "  --max-p99-us X  exit 1 when the jitter p99 exceeds X us\n"
-      "  exit code: 0 done, 1 p99 above the limit, 2 usage or setup error\n",
+      "  exit code: 0 done, 1 p99 above the limit, 2 usage, 3 a config that does not load or is invalid,\n"
+      "  5 a realtime setting refused with --fatal\n",
       stream);
 }
 
@@ -103,12 +111,12 @@ int main(int argc, char** argv) {
       } else {
         std::fprintf(stderr, "visnav-jitter: bad value for %s\n", arg.c_str());
         usage(stderr);
-        return 2;
+        return kExitUsage;
       }
     } else {
       std::fprintf(stderr, "visnav-jitter: bad argument '%s'\n", arg.c_str());
       usage(stderr);
-      return 2;
+      return kExitUsage;
     }
   }
   if (!config_path.empty()) {
@@ -118,7 +126,7 @@ int main(int argc, char** argv) {
     if (e.ok) e = config.apply(from_file);
     if (!e.ok) {
       std::fprintf(stderr, "visnav-jitter: %s\n", e.message.c_str());
-      return 2;
+      return kExitInvalidInput;
     }
     // Command-line realtime flags add to what the file asks for.
     if (params.sched_fifo_priority == 0) params.sched_fifo_priority = from_file.sched_fifo_priority;
@@ -141,9 +149,9 @@ int main(int argc, char** argv) {
        {&report.scheduler, &report.affinity, &report.memory_lock, &report.timer_slack}) {
     if (o->requested) std::fprintf(stderr, "visnav-jitter: %s\n", o->message.data());
   }
-  if (!rt.ok) {
+  if (!rt.ok) {  // a refused setting with realtime_fatal, as visnavd's exit 5
     std::fprintf(stderr, "visnav-jitter: %s\n", rt.message.c_str());
-    return 2;
+    return kExitRealtime;
   }
 
   visnav::exec::MonotonicClock clock;
@@ -154,9 +162,9 @@ int main(int argc, char** argv) {
   visnav::exec::TaskId busy_task;
   visnav::LoadError e = executive.init(params, clock);
   if (e.ok) e = executive.addTask(busy_task, "busy", task);
-  if (!e.ok) {
+  if (!e.ok) {  // the command line's values are range-checked above: what is refused here came from --config
     std::fprintf(stderr, "visnav-jitter: %s\n", e.message.c_str());
-    return 2;
+    return kExitInvalidInput;
   }
   g_executive = &executive;
   struct sigaction action {};
@@ -186,7 +194,7 @@ int main(int argc, char** argv) {
               static_cast<double>(executive.counters().worst_overrun_ns) * 1e-3);
   if (max_p99_us > 0.0 && static_cast<double>(jitter.quantileNs(0.99)) * 1e-3 > max_p99_us) {
     std::printf("visnav-jitter: p99 above the %.1f us limit\n", max_p99_us);
-    return 1;
+    return kExitFailed;
   }
-  return 0;
+  return kExitOk;
 }

@@ -96,12 +96,18 @@ TEST(CsvDiff, RefusesDifferentShapes) {
   std::string error;
   EXPECT_FALSE(compareCsv("a,b\n1,2\n", "a,c\n1,2\n", CompareOptions{}, report, error));
   EXPECT_EQ(error, "headers differ");
+  EXPECT_TRUE(report.shape_differs);  // two tables that differ: visnav-csvdiff exit 1
   EXPECT_FALSE(compareCsv("a,b\n1,2\n", "a,b\n1,2\n3,4\n", CompareOptions{}, report, error));
   EXPECT_EQ(error, "row counts differ: 1 vs 2");
+  EXPECT_TRUE(report.shape_differs);
+  // Not a table, or not readable: an invalid input (exit 3), not a difference.
   EXPECT_FALSE(compareCsv("a,b\n1,2\n", "a,b\n1\n", CompareOptions{}, report, error));
+  EXPECT_FALSE(report.shape_differs);
   EXPECT_FALSE(compareCsv("", "a\n", CompareOptions{}, report, error));
+  EXPECT_FALSE(report.shape_differs);
   EXPECT_FALSE(compareCsvFiles("/nonexistent/a.csv", "/nonexistent/b.csv", CompareOptions{}, report, error));
   EXPECT_EQ(error, "/nonexistent/a.csv: cannot read");
+  EXPECT_FALSE(report.shape_differs);
 }
 
 }  // namespace

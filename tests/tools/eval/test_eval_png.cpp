@@ -1,85 +1,14 @@
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 
+#include "../png/png_decode.hpp"
 #include "visnav/eval/canvas.hpp"
 #include "visnav/eval/plot.hpp"
-#include "visnav/eval/png_writer.hpp"
 
 namespace visnav::eval {
 namespace {
-
-std::uint32_t readU32(const std::vector<std::uint8_t>& b, std::size_t at) {
-  return (std::uint32_t{b[at]} << 24U) | (std::uint32_t{b[at + 1]} << 16U) |
-         (std::uint32_t{b[at + 2]} << 8U) | b[at + 3];
-}
-
-// Walks the chunks, checks every CRC with zlib's crc32, returns IHDR fields and the inflated IDAT payload.
-void decodePng(const std::vector<std::uint8_t>& png, std::uint32_t& width, std::uint32_t& height,
-               std::vector<std::uint8_t>& raw) {
-  const std::uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  ASSERT_GE(png.size(), 8U);
-  ASSERT_TRUE(std::equal(signature, signature + 8, png.begin()));
-  std::size_t at = 8;
-  std::vector<std::uint8_t> idat;
-  bool end = false;
-  while (at + 12 <= png.size() && !end) {
-    const std::uint32_t len = readU32(png, at);
-    ASSERT_LE(at + 12 + len, png.size());
-    const std::string type(png.begin() + static_cast<std::ptrdiff_t>(at + 4),
-                           png.begin() + static_cast<std::ptrdiff_t>(at + 8));
-    const uLong crc = ::crc32(0L, png.data() + at + 4, static_cast<uInt>(len + 4));
-    EXPECT_EQ(crc, readU32(png, at + 8 + len)) << type;
-    if (type == "IHDR") {
-      ASSERT_EQ(len, 13U);
-      width = readU32(png, at + 8);
-      height = readU32(png, at + 12);
-      EXPECT_EQ(png[at + 16], 8);  // bit depth
-      EXPECT_EQ(png[at + 17], 2);  // RGB
-    } else if (type == "IDAT") {
-      idat.insert(idat.end(), png.begin() + static_cast<std::ptrdiff_t>(at + 8),
-                  png.begin() + static_cast<std::ptrdiff_t>(at + 8 + len));
-    }
-    end = type == "IEND";
-    at += 12 + len;
-  }
-  EXPECT_TRUE(end);
-  EXPECT_EQ(at, png.size());
-  raw.assign((width * 3U + 1U) * height, 0);
-  uLongf raw_len = static_cast<uLongf>(raw.size());
-  ASSERT_EQ(uncompress(raw.data(), &raw_len, idat.data(), static_cast<uLong>(idat.size())), Z_OK);
-  EXPECT_EQ(raw_len, raw.size());
-}
-
-TEST(Png, ChecksumsMatchZlib) {
-  const std::string s = "123456789";
-  const auto* d = reinterpret_cast<const std::uint8_t*>(s.data());
-  EXPECT_EQ(crc32(d, s.size()), 0xCBF43926U);  // the CRC-32 check value
-  EXPECT_EQ(adler32(d, s.size()), ::adler32(1L, d, static_cast<uInt>(s.size())));
-}
-
-TEST(Png, SmallAndMultiBlockImagesDecode) {
-  for (const int w : {3, 211}) {
-    const int h = w == 3 ? 2 : 157;  // 211 x 157 x 3 > 65535: several stored blocks
-    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(w) * h * 3);
-    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<std::uint8_t>(i * 7 + 3);
-    const std::vector<std::uint8_t> png = encodePngRgb(w, h, rgb);
-    std::uint32_t width = 0, height = 0;
-    std::vector<std::uint8_t> raw;
-    decodePng(png, width, height, raw);
-    ASSERT_EQ(width, static_cast<std::uint32_t>(w));
-    ASSERT_EQ(height, static_cast<std::uint32_t>(h));
-    for (int y = 0; y < h; ++y) {
-      const std::size_t row = static_cast<std::size_t>(y) * (w * 3 + 1);
-      ASSERT_EQ(raw[row], 0);  // filter type none
-      ASSERT_TRUE(std::equal(rgb.begin() + y * w * 3, rgb.begin() + (y + 1) * w * 3, raw.begin() + row + 1));
-    }
-  }
-}
 
 TEST(Canvas, TextLinesAndClipping) {
   Canvas c(60, 20, {255, 255, 255});
@@ -129,12 +58,10 @@ TEST(Plot, WritesAValidPng) {
   }
   const std::string path = ::testing::TempDir() + "visnav_eval_plot.png";
   ASSERT_TRUE(writeErrorPlot(path, ev).ok);
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<std::uint8_t> png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::uint32_t width = 0, height = 0;
-  std::vector<std::uint8_t> raw;
-  decodePng(png, width, height, raw);
-  EXPECT_EQ(width, 3U * PlotOptions{}.panel_width_px);
+  const test::DecodedPng png = test::decodePng(test::readBinaryFile(path));  // CRCs, inflate, unfilter
+  ASSERT_TRUE(png.ok) << png.error;
+  EXPECT_EQ(png.width, 3U * PlotOptions{}.panel_width_px);
+  EXPECT_EQ(png.rgb, renderErrorPlot(ev).rgb());
   std::remove(path.c_str());
 }
 

@@ -114,10 +114,12 @@ bool compareCsv(const std::string& a, const std::string& b, const CompareOptions
     return false;
   }
   if (rows_a.front() != rows_b.front()) {
+    report.shape_differs = true;
     error = "headers differ";
     return false;
   }
   if (rows_a.size() != rows_b.size()) {
+    report.shape_differs = true;
     error = "row counts differ: " + std::to_string(rows_a.size() - 1) + " vs " +
             std::to_string(rows_b.size() - 1);
     return false;
@@ -153,6 +155,7 @@ bool compareCsv(const std::string& a, const std::string& b, const CompareOptions
 
 bool compareCsvFiles(const std::string& path_a, const std::string& path_b, const CompareOptions& options,
                      CompareReport& report, std::string& error) {
+  report = CompareReport{};
   std::string a;
   std::string b;
   if (!readFile(path_a, a)) {

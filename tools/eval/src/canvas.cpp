@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "visnav/eval/png_writer.hpp"
+#include "visnav/png/png_writer.hpp"
 
 namespace visnav::eval {
 
@@ -90,7 +90,7 @@ void Canvas::text(int x, int y, const std::string& s, Rgb c, int scale) {
 }
 
 LoadError Canvas::writePng(const std::string& path) const {
-  return writePngRgb(path, m_width, m_height, m_rgb);
+  return png::writeRgb(path, m_width, m_height, m_rgb);
 }
 
 }  // namespace visnav::eval

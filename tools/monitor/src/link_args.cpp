@@ -3,18 +3,22 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "visnav/cli/standard_options.hpp"
 #include "visnav/io/config_io.hpp"
 
 namespace visnav::monitor {
 
-bool parseLinkArgument(int argc, char** argv, int& i, telemetry::TelemetryParams& link, LoadError& error) {
+bool parseLinkArgument(int argc, char** argv, int& i, telemetry::TelemetryParams& link, LoadError& error,
+                       int& exit_code) {
   const char* arg = argv[i];
+  exit_code = cli::kExitUsage;
   const bool has_value = i + 1 < argc;
   if (std::strcmp(arg, "--config") == 0 && has_value) {
     const std::string path = argv[++i];
     io::ConfigFile config;
     error = config.open(path);
     if (error.ok) error = telemetry::applyTelemetryConfig(config, link);
+    exit_code = cli::kExitInvalidInput;  // a file that does not load or is invalid, not a usage error
     return true;
   }
   if (std::strcmp(arg, "--domain") == 0 && has_value) {

@@ -89,7 +89,10 @@ LoadError runMonitor(const MonitorOptions& options, const std::atomic<bool>& sto
                      std::FILE* summary_out) {
   result = MonitorResult{};
   telemetry::GroundLink link;
-  if (LoadError e = link.init(options.link, options.reader_depth); !e.ok) return e;
+  if (LoadError e = link.init(options.link, options.reader_depth); !e.ok) {
+    result.link_failed = true;
+    return e;
+  }
   CsvRecorder csv;
   if (!options.csv_path.empty())
     if (LoadError e = csv.open(options.csv_path); !e.ok) return e;

@@ -34,6 +34,9 @@ struct CompareReport {
   int mismatched_cells = 0;
   std::vector<ColumnStats> columns;
   std::string first_mismatch;  ///< "row R column C: a vs b", empty when none
+  /// Set when the comparison failed because the headers or the row counts differ: two readable CSV files that
+  /// differ (visnav-csvdiff exit 1), not an input that does not load (exit 3).
+  bool shape_differs = false;
 };
 
 /// Splits `text` at `separator` and appends the pieces to `out`.
@@ -49,7 +52,7 @@ CompareOptions toleranceFor(const std::string& column, const CompareOptions& opt
 bool cellsMatch(const std::string& a, const std::string& b, const CompareOptions& options, double& abs_diff);
 
 /// Compares two CSV texts (first line the header). False with `error` when they cannot be compared
-/// (different headers or row counts, ragged rows).
+/// (different headers or row counts: `report.shape_differs`; an empty text or ragged rows).
 bool compareCsv(const std::string& a, const std::string& b, const CompareOptions& options,
                 CompareReport& report, std::string& error);
 

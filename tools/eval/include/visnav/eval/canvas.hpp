@@ -40,6 +40,7 @@ class Canvas {
   static int textWidth(const std::string& s, int scale = 1) { return static_cast<int>(s.size()) * 6 * scale; }
   static int textHeight(int scale = 1) { return 7 * scale; }
 
+  /// The canvas as a PNG file (tools/png: zlib-compressed).
   LoadError writePng(const std::string& path) const;
 
  private:

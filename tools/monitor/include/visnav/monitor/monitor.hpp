@@ -29,10 +29,12 @@ struct MonitorResult {
   TopicStats health;
   double elapsed_s = 0.0;
   bool reached_sample_limit = false;
+  bool link_failed = false;  ///< runMonitor's error is the DDS link that did not start (exit 4, not 3)
 };
 
 /// Runs until the limits are reached or `stop` becomes true (set it from a signal handler). The summary is
-/// printed to `summary_out`.
+/// printed to `summary_out`. An error is the DDS link that did not start (`result.link_failed`) or a file
+/// (--csv, --ready-file) that cannot be written.
 LoadError runMonitor(const MonitorOptions& options, const std::atomic<bool>& stop, MonitorResult& result,
                      std::FILE* summary_out);
 
