@@ -120,11 +120,15 @@ int main(int argc, char** argv) {
   std::mutex print;
   auto worker = [&]() {
     for (std::size_t i = next++; i < runs.size(); i = next++) {
-      runs[i].result = runScene(runs[i].scene, params, options.timing);
+      runs[i].result = runScene(runs[i].scene, params, options.timing, Thresholds{}, options.trace);
       const std::size_t k = ++done;
       if (!options.quiet) {
         const std::lock_guard<std::mutex> lock(print);
         std::fprintf(stderr, "[%zu/%zu] %s\n", k, runs.size(), sceneLine(runs[i]).c_str());
+      }
+      if (options.trace) {
+        const std::lock_guard<std::mutex> lock(print);
+        std::fprintf(stderr, "trace %s:\n%s", runs[i].scene.name.c_str(), runs[i].result.trace.c_str());
       }
     }
   };

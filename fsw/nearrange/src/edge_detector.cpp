@@ -177,25 +177,46 @@ EdgeHit findEdge(const double* samples, int count, const EdgeSearchParams& param
     left += samples[i];
     right += samples[w + i];
   }
-  int best = -1;
-  double best_value = 0.0;
-  double best_step = 0.0;
+  // Pass 1: the step at every position (x between samples x and x + 1) and the strongest one.
+  double steps[kMaxScanlineSamples] = {};
+  const auto signedValue = [&](double step) {
+    return expected_polarity > 0 ? step : (expected_polarity < 0 ? -step : std::fabs(step));
+  };
+  double max_value = 0.0;
   for (int x = w - 1; x + w < count; ++x) {
     if (x > w - 1) {  // slide both windows one sample
       left += samples[x] - samples[x - w];
       right += samples[x + w] - samples[x];
     }
-    const double step = (right - left) / w;
-    const double value = expected_polarity > 0 ? step : (expected_polarity < 0 ? -step : std::fabs(step));
-    if (value > best_value) {
-      best_value = value;
-      best_step = step;
-      best = x;
-    }
+    steps[x] = (right - left) / w;
+    max_value = std::max(max_value, signedValue(steps[x]));
   }
   const double centre_index = 0.5 * (count - 1);
   const double step_sigma = scanlineNoiseSigma(samples, count, params.noise_floor) * std::sqrt(2.0 / w);
-  if (best >= 0 && best_value >= params.step_min_z * step_sigma) {
+  const double threshold = std::max(params.step_min_z * step_sigma, params.candidate_min_share * max_value);
+  // Pass 2: among the local maxima (over +-w, one per blurred step) that pass both the noise test and the
+  // share of the strongest, the one nearest the prediction (the scanline centre). A short scanline across a
+  // small target also crosses neighbouring edges (a panel 6 px from the body); the strongest of them is
+  // often not the one predicted, while the prediction is good to a pixel or two while tracking.
+  int best = -1;
+  double best_value = 0.0;
+  double best_distance = 1e300;
+  for (int x = w - 1; x + w < count; ++x) {
+    const double value = signedValue(steps[x]);
+    if (value <= 0.0 || value < threshold) continue;
+    bool local_max = true;
+    for (int j = std::max(w - 1, x - w); j <= std::min(count - w - 1, x + w) && local_max; ++j)
+      local_max = j == x || signedValue(steps[j]) < value || (signedValue(steps[j]) == value && j > x);
+    if (!local_max) continue;
+    const double distance = std::fabs(x + 0.5 - centre_index);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best_value = value;
+      best = x;
+    }
+  }
+  if (best >= 0) {
+    const double best_step = steps[best];
     hit.method = best_value >= params.contrast_delta ? EdgeMethod::kGradient : EdgeMethod::kStep;
     hit.polarity = best_step >= 0.0 ? 1 : -1;
     hit.strength = best_value;

@@ -9,11 +9,16 @@
 namespace visnav {
 
 bool NearRangeTracker::fitPose(const Pose& predicted, Pose& pose, PoseFitResult& fit, NearRangeResult& out) {
-  // Sec. II-G, then one wrong line may be dropped (rejectWorstLine) when the fit fails or stays high.
+  // Sec. II-G, then wrong lines are dropped one at a time (rejectWorstLine) while the fit fails or stays
+  // high, at most max_rejected_lines of them (bounded: each pass is one LM per used line).
   bool solved = solvePose(predicted, -1, out.lines_used, pose, fit, out.vertices, out.flags);
-  const bool solver_failed = !solved && (out.flags & kFlagTooFewLines) == 0U;
-  if (solver_failed || (solved && fit.rms_px > m_params.reject_line_trigger_rms_px))
+  for (int pass = 0; pass < m_params.max_rejected_lines; ++pass) {
+    const bool solver_failed = !solved && (out.flags & kFlagTooFewLines) == 0U;
+    if (!solver_failed && !(solved && fit.rms_px > m_params.reject_line_trigger_rms_px)) break;
+    const int lines_before = out.lines_used;
     solved = rejectWorstLine(predicted, solved, pose, fit, out);
+    if (out.lines_used == lines_before) break;  // no line explained enough of the residual
+  }
   out.rms_px = fit.rms_px;
   out.lm_iterations = fit.lm.iterations;
   if ((out.flags & kFlagTooFewLines) == 0U && !solved) out.flags |= kFlagSolverFailed;
@@ -153,6 +158,10 @@ bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose&
   // every vertex it touches. Refit without each used line in turn (bounded: one LM per line) and keep the
   // best, if it explains the rest clearly better; the frame is then degraded (kFlagLineRejected).
   if (out.lines_used < kMinLinesForLineRejection) return solved;
+  // A fit above max_rms_px is lost whatever happens next: it is nothing to keep, so a fallback trial may
+  // replace it (eclipse_box frame 102: one short line 10 px off blew the vertex fit to 30 px rms, and the
+  // only trial without it had too few corners left).
+  const bool usable = solved && fit.rms_px <= m_params.max_rms_px;
   int best_slot = -1;
   Pose best_pose = pose;
   PoseFitResult best_fit = fit;
@@ -171,8 +180,8 @@ bool NearRangeTracker::rejectWorstLine(const Pose& predicted, bool solved, Pose&
     const bool trial_fallback = (trial_flags & kFlagResidualFallback) != 0U;
     const bool best_fallback = best_slot >= 0 ? (best_flags & kFlagResidualFallback) != 0U
                                               : (out.flags & kFlagResidualFallback) != 0U;
-    if (trial_fallback && !best_fallback && (solved || best_slot >= 0)) continue;
-    const bool better = (best_slot < 0 && !solved) || (best_fallback && !trial_fallback) ||
+    if (trial_fallback && !best_fallback && (usable || best_slot >= 0)) continue;
+    const bool better = (best_slot < 0 && !usable) || (best_fallback && !trial_fallback) ||
                         trial_fit.rms_px < m_params.reject_line_rms_gain * best_fit.rms_px;
     if (better) {
       best_slot = k;

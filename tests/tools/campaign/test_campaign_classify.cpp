@@ -270,6 +270,9 @@ TEST(CampaignOptionsTest, Parsing) {
           .ok);
   EXPECT_TRUE(o.gates.tracked_fraction && o.gates.no_confident_wrong && o.gates.recovery &&
               o.gates.mode_changes);
+  EXPECT_FALSE(o.trace);
+  EXPECT_TRUE(parseArguments({"--runs", "1", "--trace"}, o).ok);
+  EXPECT_TRUE(o.trace);
   for (const std::vector<std::string>& bad :
        std::vector<std::vector<std::string>>{{},
                                              {"--runs", "0"},

@@ -41,7 +41,7 @@ bool parseDouble(const std::string& text, double& out) {
 std::string usageText() {
   return "usage: visnav-campaign --runs N [--seed S] [--families plate,octagon,box,smallsat,cao]\n"
          "                       [--model FILE.cao|.toml] [--config FILE] [--jobs J] [--out DIR]\n"
-         "                       [--max-frames N] [--no-timing] [--quiet] [--frames]\n"
+         "                       [--max-frames N] [--no-timing] [--quiet] [--frames] [--trace]\n"
          "                       [--require-tracked-fraction F] [--require-no-confident-wrong]\n"
          "                       [--require-recovery-frames K] [--require-max-mode-changes M]\n"
          "       visnav-campaign --case NAME|all [same options]   (tumbling_box, eclipse_box, slew_box,\n"
@@ -75,6 +75,8 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
       o.quiet = true;
     } else if (a == "--frames") {
       o.frames_csv = true;
+    } else if (a == "--trace") {
+      o.trace = true;
     } else if (a == "--require-no-confident-wrong") {
       o.gates.no_confident_wrong = true;
     } else if (a == "--runs" || a == "--jobs" || a == "--max-frames" || a == "--require-recovery-frames" ||
@@ -177,6 +179,7 @@ std::string rerunCommand(const Scene& scene, const CampaignOptions& o) {
   }
   if (!o.config_path.empty()) cmd += " --config " + o.config_path;
   if (o.max_frames > 0) cmd += " --max-frames " + std::to_string(o.max_frames);
+  if (o.trace) cmd += " --trace";
   return cmd;
 }
 

@@ -67,7 +67,53 @@ void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& r) {
   }
 }
 
-SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing, const Thresholds& th) {
+std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const nav::FilterUpdate& update) {
+  char buf[320];
+  const int n = std::snprintf(
+      buf, sizeof buf,
+      "%4d r=%7.2f %-11s near=%d flags=%04x lines=%d/%d sil=%d scan=%d in=%d tex=%d weak=%d vtx=%d rms=%.3f "
+      "q=%.2f sa=%.2f sp=%.3f nis=%s%.1f faults=%04x pose=%d dp=%.3f da=%.2f%s%s\n",
+      f.frame, f.range_m, nav::toString(f.mode), static_cast<int>(near.status), near.flags, near.lines_used,
+      near.lines_total, near.silhouette_lines, near.scanlines, near.inlier_points, near.texture_points,
+      near.weak_step_points, near.vertices, near.rms_px, near.quality,
+      std::sqrt(near.covariance.topLeftCorner<3, 3>().trace()) * 180.0 / kPi,
+      std::sqrt(near.covariance.bottomRightCorner<3, 3>().trace()) / std::max(f.range_m, 1e-9),
+      update.status == Status::kOk ? "" : "-", update.status == Status::kOk ? update.nis : 0.0,
+      static_cast<unsigned>(f.fault_bits), f.pose_valid ? 1 : 0,
+      f.pose_valid ? f.position_error_m / f.range_m : 0.0, f.pose_valid ? f.attitude_error_deg : 0.0,
+      f.wrong ? " WRONG" : "", f.visible ? "" : " (not visible)");
+  return std::string(buf,
+                     static_cast<std::size_t>(std::max(0, std::min(n, static_cast<int>(sizeof buf) - 1))));
+}
+
+std::string traceEdges(const NearRangeTracker& tracker, const Pose& truth) {
+  // Each measured edge: model edge, points, and the fitted line's distance (ideal px) from the edge's true
+  // projection at both ends; a line far from the truth is what a wrong fit was built on.
+  std::string out = "       edges:";
+  const PolygonModel& model = tracker.model();
+  const BoundedBuffer<EdgeMeasurement>& edges = tracker.lastEdges();
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const EdgeMeasurement& e = edges[i];
+    const ModelEdge& me = model.edges()[static_cast<std::size_t>(e.model_edge)];
+    Vec2 a;
+    Vec2 b;
+    const bool projected =
+        tracker.camera().projectIdeal(truth.transform(model.vertices()[static_cast<std::size_t>(me.v0)]),
+                                      a) &&
+        tracker.camera().projectIdeal(truth.transform(model.vertices()[static_cast<std::size_t>(me.v1)]), b);
+    char buf[64];
+    if (e.line_ok && projected)
+      std::snprintf(buf, sizeof buf, " %d:%d(%.1f,%.1f)", e.model_edge, e.point_count,
+                    e.line.signedDistance(a), e.line.signedDistance(b));
+    else
+      std::snprintf(buf, sizeof buf, " %d:%d(-)", e.model_edge, e.point_count);
+    out += buf;
+  }
+  return out + "\n";
+}
+
+SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing, const Thresholds& th,
+                     bool trace) {
   SceneResult res;
   const std::int64_t wall_start = timing ? exec::monotonicNowNs() : 0;
   const PinholeCamera camera(scene.camera);
@@ -131,6 +177,10 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.far_valid = sol.far.valid;
     f.far_distance_m = sol.far.distance_m;
     classifyFrame(f, th);
+    if (trace) {
+      res.trace += traceLine(f, pipeline->lastNearRange(), u);
+      if (pipeline->lastNearRange().lines_total > 0) res.trace += traceEdges(pipeline->nearRange(), truth);
+    }
     if (pipeline->modes().transitionCount() != transitions_before &&
         res.transitions.size() < kMaxTransitionRecords) {
       const nav::ModeTransition& t = pipeline->modes().lastTransition();

@@ -36,6 +36,9 @@ struct EdgeSearchParams {
   /// A step must exceed this many standard deviations of the w-sample difference of means, the noise
   /// measured on the scanline itself (median absolute first difference).
   double step_min_z = 5.0;
+  /// Of the significant steps at least this share of the scanline's strongest, the one nearest the
+  /// prediction is the edge point (1: always the strongest, the paper's argmax; 0: the nearest significant).
+  double candidate_min_share = 0.5;
   /// Lower bound of that noise estimate (brightness 0..1): quantisation, so an 8-bit flat patch whose
   /// differences are mostly zero does not make every 1-code wiggle "significant".
   double noise_floor = 1.0 / (255.0 * 3.4641016151377544);

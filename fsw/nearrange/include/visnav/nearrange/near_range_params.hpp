@@ -21,6 +21,8 @@ struct NearRangeParams {
   double contrast_delta = 0.2;
   int step_window_px = 4;
   double step_min_z = 5.0;
+  double edge_candidate_min_share = 0.5;
+  double confusable_edge_separation_px = 6.0;
   int texture_bins = 32;
   double texture_min_log_gain = 1.0;
   double texture_min_variance_ratio = 10.0;
@@ -40,6 +42,7 @@ struct NearRangeParams {
   double degraded_rms_px = 0.6;
   double reject_line_rms_gain = 0.5;
   double reject_line_trigger_rms_px = 0.2;
+  int max_rejected_lines = 3;
   // Surface switching (sec. II-H), viewing angle v of CONVENTIONS.md.
   double visibility_enter_low_deg = 45.0;
   double visibility_enter_high_deg = 135.0;
@@ -85,6 +88,18 @@ struct NearRangeParams {
             "a step is an edge point when it exceeds this many standard deviations of its noise, measured on "
             "the scanline (5: about 1 false point in 100 noise-only scanlines, campaign edge statistics)"},
            step_min_z);
+    v.real(
+        {"nearrange", "edge_candidate_min_share", "-", 0.0, 1.0,
+         "of the significant steps on a scanline at least this share of the strongest, the one nearest the "
+         "predicted edge is taken (1: the strongest, eq. 4's argmax); a scanline across a small target "
+         "also crosses its neighbouring edges"},
+        edge_candidate_min_share);
+    v.real({"nearrange", "confusable_edge_separation_px", "px", 0.0, 64.0,
+            "an interior edge whose parallel outline neighbour projects closer than this is not measured: "
+            "the step test (two step_window_px windows plus blur) cannot tell the two steps apart, and a "
+            "flat-lit interior edge has no step of its own (campaign box/17: strips of 2.5-3.8 px; slew_box "
+            "measures both at 8-14 px); 0 measures every edge"},
+           confusable_edge_separation_px);
     v.integer({"nearrange", "texture_bins", "count", 2, 256, "brightness classes of Algorithm 1"},
               texture_bins);
     v.real(
@@ -138,6 +153,12 @@ struct NearRangeParams {
          "entering at a grazing angle locked one edge onto its neighbour at 0.4 px rms where the track ran "
          "at 0.01-0.03 px (slew_box), below degraded_rms_px"},
         reject_line_trigger_rms_px);
+    v.integer(
+        {"nearrange", "max_rejected_lines", "count", 0, 16,
+         "leave-one-line-out is repeated up to this many times while the residual stays above the "
+         "trigger: a small target's short scanlines can lock several edges onto neighbours in one frame "
+         "(smallsat: 3 of 13 lines 2-7 px off at 1.9 px rms); each pass costs one LM per used line"},
+        max_rejected_lines);
     v.real({"nearrange", "visibility_enter_low_deg", "deg", 0.0, 90.0, "sec. II-H: start tracking above"},
            visibility_enter_low_deg);
     v.real({"nearrange", "visibility_enter_high_deg", "deg", 90.0, 180.0, "sec. II-H: start tracking below"},

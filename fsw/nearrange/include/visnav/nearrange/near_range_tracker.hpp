@@ -66,9 +66,12 @@ struct NearRangeResult {
   double quality = 0.0;            ///< [0, 1]: share of usable lines x mean inlier ratio x residual term
   int tracked_surfaces = 0;
   std::uint64_t tracked_surface_mask = 0;  ///< bit i: surface i (first 64 surfaces)
-  int lines_total = 0;
+  int lines_total = 0;  ///< selected edges long enough to cast scanlines across (the measurable ones)
   int lines_used = 0;
   int silhouette_lines = 0;  ///< measured edges selected as outline only (not of a tracked surface)
+  /// Steps found on an interior edge's scanlines nearer its parallel outline neighbour than the edge itself
+  /// (findConfusableEdges): the neighbour's, not taken.
+  int confusable_points = 0;
   int scanlines =
       0;  ///< scanlines cast across the predicted edges (edge support = inlier_points / scanlines)
   int edge_points = 0;
@@ -87,6 +90,8 @@ struct EdgeMeasurement {
   int model_edge = -1;
   int first_point = 0;  ///< range [first_point, first_point + point_count) in the point arrays
   int point_count = 0;
+  int scanlines = 0;        ///< cast across it; 0: too short to measure (not counted in lines_total)
+  bool confusable = false;  ///< interior edge beside a parallel outline edge (findConfusableEdges)
   bool line_ok = false;
   Line2d line;          ///< fitted line, ideal pixels
   Vec2 predicted_a_px;  ///< projected model edge endpoints, raw pixels
@@ -148,6 +153,7 @@ class NearRangeTracker {
   double elapsedUs(std::int64_t& since) const;
   void updateSurfaces(const Pose& predicted);
   void selectEdges(NearRangeResult& out);
+  void findConfusableEdges(const Pose& predicted);
   void measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out);
   void measureEdge(const MonoImage& image, const Pose& predicted, int model_edge, NearRangeResult& out);
   bool outwardReference(const ModelEdge& edge, const Pose& predicted, Vec2& centroid_px) const;
@@ -182,6 +188,9 @@ class NearRangeTracker {
   BoundedBuffer<std::uint8_t> m_surface_tracked;  ///< hysteresis state per surface
   BoundedBuffer<std::uint8_t> m_surface_front;    ///< front-facing with the predicted pose, this frame
   BoundedBuffer<std::uint8_t> m_edge_selected;    ///< per model edge, this frame
+  BoundedBuffer<Vec2> m_vertex_px;                ///< per model vertex: projected with the prediction, raw px
+  BoundedBuffer<std::uint8_t> m_vertex_in_front;  ///< per model vertex: in front of the camera, projected
+  BoundedBuffer<int> m_confusable_partner;        ///< per model edge: its parallel outline neighbour, or -1
   BoundedBuffer<std::int8_t> m_polarity;          ///< per model edge x kPolarityBins, last frame
   BoundedBuffer<std::int8_t> m_polarity_next;
 

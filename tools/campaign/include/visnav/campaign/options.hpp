@@ -34,6 +34,7 @@ struct CampaignOptions {
   bool timing = true;              ///< --no-timing: no clock, timing fields 0
   bool quiet = false;              ///< --quiet: no per-scene progress lines on stderr
   bool frames_csv = false;         ///< --frames: also DIR/frames.csv (one row per frame)
+  bool trace = false;              ///< --trace: one diagnostic line per frame on stderr (runner.hpp)
   Gates gates;
   bool help = false;
 };

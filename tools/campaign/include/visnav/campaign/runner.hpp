@@ -42,6 +42,7 @@ struct SceneResult {
   int nis_count = 0;
   double nis_mean = 0.0;
   double wall_s = 0.0;  ///< timing field
+  std::string trace;    ///< --trace: one line per frame (traceLine), empty otherwise
 };
 
 /// Counts, fractions, recovery events and acquisition latency from the classified frames. Approach scenes
@@ -52,6 +53,10 @@ void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& resul
 /// Runs the scene. `base` is the pipeline configuration (defaults or --config); the scene sets its far-range
 /// gamma. `timing`: CLOCK_MONOTONIC step times (off: all timing fields 0).
 SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing,
-                     const Thresholds& th = {});
+                     const Thresholds& th = {}, bool trace = false);
+
+/// --trace's line for one frame: truth range, mode, near-range status, flags, line and point counts, rms,
+/// filter NIS, fault bits and the pose error; what a reader needs to see why a frame went wrong.
+std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const nav::FilterUpdate& update);
 
 }  // namespace visnav::campaign
