@@ -294,9 +294,10 @@ void NearRangeTracker::findConfusableEdges(const Pose& predicted) {
   // fitted 2.6 and 3.5 px off, on the outline, and the pose 5.7 deg off from the true start at 0.2 px rms).
   constexpr double kParallelSin = 0.26;  // within 15 deg: the other edge runs along the scanline window
   constexpr double kMinOverlap = 0.3;    // of the interior edge's length: side by side, not end to end
-  // A strip narrower than a pixel (a face just turning into view) makes both edges one image line: taking
-  // the outline's points for the interior edge then biases it by less than a pixel and keeps its corners
-  // for eq. 7 (slew_box frame 87: dropping it there left 3 corners and a point-to-line fit 6 px off).
+  // A strip narrower than a pixel (a face just turning into view) makes both edges one image line whose step
+  // lies between the two predicted lines: the nearer-line test would split it at random. Taking it for the
+  // interior edge biases that edge by under a pixel and keeps its corners for eq. 7 (slew_box frame 87:
+  // without them, 3 corners and a point-to-line fit 6 px off).
   constexpr double kNegligibleGapPx = 1.0;
   const auto& vertices = m_model.vertices();
   for (std::size_t v = 0; v < vertices.size(); ++v) {
