@@ -53,7 +53,9 @@ typedef enum visnav_mode {
   VISNAV_MODE_NEAR_RANGE = 3
 } visnav_mode;
 
-/** Near-range tracker verdict of this frame; VISNAV_TRACK_INIT outside near range. */
+/** Near-range verdict of this frame as delivered: LOST also when the tracker measured a pose the pipeline did
+ *  not deliver (pose_valid 0: disputed by the filter, or less certain than [navigation]
+ *  max_valid_attitude_sigma_deg / max_valid_position_sigma_rel); VISNAV_TRACK_INIT outside near range. */
 typedef enum visnav_track_status {
   VISNAV_TRACK_INIT = 0,
   VISNAV_TRACK_TRACKING = 1,

@@ -40,6 +40,9 @@ int fail(visnav_handle* handle, int code, const char* text) {
 
 int trackStatus(const visnav::nav::NavSolution& sol, const visnav::NearRangeResult& near) {
   if (sol.mode != NavMode::kNearRange) return VISNAV_TRACK_INIT;
+  // A pose the pipeline did not deliver (the filter disputed it, or it is less certain than the limits of
+  // [navigation]) is lost to the user, whatever the tracker's verdict; as in telemetry (sample_mapping.cpp).
+  if (!sol.pose_valid) return VISNAV_TRACK_LOST;
   switch (near.status) {
     case visnav::TrackStatus::kTracking: return VISNAV_TRACK_TRACKING;
     case visnav::TrackStatus::kDegraded: return VISNAV_TRACK_DEGRADED;

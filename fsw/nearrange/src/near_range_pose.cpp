@@ -105,6 +105,10 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
       if (sin_angle <= m_vertex_best_sin[shared] || !intersect(a, b, px, kMinVertexSinAngle)) continue;
       m_vertex_best_sin[shared] = sin_angle;
       m_vertex_best_px[shared] = px;
+      // Each line's offset error moves the intersection along the other line by 1/sin: the trace of the
+      // vertex covariance is (Va + Vb) / sin^2, half of it per axis.
+      m_vertex_best_var[shared] =
+          0.5 * (m_edges[i].end_variance_px2 + m_edges[j].end_variance_px2) / (sin_angle * sin_angle);
     }
   }
   for (std::size_t v = 0; v < m_vertex_best_sin.size(); ++v) {
@@ -112,6 +116,7 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     VertexObservation obs;
     obs.vertex = static_cast<int>(v);
     obs.px_ideal = m_vertex_best_px[v];
+    obs.variance_px2 = m_vertex_best_var[v];
     m_vertex_obs.push(obs);
   }
   return static_cast<int>(m_vertex_obs.size());

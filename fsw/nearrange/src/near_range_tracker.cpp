@@ -56,9 +56,11 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_vertex_in_front.reserve(model.vertices().size());
   m_vertex_best_sin.reserve(model.vertices().size());
   m_vertex_best_px.reserve(model.vertices().size());
+  m_vertex_best_var.reserve(model.vertices().size());
   for (std::size_t i = 0; i < model.vertices().size(); ++i) {
     m_vertex_best_sin.push(0.0);
     m_vertex_best_px.push(Vec2::Zero());
+    m_vertex_best_var.push(0.0);
     m_vertex_px.push(Vec2::Zero());
     m_vertex_in_front.push(0);
   }
@@ -234,6 +236,16 @@ void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out)
     }
     ++out.lines_used;
     out.inlier_points += fit.inliers;
+    // The line's own scatter (floored at the configured edge-point sigma) sets how well its ends are known.
+    double sum_sq = 0.0;
+    for (int i = 0; i < slot.point_count; ++i)
+      if (m_inlier[i] != 0U) {
+        const double d = slot.line.signedDistance(m_points_ideal[slot.first_point + i]);
+        sum_sq += d * d;
+      }
+    const double scatter2 =
+        std::max(sum_sq / std::max(1, fit.inliers - 2), m_params.pixel_sigma_px * m_params.pixel_sigma_px);
+    slot.end_variance_px2 = 4.0 * scatter2 / fit.inliers;
     ratio_sum += ratio;
     // Remember each inlier's polarity at its place on the edge for the next frame.
     int votes[kPolarityBins] = {};
@@ -364,6 +376,24 @@ double residualVarianceFactor(const PoseFitResult& fit, double pixel_sigma_px) {
 
 }  // namespace
 
+double NearRangeTracker::covarianceScale(const PoseFitResult& fit, std::uint32_t flags) const {
+  // The LM's covariance assumes pixel_sigma_px per residual. Eq. 7's residuals are vertices made by
+  // intersecting two fitted lines: each is known as well as those lines' ends, divided by the sine of their
+  // angle (collectVertices), which is often several times pixel_sigma_px under noise and blur; and with 4
+  // vertices the fit has only 2 degrees of freedom left, so its own residual says little. The larger of
+  // the two honest scales is used (campaign plate/12 frame 0: 1.6 deg 1-sigma reported, 12.5 deg off).
+  const double sigma2 = m_params.pixel_sigma_px * m_params.pixel_sigma_px;
+  double scale = residualVarianceFactor(fit, m_params.pixel_sigma_px);
+  const bool vertex_fit = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex) &&
+                          (flags & kFlagResidualFallback) == 0U;
+  if (vertex_fit && !m_vertex_obs.empty() && sigma2 > 0.0) {
+    double sum = 0.0;
+    for (const VertexObservation& obs : m_vertex_obs) sum += obs.variance_px2;
+    scale = std::max(scale, sum / static_cast<double>(m_vertex_obs.size()) / sigma2);
+  }
+  return scale;
+}
+
 void NearRangeTracker::finishMeasured(const Pose& predicted, const Pose& pose, const PoseFitResult& fit,
                                       NearRangeResult& out) {
   constexpr std::uint32_t kLostFlags =
@@ -373,7 +403,7 @@ void NearRangeTracker::finishMeasured(const Pose& predicted, const Pose& pose, c
     return;
   }
   out.pose = pose;
-  out.covariance = fit.covariance * residualVarianceFactor(fit, m_params.pixel_sigma_px);
+  out.covariance = fit.covariance * covarianceScale(fit, out.flags);
   const double r = fit.rms_px / m_params.degraded_rms_px;
   out.quality *= 1.0 / (1.0 + r * r);
   out.status =

@@ -143,6 +143,33 @@ TEST_F(PipelineTest, WeakEvidenceTheFilterRejectsIsNotDelivered) {
   }
 }
 
+TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
+  // The same ten near-range frames under three limits on the pose's own 1-sigma attitude: one no fit
+  // exceeds (this plate at 26 m is known to about 2.2 deg, near the 2.5 deg default), a limit below what any
+  // fit reaches (the pose is still tracked, frame to frame, and reported, but never valid), and the check
+  // switched off.
+  for (const double limit_deg : {180.0, 1e-9, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.max_valid_attitude_sigma_deg = limit_deg;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    NavSolution out;
+    int valid = 0;
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameAt(i);
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (out.pose_valid) ++valid;
+      EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "limit " << limit_deg << " frame " << i;
+    }
+    const double sigma_deg = std::sqrt(out.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
+    EXPECT_GT(sigma_deg, 0.0);
+    EXPECT_EQ(valid, limit_deg == 1e-9 ? 0 : 10) << "limit " << limit_deg << ", last sigma " << sigma_deg;
+    // Tracked either way: the last pose follows the plate (25.1 m at frame 9), not the start.
+    EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "limit " << limit_deg;
+  }
+}
+
 TEST_F(PipelineTest, CycleNumbersAreMonotonicAndFrameNumbersAreTheCameras) {
   // Camera sequence 0, 1, (no frame), (no frame), 4 (2 and 3 dropped by the camera), 5.
   NavigationPipeline pipeline;

@@ -34,10 +34,12 @@ void writeHeader(std::FILE* f) {
       f);
 }
 
-/// Status column: the near-range verdict in near range (a coasted frame is "lost" with the filter's pose),
-/// "init" while the 6-DOF track does not exist yet (standby, far range, acquisition).
+/// Status column: the near-range verdict in near range, "lost" when the pipeline did not deliver the pose (a
+/// coasted frame, a disputed or too uncertain measurement: as telemetry says), "init" while the 6-DOF track
+/// does not exist yet (standby, far range, acquisition).
 const char* statusText(const nav::NavSolution& sol, const NearRangeResult& near) {
   if (sol.mode != nav::NavMode::kNearRange) return "init";
+  if (!sol.pose_valid) return toString(TrackStatus::kLost);
   return toString(near.status);
 }
 

@@ -27,12 +27,14 @@ struct NavigationParams {
   double max_depth_m = 0.0;
   double max_frame_latency_ms = 100.0;  ///< frame older than one camera period plus this: fault
   // Image evidence that makes a near-range measurement win over the filter's prediction.
-  double evidence_min_line_fraction = 0.6;  ///< used lines / measured lines
-  double evidence_min_inlier_ratio = 0.7;   ///< inlier points / edge points of the used lines
-  double evidence_max_rms_px = 0.8;         ///< pose-fit residual
-  double evidence_min_edge_support = 0.5;   ///< inlier points / scanlines cast
-  int filter_diverged_rejections = 2;       ///< consecutive rejections of a clean track: restart the filter
-  int far_filter_reset_rejections = 3;      ///< consecutive far-range rejections: restart the filter
+  double evidence_min_line_fraction = 0.6;    ///< used lines / measured lines
+  double evidence_min_inlier_ratio = 0.7;     ///< inlier points / edge points of the used lines
+  double evidence_max_rms_px = 0.8;           ///< pose-fit residual
+  double evidence_min_edge_support = 0.5;     ///< inlier points / scanlines cast
+  double max_valid_attitude_sigma_deg = 2.5;  ///< a pose less certain than this is not delivered as valid
+  double max_valid_position_sigma_rel = 0.025;
+  int filter_diverged_rejections = 2;   ///< consecutive rejections of a clean track: restart the filter
+  int far_filter_reset_rejections = 3;  ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;
@@ -119,6 +121,17 @@ struct NavigationParams {
             "good image evidence: inlier edge points per scanline cast at least this (the model's edges are "
             "where the image has them)"},
            evidence_min_edge_support);
+    v.real({"navigation", "max_valid_attitude_sigma_deg", "deg", 0.0, 180.0,
+            "a 6-DOF pose whose own 1-sigma attitude uncertainty (square root of the trace of its attitude "
+            "covariance: the rms of the total rotation error) exceeds this is computed and tracked but not "
+            "delivered as valid: 2.5 puts the 5 deg of a confidently wrong pose 2 sigma out (campaign "
+            "plate/12: a 1.8 m plate at 21 m, 12 deg off from its true start; the paper's plate at 26 m on "
+            "VGA: 2.2 deg); 0 switches the check off"},
+           max_valid_attitude_sigma_deg);
+    v.real({"navigation", "max_valid_position_sigma_rel", "-", 0.0, 1.0,
+            "the same for the position: 1-sigma (square root of the trace) over the range; 0.025 puts 5 % "
+            "of the range 2 sigma out; 0 switches the check off"},
+           max_valid_position_sigma_rel);
     v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
                "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
                "filter from it"},

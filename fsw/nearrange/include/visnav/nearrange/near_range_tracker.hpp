@@ -93,7 +93,10 @@ struct EdgeMeasurement {
   int scanlines = 0;        ///< cast across it; 0: too short to measure (not counted in lines_total)
   bool confusable = false;  ///< interior edge beside a parallel outline edge (findConfusableEdges)
   bool line_ok = false;
-  Line2d line;          ///< fitted line, ideal pixels
+  Line2d line;  ///< fitted line, ideal pixels
+  /// Variance of the fitted line's normal offset at its ends [px^2]: 4 s^2 / n from its n inliers' scatter s
+  /// about it (the end of a least-squares segment is known four times worse than its centroid).
+  double end_variance_px2 = 0.0;
   Vec2 predicted_a_px;  ///< projected model edge endpoints, raw pixels
   Vec2 predicted_b_px;
 };
@@ -174,6 +177,7 @@ class NearRangeTracker {
   bool mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used);
   void findModelMirrors();
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
+  double covarianceScale(const PoseFitResult& fit, std::uint32_t flags) const;
 
   static constexpr int kPolarityBins = 16;
 
@@ -202,6 +206,7 @@ class NearRangeTracker {
   BoundedBuffer<VertexObservation> m_vertex_obs;
   BoundedBuffer<double> m_vertex_best_sin;  ///< per model vertex: best |sin| of a measured line pair
   BoundedBuffer<Vec2> m_vertex_best_px;
+  BoundedBuffer<double> m_vertex_best_var;  ///< per model vertex: its observation's per-axis variance
   BoundedBuffer<EdgePointObservation> m_edge_obs;
   ModelSymmetries m_symmetries;
   std::array<Mat3, 3> m_mirrors{};  ///< axis reflections of the model frame that map the model onto itself

@@ -14,6 +14,8 @@ namespace visnav {
 struct VertexObservation {
   int vertex = -1;
   Vec2 px_ideal = Vec2::Zero();
+  /// Per-axis variance of px_ideal [px^2] propagated from the two fitted lines that made it (0: unknown).
+  double variance_px2 = 0.0;
 };
 
 /// A measured edge point (ideal pixels) lying on model edge `edge`.
