@@ -61,14 +61,16 @@ TEST(ConfigFile, EveryMisplacedKeyIsAnErrorWithLineAndColumn) {
   }
 }
 
-TEST(ConfigFile, NonAsciiOutsideStringsIsRejectedBeforeToml) {
+TEST(ConfigFile, NonAsciiIsRejectedBeforeToml) {
   std::string path;
   // toml++ 3.3.0 reaches __builtin_unreachable on this one (issue 13 item 12).
   LoadError e = load("\xc3\xa9 = 1\n", path);
   EXPECT_FALSE(e.ok);
-  EXPECT_NE(e.message.find(path + ":1:1: non-ASCII character outside a string"), std::string::npos)
-      << e.message;
-  e = load("[executive]\ndepth = 2 # comment \xc3\xa9 is fine\n", path);
+  EXPECT_NE(e.message.find(path + ":1:1: non-ASCII character"), std::string::npos) << e.message;
+  // In a comment too: the guard does not follow toml++'s lexer (text_file.hpp).
+  e = load("[executive]\ndepth = 2 # comment \xc3\xa9\n", path);
+  EXPECT_NE(e.message.find(path + ":2:21: non-ASCII character"), std::string::npos) << e.message;
+  e = load("[executive]\ndepth = 2 # comment in ASCII\n", path);
   EXPECT_TRUE(e.ok) << e.message;
 }
 

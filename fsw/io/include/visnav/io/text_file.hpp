@@ -28,13 +28,12 @@ LoadError readTextFile(const std::string& path, std::string& text,
 /// Same check for a path that is opened elsewhere: a regular file (links followed), size <= max_bytes.
 LoadError checkRegularFile(const std::string& path, std::size_t max_bytes = kMaxInputFileBytes);
 
-/// toml++ 3.3.0 has undefined behaviour (a false TOML_ASSERT_ASSUME, __builtin_unreachable in release) where
-/// it expects a key and finds something else: a non-ASCII character (`é = 1`), or a table header that does
-/// not start with a key (`[!]`, found by tests/fuzz). This guard runs before the text reaches the parser:
-/// any byte >= 0x80 outside a quoted string or a comment is rejected ("<path>:<line>:<col>: non-ASCII
-/// character outside a string"; TOML keys outside quotes are ASCII), and so is a table header whose first
-/// character after '[' / '[[' and blanks is not a bare-key character, a quote or ']', and a '}' directly
-/// inside an array ("a = [}", also found by tests/fuzz).
+/// toml++ 3.3.0 has undefined behaviour (a false TOML_ASSERT_ASSUME, __builtin_unreachable in release) on
+/// some non-ASCII input (`é = 1`, and non-ASCII after quotes and backslashes, found by tests/fuzz), on a
+/// table header that does not start with a key (`[!]`) and on a '}' directly inside an array (`a = [}`).
+/// This guard runs before the text reaches the parser: any byte >= 0x80 ("<path>:<line>:<col>: non-ASCII
+/// character ...", comments and strings included: visnav's TOML files are ASCII), any control character
+/// but tab and line ends, such a table header and such a '}' are rejected.
 LoadError checkTomlAscii(const std::string& path, const std::string& text);
 
 }  // namespace visnav::io
