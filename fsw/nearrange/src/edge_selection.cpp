@@ -48,18 +48,28 @@ void NearRangeTracker::findConfusableEdges(const Pose& predicted) {
   // interior edge biases that edge by under a pixel and keeps its corners for eq. 7 (slew_box frame 87:
   // without them, 3 corners and a point-to-line fit 6 px off).
   constexpr double kNegligibleGapPx = 1.0;
+  const auto& edges = m_model.edges();
+  const auto interior = [this, &edges](std::size_t e) {
+    const ModelEdge& edge = edges[e];
+    return m_edge_selected[e] != 0U && edge.surface_left >= 0 && edge.surface_right >= 0 &&
+           m_surface_front[edge.surface_left] != 0U && m_surface_front[edge.surface_right] != 0U;
+  };
+  bool any_interior = false;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    m_confusable_partner[e] = -1;
+    any_interior = any_interior || interior(e);
+  }
+  // A plate, or a body seen face-on with one tracked face, has no interior edge: nothing to project.
+  if (!any_interior || !(m_params.confusable_edge_separation_px > 0.0)) return;
   const auto& vertices = m_model.vertices();
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     const Vec3 p_c = predicted.transform(vertices[v]);
     m_vertex_in_front[v] = p_c.z() > 0.0 && m_camera.project(p_c, m_vertex_px[v]) ? 1U : 0U;
   }
-  const auto& edges = m_model.edges();
   const double separation = m_params.confusable_edge_separation_px;
   for (std::size_t e = 0; e < edges.size(); ++e) {
-    m_confusable_partner[e] = -1;
+    if (!interior(e)) continue;
     const ModelEdge& edge = edges[e];
-    if (m_edge_selected[e] == 0U || edge.surface_left < 0 || edge.surface_right < 0) continue;
-    if (m_surface_front[edge.surface_left] == 0U || m_surface_front[edge.surface_right] == 0U) continue;
     if (m_vertex_in_front[edge.v0] == 0U || m_vertex_in_front[edge.v1] == 0U) continue;
     const Vec2 a = m_vertex_px[edge.v0];
     const Vec2 ab = m_vertex_px[edge.v1] - a;
