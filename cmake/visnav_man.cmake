@@ -14,6 +14,7 @@ set(VISNAV_MAN_visnav-far-eval "evaluate the far-range estimator on a sequence w
 set(VISNAV_MAN_visnav-jitter "measure the cyclic executive's release jitter on the real clock")
 set(VISNAV_MAN_visnav-csvdiff "compare two CSV files numerically, cell by cell")
 set(VISNAV_MAN_visnav-campaign "seeded Monte Carlo campaign through the whole visnav pipeline")
+set(VISNAV_MAN_visnav-edge-score "score how well projected model edges lie on the image gradient")
 
 find_program(VISNAV_HELP2MAN help2man)
 find_program(VISNAV_GZIP gzip)
