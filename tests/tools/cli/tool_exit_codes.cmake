@@ -72,6 +72,14 @@ expect(3 visnav-eval --sequence "${OUT}/seq" --replay "${OUT}/replay.csv" --plot
 expect(0 visnav-eval --sequence "${OUT}/seq" --replay "${OUT}/replay.csv")
 expect(1 visnav-eval --sequence "${OUT}/seq" --replay "${OUT}/replay.csv" --require-final-mode standby)
 
+# visnav-edge-score
+expect(0 visnav-edge-score --sequence "${OUT}/seq" --poses "${OUT}/replay.csv")
+expect(0 visnav-edge-score --sequence "${OUT}/seq" --pose 0,0,20,0,0,180)
+expect(2 visnav-edge-score --sequence "${OUT}/seq")
+expect(2 visnav-edge-score --sequence "${OUT}/seq" --pose 0,0,20,0,0)
+expect(2 visnav-edge-score --sequence "${OUT}/seq" --pose 0,0,20,0,0,180 --search-px 0)
+expect(3 visnav-edge-score --sequence "${missing}" --pose 0,0,20,0,0,180 STDERR "no-such-file")
+expect(3 visnav-edge-score --sequence "${OUT}/seq" --poses "${OUT}/garbage.csv" STDERR "garbage.csv")
 # visnav-csvdiff
 expect(0 visnav-csvdiff "${OUT}/a.csv" "${OUT}/a.csv")
 expect(1 visnav-csvdiff "${OUT}/a.csv" "${OUT}/c.csv" STDERR "DIFFERENT")
