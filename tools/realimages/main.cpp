@@ -224,16 +224,17 @@ int main(int argc, char** argv) {
   const double med = median(offsets);
   const double share = samples > 0 ? 100.0 * static_cast<double>(within) / static_cast<double>(samples) : 0.0;
   const double step = median(times);
+  const std::string step_text = std::isnan(step) ? "-" : std::to_string(std::lround(step)) + " us";
   if (markdown) {
     std::printf("| %s | %d | %d | %d | %d | %.2f | %.1f %% | %s |\n", label.c_str(), frames, tracked,
-                mode_changes, aligned, med, share,
-                std::isnan(step) ? "-" : (std::to_string(std::lround(step)) + " us").c_str());
+                mode_changes, aligned, med, share, step_text.c_str());
   } else {
     std::printf(
         "%s: frames %d, tracked %d, mode changes %d, frames aligned %d, samples %ld, median |offset| %.2f "
         "px, "
-        "within %.0f px %.1f %%, step median %.0f us\n",
-        label.c_str(), frames, tracked, mode_changes, aligned, samples, med, options.within_px, share, step);
+        "within %.0f px %.1f %%, step median %s\n",
+        label.c_str(), frames, tracked, mode_changes, aligned, samples, med, options.within_px, share,
+        step_text.c_str());
   }
   return kExitOk;
 }
