@@ -123,8 +123,14 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
     }
     const Pose start = hypothesis(predicted, index);
     ++out.hypotheses;
-    if (!trackFrom(m_wide, image, start, frame_number, kPassesPerStart, r)) continue;
-    if (!consistentWithPrediction(r.pose)) continue;
+    if (!trackFrom(m_wide, image, start, frame_number, kPassesPerStart, r)) {
+      ++(r.status == TrackStatus::kLost ? out.starts_lost : out.starts_weak);
+      continue;
+    }
+    if (!consistentWithPrediction(r.pose)) {
+      ++out.starts_inconsistent;
+      continue;
+    }
     if (!have_best) {
       best = r;
       have_best = true;
@@ -140,6 +146,7 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
     if (r.quality > best.quality) best = r;
   }
   if (!have_best) return;
+  out.best_quality = best.quality;
   if (ambiguous) {
     out.ambiguous = true;
     return;

@@ -178,7 +178,7 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
 
 void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t frame_number,
                                           NavSolution& out, ModeInputs& in) {
-  ReacquisitionStep step;
+  ReacquisitionStep& step = m_reacquisition_step;
   m_reacquisition.step(image, predictedPose(), frame_number, step);
   if (step.found) {
     m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
@@ -252,6 +252,7 @@ void NavigationPipeline::enterMode(NavMode mode) {
 Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavSolution& out) {
   out = NavSolution{};
   m_last_pose_update = FilterUpdate{};
+  m_reacquisition_step = ReacquisitionStep{};
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;
   out.frame_number = m_last_frame_number;

@@ -69,6 +69,10 @@ TEST_F(ReacquisitionTest, FindsASlewedTargetAndDeliversItOnlyAfterConfirmation) 
       EXPECT_NE(step.status, TrackStatus::kLost);
     } else {
       candidate_before_found = candidate_before_found || step.candidate;
+      if (step.candidate && step.hypotheses > 0) {
+        EXPECT_GT(step.best_quality, 0.0) << "frame " << i;
+        EXPECT_LT(step.starts_lost + step.starts_weak + step.starts_inconsistent, step.hypotheses);
+      }
     }
   }
   ASSERT_GE(found_at, 0) << "a 61 px slew was not recovered in 8 frames";
@@ -92,6 +96,9 @@ TEST_F(ReacquisitionTest, AnEmptyImageNeverYieldsAPoseAndTheSearchWidens) {
     EXPECT_FALSE(step.candidate) << "frame " << i;
     // The first frame's grid holds the prediction and one ring (7 starts); later ones the full budget.
     EXPECT_EQ(step.hypotheses, i == 0 ? 7 : params.reacquire_hypotheses_per_frame);
+    // Every start is accounted for by why it was not taken (the campaign's --trace prints these).
+    EXPECT_EQ(step.starts_lost + step.starts_weak + step.starts_inconsistent, step.hypotheses);
+    EXPECT_EQ(step.best_quality, 0.0);
     EXPECT_GE(step.search_radius_px, last_radius);
     last_radius = step.search_radius_px;
   }

@@ -180,6 +180,17 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     if (trace) {
       res.trace += traceLine(f, pipeline->lastNearRange(), u);
       if (pipeline->lastNearRange().lines_total > 0) res.trace += traceEdges(pipeline->nearRange(), truth);
+      const nav::ReacquisitionStep& rs = pipeline->lastReacquisition();
+      if (rs.hypotheses > 0 || rs.candidate || rs.found) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "       reacq: starts=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
+                      "candidate=%d found=%d best_q=%.2f\n",
+                      rs.hypotheses, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
+                      rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
+                      rs.best_quality);
+        res.trace += buf;
+      }
     }
     if (pipeline->modes().transitionCount() != transitions_before &&
         res.transitions.size() < kMaxTransitionRecords) {

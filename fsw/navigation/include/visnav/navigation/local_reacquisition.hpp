@@ -29,6 +29,11 @@ struct ReacquisitionStep {
   double quality = 0.0;
   int hypotheses = 0;  ///< tracker starts tried this frame
   int search_radius_px = 0;
+  // Why the starts of this frame were not taken (diagnostics: the campaign's --trace).
+  int starts_lost = 0;          ///< the wide tracker lost the target from the start
+  int starts_weak = 0;          ///< tracked, but the image evidence was not good
+  int starts_inconsistent = 0;  ///< good evidence, but range or look disagree with the prediction
+  double best_quality = 0.0;    ///< the best candidate's quality (0: none)
 };
 
 class LocalReacquisition {

@@ -59,6 +59,8 @@ class NavigationPipeline {
   const FilterUpdate& lastPoseUpdate() const { return m_last_pose_update; }
   /// Close-range reacquisition (searching while active()).
   const LocalReacquisition& reacquisition() const { return m_reacquisition; }
+  /// This frame's reacquisition step (`hypotheses` 0 when none ran).
+  const ReacquisitionStep& lastReacquisition() const { return m_reacquisition_step; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -87,6 +89,7 @@ class NavigationPipeline {
   LocalReacquisition m_reacquisition;
 
   NearRangeResult m_near_result;
+  ReacquisitionStep m_reacquisition_step;
   FilterUpdate m_last_pose_update;
   far::FarRangeResult m_far_result;
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
