@@ -101,10 +101,10 @@ int main(int argc, char** argv) {
     return visnav::cli::kExitInvalidInput;
   }
   std::printf(
-      "visnav-replay: %d frames: far range %d, acquisition %d, near range: tracking %d, degraded %d, lost "
-      "%d; "
-      "%d mode transitions; step time median %.1f us, p95 %.1f us\n",
-      summary.frames, summary.far_range, summary.acquisition, summary.tracking, summary.degraded,
-      summary.lost, summary.transitions, summary.median_total_us, summary.p95_total_us);
+      "visnav-replay: %d frames: valid poses delivered %d; far range %d, acquisition %d, near range "
+      "(tracker verdicts): tracking %d, degraded %d, lost %d; %d mode transitions; step time median %.1f "
+      "us, p95 %.1f us\n",
+      summary.frames, summary.valid_poses, summary.far_range, summary.acquisition, summary.tracking,
+      summary.degraded, summary.lost, summary.transitions, summary.median_total_us, summary.p95_total_us);
   return 0;
 }

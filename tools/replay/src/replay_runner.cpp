@@ -193,6 +193,7 @@ LoadError runReplay(const ReplayOptions& options, ReplaySummary& summary) {
     summary.tracking += near && result.status == TrackStatus::kTracking ? 1 : 0;
     summary.degraded += near && result.status == TrackStatus::kDegraded ? 1 : 0;
     summary.lost += near && result.status == TrackStatus::kLost ? 1 : 0;
+    summary.valid_poses += solution.pose_valid ? 1 : 0;
     summary.far_range += solution.mode == nav::NavMode::kFarRange ? 1 : 0;
     summary.acquisition += solution.mode == nav::NavMode::kAcquisition ? 1 : 0;
     times.push_back(solution.timing.process_us);

@@ -34,9 +34,13 @@ struct ReplayOptions {
 
 struct ReplaySummary {
   int frames = 0;
+  // The near-range tracker's verdicts (the CSV's `flags` and internals), counted in near range.
   int tracking = 0;
   int degraded = 0;
   int lost = 0;
+  /// Frames whose pose the pipeline delivered as valid: the CSV rows with a pose (status tracking or
+  /// degraded). Fewer than tracking + degraded where a tracked pose was withheld (too uncertain, disputed).
+  int valid_poses = 0;
   int far_range = 0;    ///< frames processed in far range
   int acquisition = 0;  ///< frames processed in acquisition
   int transitions = 0;
