@@ -180,6 +180,15 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     if (trace) {
       res.trace += traceLine(f, pipeline->lastNearRange(), u);
       if (pipeline->lastNearRange().lines_total > 0) res.trace += traceEdges(pipeline->nearRange(), truth);
+      if (f.mode == nav::NavMode::kFarRange) {
+        const far::FarRangeResult& fr = pipeline->lastFarRange();
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "       far: valid=%d n=%d raw=%d clusters=%d flags=%04x d=%.1f c=%.3f q=%.2f\n",
+                      fr.valid ? 1 : 0, fr.cluster_pixels, fr.raw_pixels, fr.cluster_count,
+                      static_cast<unsigned>(fr.flags), fr.distance_m, fr.circularity, fr.quality);
+        res.trace += buf;
+      }
       const nav::ReacquisitionStep& rs = pipeline->lastReacquisition();
       if (rs.hypotheses > 0 || rs.candidate || rs.found) {
         char buf[200];
