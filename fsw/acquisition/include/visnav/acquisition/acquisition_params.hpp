@@ -39,7 +39,7 @@ struct AcquisitionParams {
   int confirm_frames = 2;
   bool accept_degraded = true;
   // Never deliver a wrong pose: what confirmation demands.
-  double min_confirm_agreement = 0.5;
+  double min_confirm_agreement = 0.7;
   double rival_margin = 0.05;
   int max_confirm_frames = 8;
   double confirm_max_motion_rel = 0.05;
@@ -139,7 +139,9 @@ struct AcquisitionParams {
                "accept tracker status degraded (not only tracking) during verification and confirmation"},
               accept_degraded);
     v.real({"acquisition", "min_confirm_agreement", "-", 0.0, 1.0,
-            "two-way edge agreement (F1) the confirmed pose must keep on every confirmation frame"},
+            "two-way edge agreement (F1) the confirmed pose must keep on every confirmation frame (0.7: the "
+            "200-scenes-per-family campaign gave 788 confidently wrong frames against 938 at 0.5, the same "
+            "tracked fraction)"},
            min_confirm_agreement);
     v.real(
         {"acquisition", "rival_margin", "-", 0.0, 1.0,
