@@ -37,9 +37,11 @@ bool needsFamily(const CampaignOptions& o, Family f) {
   return false;
 }
 
+/// A model, config or output that does not load or cannot be written, or a scene that cannot be set up:
+/// exit 3 of the one exit-code table (README.md "Exit codes"); usage errors are 2.
 int fail(const std::string& message) {
   std::fprintf(stderr, "visnav-campaign: %s\n", message.c_str());
-  return 2;
+  return cli::kExitInvalidInput;
 }
 
 }  // namespace
@@ -50,15 +52,15 @@ int main(int argc, char** argv) {
   // --version alone; --help goes through the option parser (its usage text).
   if (args.size() == 1 && args[0] == "--version") {
     cli::printVersion("visnav-campaign");
-    return 0;
+    return cli::kExitOk;
   }
   if (LoadError e = parseArguments(args, options); !e.ok) {
     std::fprintf(stderr, "visnav-campaign: %s\n%s", e.message.c_str(), usageText().c_str());
-    return 2;
+    return cli::kExitUsage;
   }
   if (options.help) {
     std::fputs(usageText().c_str(), stdout);
-    return 0;
+    return cli::kExitOk;
   }
 
   ModelLibrary models;
@@ -174,5 +176,5 @@ int main(int argc, char** argv) {
                   rerunCommand(g.worst->scene, options).c_str());
     std::printf("\n");
   }
-  return passed ? 0 : 1;
+  return passed ? cli::kExitOk : cli::kExitFailed;
 }

@@ -72,6 +72,18 @@ expect(3 visnav-eval --sequence "${OUT}/seq" --replay "${OUT}/replay.csv" --plot
 expect(0 visnav-eval --sequence "${OUT}/seq" --replay "${OUT}/replay.csv")
 expect(1 visnav-eval --sequence "${OUT}/seq" --replay "${OUT}/replay.csv" --require-final-mode standby)
 
+# visnav-campaign (plate/12 loses its track on frame 1: a tracked-fraction gate fails on 3 frames)
+expect(2 visnav-campaign --frobnicate 1)
+expect(2 visnav-campaign --runs 0)
+expect(3 visnav-campaign --runs 1 --families plate --max-frames 3 --config "${OUT}/bad.toml" --out "${OUT}/camp"
+       STDERR "bad.toml")
+expect(3 visnav-campaign --runs 1 --families cao --max-frames 3 --model "${missing}" --out "${OUT}/camp"
+       STDERR "no-such-file")
+expect(3 visnav-campaign --runs 1 --families plate --max-frames 3 --out "${OUT}/a.csv/camp" STDERR "a.csv")
+expect(0 visnav-campaign --runs 1 --seed 12 --families plate --max-frames 3 --quiet --out "${OUT}/camp")
+expect(1 visnav-campaign --runs 1 --seed 12 --families plate --max-frames 3 --quiet --out "${OUT}/camp"
+       --require-tracked-fraction 0.9 STDERR "GATE FAILED")
+
 # visnav-edge-score
 expect(0 visnav-edge-score --sequence "${OUT}/seq" --poses "${OUT}/replay.csv")
 expect(0 visnav-edge-score --sequence "${OUT}/seq" --pose 0,0,20,0,0,180)
