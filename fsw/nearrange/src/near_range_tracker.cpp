@@ -170,10 +170,15 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
   const double length_px = (slot.predicted_b_px - slot.predicted_a_px).norm();
   if (length_px >= m_params.min_edge_length_px) {
     const double usable_px = length_px - 2.0 * m_params.vertex_margin_px;
-    // A short edge still gets min_scanlines_per_edge scanlines, packed no closer than 1 px.
-    int count = usable_px > 0.0 ? static_cast<int>(usable_px / m_params.scanline_spacing_px) + 1 : 0;
+    // A short edge still gets min_scanlines_per_edge scanlines, packed no closer than 1 px. The counts are
+    // bounded in floating point before the conversion: a vertex just in front of the camera projects an
+    // edge millions of pixels long, and converting that count to int overflowed (campaign_ci under UBSan).
+    const double capacity = static_cast<double>(m_params.max_scanlines_per_edge);
+    int count = usable_px > 0.0
+                    ? static_cast<int>(std::min(usable_px / m_params.scanline_spacing_px + 1.0, capacity))
+                    : 0;
     if (usable_px > 0.0 && count < m_params.min_scanlines_per_edge)
-      count = std::min(m_params.min_scanlines_per_edge, static_cast<int>(usable_px) + 1);
+      count = std::min(m_params.min_scanlines_per_edge, static_cast<int>(std::min(usable_px + 1.0, capacity)));
     count = std::min(count, m_params.max_scanlines_per_edge);
     out.scanlines += count;
     slot.scanlines = count;

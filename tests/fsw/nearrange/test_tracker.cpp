@@ -83,6 +83,24 @@ TEST_F(TrackerTest, EmptySceneIsLostAndReportsThePrediction) {
   EXPECT_EQ(r.quality, 0.0);
 }
 
+TEST_F(TrackerTest, AVertexJustInFrontOfTheCameraGivesABoundedScanlineCount) {
+  // A wrong prediction can put a vertex a few nanometres in front of the camera: its edges project 1e11 px
+  // long. The scanline count is bounded by the capacity before it becomes an int (it overflowed to a
+  // negative count, UBSan in campaign_ci).
+  Pose pose = plateAt(1.0);
+  pose.R_c_m = pose.R_c_m * expSo3(Vec3::UnitX() * (40.0 * kRadPerDeg));
+  double min_z = 1e300;
+  for (const Vec3& v : model.vertices()) min_z = std::min(min_z, pose.transform(v).z());
+  pose.t_c_m.z() += 5e-9 - min_z;
+  const test::RenderedFrame empty = renderFrame(renderer, plateAt(10.0, 50.0), 9);
+  NearRangeResult r;
+  tracker.track(empty.image(), pose, 0, r);
+  const NearRangeParams defaults;
+  EXPECT_GT(r.scanlines, 0) << "the near edge is still measured (its scanlines mostly leave the image)";
+  EXPECT_LE(r.scanlines, static_cast<int>(model.edges().size()) * defaults.max_scanlines_per_edge);
+  EXPECT_EQ(r.status, TrackStatus::kLost);
+}
+
 TEST_F(TrackerTest, WrongImageSizeIsAnError) {
   std::vector<std::uint8_t> small(100U * 100U, 0U);
   NearRangeResult r;
