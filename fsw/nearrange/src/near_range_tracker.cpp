@@ -178,7 +178,8 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
                     ? static_cast<int>(std::min(usable_px / m_params.scanline_spacing_px + 1.0, capacity))
                     : 0;
     if (usable_px > 0.0 && count < m_params.min_scanlines_per_edge)
-      count = std::min(m_params.min_scanlines_per_edge, static_cast<int>(std::min(usable_px + 1.0, capacity)));
+      count =
+          std::min(m_params.min_scanlines_per_edge, static_cast<int>(std::min(usable_px + 1.0, capacity)));
     count = std::min(count, m_params.max_scanlines_per_edge);
     out.scanlines += count;
     slot.scanlines = count;
