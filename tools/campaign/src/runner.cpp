@@ -168,6 +168,20 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       f.position_error_m = (sol.pose.t_c_m - truth.t_c_m).norm();
       f.attitude_error_deg = attitudeErrorModuloDeg(sol.pose.R_c_m, truth.R_c_m, scene.symmetries);
     }
+    // Delivered or withheld 6-DOF measurement (deliver() sets a covariance and a quality > 0; coasting
+    // sets quality 0).
+    f.has_candidate = sol.quality > 0.0 && sol.covariance(0, 0) > 0.0;
+    if (f.has_candidate) {
+      f.candidate_position_error_m = (sol.pose.t_c_m - truth.t_c_m).norm();
+      f.candidate_attitude_error_deg = attitudeErrorModuloDeg(sol.pose.R_c_m, truth.R_c_m, scene.symmetries);
+      f.attitude_sigma_deg = std::sqrt(sol.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
+      f.position_sigma_rel =
+          std::sqrt(sol.covariance.bottomRightCorner<3, 3>().trace()) / std::max(sol.pose.t_c_m.norm(), 1e-9);
+    }
+    f.near_flags = pipeline->lastNearRange().flags;
+    f.lines_used = pipeline->lastNearRange().lines_used;
+    f.lines_total = pipeline->lastNearRange().lines_total;
+    f.reacquired = pipeline->lastReacquisition().found;
     const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
     if (u.status == Status::kOk && u.dof == 6) {
       f.has_nis = true;

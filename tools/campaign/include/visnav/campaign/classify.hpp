@@ -47,6 +47,17 @@ struct FrameOutcome {
   double process_us = 0.0;
   bool far_valid = false;  ///< far range's fix this frame (direction/distance)
   double far_distance_m = 0.0;
+  // The 6-DOF measurement the pipeline produced this frame, delivered or withheld (diagnostics: --frames).
+  // A coasted prediction is not one. Lets an output gate be judged offline over a whole campaign.
+  bool has_candidate = false;
+  double candidate_position_error_m = 0.0;
+  double candidate_attitude_error_deg = 0.0;  ///< modulo symmetries
+  double attitude_sigma_deg = 0.0;            ///< sqrt(trace) of the candidate's attitude covariance
+  double position_sigma_rel = 0.0;            ///< sqrt(trace) of its position covariance / range
+  std::uint32_t near_flags = 0;               ///< the near-range tracker's flags (0 when it did not run)
+  int lines_used = 0;
+  int lines_total = 0;
+  bool reacquired = false;  ///< the candidate came from close-range reacquisition
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
