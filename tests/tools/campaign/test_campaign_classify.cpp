@@ -254,6 +254,41 @@ TEST(CampaignGates, WorstSceneAndVerdicts) {
   EXPECT_EQ(c1.str(), c2.str());
 }
 
+// Every row of scenes.csv and frames.csv has as many fields as its header names (frames.csv once named two
+// far-range columns its rows did not have), with frames that have a far fix, a candidate, or neither.
+TEST(CampaignReport, CsvRowsHaveTheHeadersFieldCount) {
+  std::vector<SceneRun> runs;
+  runs.push_back(fakeRun("box/1", 1, "TTLLTT", 1, 0));
+  runs[0].result.frames[1].far_valid = true;
+  runs[0].result.frames[1].far_distance_m = 123.0;
+  runs[0].result.frames[2].has_candidate = true;
+  runs[0].result.frames[2].attitude_sigma_deg = 3.0;
+  runs[0].result.frames[3].has_nis = true;
+  auto fields = [](const std::string& line) {
+    int n = 1;
+    bool quoted = false;
+    for (const char c : line) {
+      if (c == '"') quoted = !quoted;
+      n += (c == ',' && !quoted) ? 1 : 0;
+    }
+    return n;
+  };
+  for (const bool frames : {false, true}) {
+    std::ostringstream o;
+    if (frames)
+      writeFramesCsv(o, runs);
+    else
+      writeCsv(o, runs);
+    std::istringstream in(o.str());
+    std::string header;
+    ASSERT_TRUE(std::getline(in, header));
+    int rows = 0;
+    for (std::string line; std::getline(in, line); ++rows)
+      EXPECT_EQ(fields(line), fields(header)) << (frames ? "frames.csv" : "scenes.csv") << " row " << rows;
+    EXPECT_EQ(rows, frames ? 6 : 1);
+  }
+}
+
 TEST(CampaignOptionsTest, Parsing) {
   CampaignOptions o;
   EXPECT_TRUE(parseArguments({"--runs", "3", "--seed", "9", "--families", "box,plate", "--jobs", "2"}, o).ok);
