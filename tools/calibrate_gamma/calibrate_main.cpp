@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "far_cli.hpp"
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/far_eval/far_evaluation.hpp"
 #include "visnav/io/camera_io.hpp"
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
     }
     const std::string v = argv[++i];
     double x = 0.0;
-    const bool number = far_eval::parseNumber(v, x);
+    const bool number = cli::parseNumber(v, x);
     if (opt == "--sequence")
       sequence_dir = v;
     else if (opt == "--camera")

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/monitor/link_args.hpp"
 #include "visnav/telemetry/ground_link.hpp"
@@ -104,17 +105,14 @@ int main(int argc, char** argv) {
         return error_code;
       }
     } else if (arg == "--id" && has_value) {
-      char* end = nullptr;
-      const unsigned long long id = std::strtoull(argv[++i], &end, 10);
-      if (*end != '\0' || id == 0 || id > 0xFFFFFFFFULL) {
+      long long id = 0;
+      if (!visnav::cli::parseInteger(argv[++i], 1, 0xFFFFFFFFLL, id)) {
         std::fprintf(stderr, "visnav-command: --id wants 1..4294967295\n");
         return kExitUsage;
       }
       command_id = static_cast<std::uint32_t>(id);
     } else if (arg == "--timeout" && has_value) {
-      char* end = nullptr;
-      timeout_s = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !(timeout_s > 0.0 && timeout_s <= 3600.0)) {
+      if (!visnav::cli::parseNumber(argv[++i], timeout_s) || !(timeout_s > 0.0 && timeout_s <= 3600.0)) {
         std::fprintf(stderr, "visnav-command: --timeout wants seconds in (0, 3600]\n");
         return kExitUsage;
       }

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/csvdiff/csv_compare.hpp"
 
@@ -29,11 +30,12 @@ using visnav::cli::kExitInvalidInput;
 using visnav::cli::kExitOk;
 using visnav::cli::kExitUsage;
 
-/// A whole-argument number >= 0 ("1e-6"; not "", "x", "1x" or a negative one).
+/// A whole-argument finite number >= 0 ("1e-6"; not "", "x", "1x", "inf" or a negative one).
 bool parseTolerance(const char* text, double& out) {
-  char* end = nullptr;
-  out = std::strtod(text, &end);
-  return end != text && *end == '\0' && out >= 0.0;
+  double v = 0.0;
+  if (!visnav::cli::parseNumber(text, v) || v < 0.0) return false;
+  out = v;
+  return true;
 }
 
 }  // namespace

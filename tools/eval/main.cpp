@@ -4,12 +4,14 @@
 // written.
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/eval/evaluation.hpp"
 #include "visnav/eval/plot.hpp"
@@ -23,6 +25,7 @@ using visnav::cli::kExitFailed;
 using visnav::cli::kExitInvalidInput;
 using visnav::cli::kExitOk;
 using visnav::cli::kExitUsage;
+using visnav::cli::parseNumber;
 
 const char* const kUsage =
     "usage: visnav-eval --sequence DIR --replay replay.csv [--far-range FILE] [--plot errors.png]\n"
@@ -43,12 +46,6 @@ struct Args {
   visnav::eval::Requirements req;
   bool inside_px_given = false;
 };
-
-bool parseNumber(const std::string& text, double& out) {
-  char* end = nullptr;
-  out = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size();
-}
 
 // Returns an error message, empty on success.
 std::string parseArgs(int argc, char** argv, Args& a) {
@@ -103,7 +100,9 @@ std::string parseArgs(int argc, char** argv, Args& a) {
       std::size_t start = 0;
       while (start <= v.size()) {
         const std::size_t comma = std::min(v.find(',', start), v.size());
-        if (!parseNumber(v.substr(start, comma - start), x) || !(x >= 0.0) || x > 100.0)
+        // Blanks after a comma are fine ("1.0, 0.25").
+        const std::size_t first = std::min(v.find_first_not_of(" \t", start), comma);
+        if (!parseNumber(v.substr(first, comma - first), x) || !(x >= 0.0) || x > 100.0)
           return "--envelope-px: expected comma-separated sizes in [0, 100] px, got '" + v + "'";
         a.eval.envelope_px.push_back(x);
         start = comma + 1;
@@ -114,9 +113,10 @@ std::string parseArgs(int argc, char** argv, Args& a) {
       a.eval.model_symmetries.push_back(
           Eigen::AngleAxisd(visnav::kPi, visnav::Vec3::Unit(axis)).toRotationMatrix());
     } else if (opt == "--envelope-stride") {
-      if (!parseNumber(v, x) || x < 1.0 || x != static_cast<int>(x))
+      long long n = 0;
+      if (!visnav::cli::parseInteger(v, 1, INT_MAX, n))
         return "--envelope-stride: expected a positive integer, got '" + v + "'";
-      a.eval.envelope_stride = static_cast<int>(x);
+      a.eval.envelope_stride = static_cast<int>(n);
     } else if (opt == "--min-inside-fraction") {
       if (!parseNumber(v, x) || x < 0.0 || x > 1.0)
         return "--min-inside-fraction: expected [0, 1], got '" + v + "'";

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <string>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/executive/executive.hpp"
 #include "visnav/executive/realtime.hpp"
@@ -58,10 +59,16 @@ void usage(std::FILE* stream) {
       stream);
 }
 
-bool parseNumber(const char* text, double& out) {
-  char* end = nullptr;
-  out = std::strtod(text, &end);
-  return end != text && *end == '\0';
+// --cycles, --priority and --cpu are integers ("1.5" is refused, not truncated); the rest are numbers.
+bool parseValue(const std::string& arg, const char* text, double& out) {
+  if (arg == "--cycles" || arg == "--priority" || arg == "--cpu") {
+    long long n = 0;
+    // Within +-2^53 every integer is exact as a double; the range checks below come before any cast.
+    if (!visnav::cli::parseInteger(text, -(1LL << 53), 1LL << 53, n)) return false;
+    out = static_cast<double>(n);
+    return true;
+  }
+  return visnav::cli::parseNumber(text, out);
 }
 
 void printStats(const char* what, const DurationStats& s) {
@@ -92,7 +99,7 @@ int main(int argc, char** argv) {
       params.realtime_fatal = true;
     } else if (arg == "--config" && has_value) {
       config_path = argv[++i];
-    } else if (has_value && parseNumber(argv[i + 1], value)) {
+    } else if (has_value && parseValue(arg, argv[i + 1], value)) {
       ++i;
       if (arg == "--cycles" && value >= 1.0) {
         cycles = value;
@@ -102,7 +109,7 @@ int main(int argc, char** argv) {
         busy_us = value;
       } else if (arg == "--priority" && value >= 0.0 && value <= 99.0) {
         params.sched_fifo_priority = static_cast<int>(value);
-      } else if (arg == "--cpu" && value >= -1.0) {
+      } else if (arg == "--cpu" && value >= -1.0 && value <= 1023.0) {
         params.cpu_affinity = static_cast<int>(value);
       } else if (arg == "--slack-ns" && value >= 0.0 && value <= 1e6) {
         slack_ns = value;

@@ -6,8 +6,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/monitor/link_args.hpp"
 #include "visnav/monitor/monitor.hpp"
@@ -35,12 +37,6 @@ void usage(std::FILE* stream) {
       visnav::monitor::kLinkUsage);
 }
 
-bool parseNumber(const char* text, double& out) {
-  char* end = nullptr;
-  out = std::strtod(text, &end);
-  return *end == '\0' && out >= 0.0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -51,6 +47,7 @@ int main(int argc, char** argv) {
     visnav::LoadError error;
     int error_code = visnav::cli::kExitUsage;
     double number = 0.0;
+    long long count = 0;
     if (const int code = visnav::cli::standardOption(argv[i], "visnav-monitor", usage); code >= 0)
       return code;
     if (visnav::monitor::parseLinkArgument(argc, argv, i, options.link, error, error_code)) {
@@ -60,10 +57,12 @@ int main(int argc, char** argv) {
       }
     } else if (arg == "--csv" && has_value) {
       options.csv_path = argv[++i];
-    } else if (arg == "--samples" && has_value && parseNumber(argv[i + 1], number)) {
-      options.stop_after_pose_samples = static_cast<std::uint64_t>(number);
+    } else if (arg == "--samples" && has_value &&
+               visnav::cli::parseInteger(argv[i + 1], 0, std::numeric_limits<long long>::max(), count)) {
+      options.stop_after_pose_samples = static_cast<std::uint64_t>(count);
       ++i;
-    } else if (arg == "--duration" && has_value && parseNumber(argv[i + 1], number)) {
+    } else if (arg == "--duration" && has_value && visnav::cli::parseNumber(argv[i + 1], number) &&
+               number >= 0.0) {
       options.duration_s = number;
       ++i;
     } else if (arg == "--ready-file" && has_value) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/eval/replay_csv.hpp"
 #include "visnav/realimages/edge_score.hpp"
@@ -40,12 +41,6 @@ using visnav::cli::kExitInvalidInput;
 using visnav::cli::kExitOk;
 using visnav::cli::kExitUsage;
 
-bool parseDouble(const char* text, double& out) {
-  char* end = nullptr;
-  out = std::strtod(text, &end);
-  return end != text && *end == '\0' && std::isfinite(out);
-}
-
 bool parsePose(const std::string& text, visnav::Pose& pose) {
   double v[6];
   std::size_t start = 0;
@@ -53,7 +48,9 @@ bool parsePose(const std::string& text, visnav::Pose& pose) {
     const std::size_t comma = text.find(',', start);
     if ((i < 5) != (comma != std::string::npos)) return false;
     const std::string item = text.substr(start, i < 5 ? comma - start : std::string::npos);
-    if (!parseDouble(item.c_str(), v[i])) return false;
+    // Blanks after a comma are fine ("0, 0, 20, ..."), as in visnav-replay --initial-pose.
+    const std::size_t first = item.find_first_not_of(" \t");
+    if (first == std::string::npos || !visnav::cli::parseNumber(item.substr(first), v[i])) return false;
     start = comma + 1;
   }
   const double k = M_PI / 180.0;
@@ -76,7 +73,7 @@ std::map<std::int64_t, double> readStepTimes(const std::string& path) {
   while (std::getline(in, line)) {
     const std::vector<std::string> cells = visnav::eval::splitCsvLine(line);
     double value = 0.0;
-    if (cells.size() > std::max(col, fcol) && parseDouble(cells[col].c_str(), value) && value > 0.0)
+    if (cells.size() > std::max(col, fcol) && visnav::cli::parseNumber(cells[col], value) && value > 0.0)
       out[std::strtoll(cells[fcol].c_str(), nullptr, 10)] = value;
   }
   return out;
@@ -102,6 +99,7 @@ int main(int argc, char** argv) {
     if (const int code = visnav::cli::standardOption(argv[i], "visnav-edge-score", kUsage); code >= 0)
       return code;
     double number = 0.0;
+    long long count = 0;
     if (arg == "--sequence" && has_value) {
       sequence_dir = argv[++i];
     } else if (arg == "--poses" && has_value) {
@@ -115,17 +113,18 @@ int main(int argc, char** argv) {
     } else if (arg == "--markdown-row") {
       markdown = true;
     } else if ((arg == "--max-frames" || arg == "--search-px") && has_value) {
-      if (!parseDouble(argv[++i], number) || number < 1 || number > 1e9 || number != std::floor(number)) {
+      if (!visnav::cli::parseInteger(argv[++i], 1, 1000000000, count)) {
         std::fprintf(stderr, "visnav-edge-score: %s wants a whole number >= 1, got '%s'\n", arg.c_str(),
                      argv[i]);
         return kExitUsage;
       }
       if (arg == "--max-frames")
-        max_frames = static_cast<long>(number);
+        max_frames = static_cast<long>(count);
       else
-        options.search_half_px = static_cast<int>(std::min(number, 64.0));
+        options.search_half_px = static_cast<int>(std::min(count, 64LL));
     } else if ((arg == "--step-px" || arg == "--min-gradient") && has_value) {
-      if (!parseDouble(argv[++i], number) || number < (arg == "--step-px" ? 0.25 : 0.0) || number > 1e6) {
+      if (!visnav::cli::parseNumber(argv[++i], number) || number < (arg == "--step-px" ? 0.25 : 0.0) ||
+          number > 1e6) {
         std::fprintf(stderr, "visnav-edge-score: %s: bad value '%s'\n", arg.c_str(), argv[i]);
         return kExitUsage;
       }

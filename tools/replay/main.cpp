@@ -1,10 +1,10 @@
 // visnav-replay: the flight pipeline over a sequence directory, as fast as possible. See README.md.
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/replay_tool/replay_runner.hpp"
 
@@ -22,16 +22,6 @@ void usage(std::FILE* stream) {
       "(tools/replay/README.md). Exit code: 0 done, 2 usage, 3 an input that does not load or an output\n"
       "that cannot be written.\n",
       stream);
-}
-
-// Whole-argument positive integer: "10x", "0" and "-3" are errors, not silently 0 or negative.
-bool parsePositiveInt(const char* text, int& out) {
-  char* end = nullptr;
-  errno = 0;
-  const long v = std::strtol(text, &end, 10);
-  if (end == text || *end != '\0' || errno == ERANGE || v < 1 || v > 1000000000L) return false;
-  out = static_cast<int>(v);
-  return true;
 }
 
 }  // namespace
@@ -57,12 +47,13 @@ int main(int argc, char** argv) {
     } else if (arg == "--overlay-dir" && has_value) {
       options.overlay_dir = value();
     } else if ((arg == "--overlay-every" || arg == "--max-frames") && has_value) {
-      int n = 0;
-      if (!parsePositiveInt(argv[++i], n)) {
+      // Whole-argument positive integer: "10x", "0" and "-3" are errors, not silently 0 or negative.
+      long long n = 0;
+      if (!visnav::cli::parseInteger(argv[++i], 1, 1000000000, n)) {
         std::fprintf(stderr, "visnav-replay: %s wants a positive integer, got '%s'\n", arg.c_str(), argv[i]);
         return 2;
       }
-      (arg == "--overlay-every" ? options.overlay_every : options.max_frames) = n;
+      (arg == "--overlay-every" ? options.overlay_every : options.max_frames) = static_cast<int>(n);
     } else if (arg == "--initial-pose" && has_value) {
       if (!visnav::replay_tool::parsePoseArgument(value(), options.initial_pose)) {
         std::fputs("visnav-replay: --initial-pose wants x,y,z,yaw_deg,pitch_deg,roll_deg\n", stderr);

@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "scenario.hpp"
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/io/camera_io.hpp"
 #include "visnav/io/model_io.hpp"
@@ -25,14 +27,6 @@ void usage(std::FILE* stream) {
                "  --seed S    noise seed (overrides the scenario's)\n"
                "  --dry-run   only check that the target stays inside the image; write nothing\n"
                "  exit code: 0 done, 1 target outside the image, 2 usage, 3 load or write error\n");
-}
-
-bool parseCount(const char* text, long long& out) {
-  char* end = nullptr;
-  const long long v = std::strtoll(text, &end, 10);
-  if (end == text || *end != '\0' || v < 0) return false;
-  out = v;
-  return true;
 }
 
 // Every vertex inside the image means the whole (convex) target is inside.
@@ -65,7 +59,8 @@ int main(int argc, char** argv) {
       out_dir = argv[++i];
     } else if ((arg == "--frames" || arg == "--stride" || arg == "--seed") && has_value) {
       long long& target = arg == "--frames" ? max_frames : (arg == "--stride" ? stride : seed);
-      if (!parseCount(argv[++i], target) || (arg == "--stride" && stride < 1)) {
+      if (!cli::parseInteger(argv[++i], 0, std::numeric_limits<long long>::max(), target) ||
+          (arg == "--stride" && stride < 1)) {
         std::fprintf(stderr, "visnav-synth: bad value '%s' for %s\n", argv[i], arg.c_str());
         usage(stderr);
         return 2;

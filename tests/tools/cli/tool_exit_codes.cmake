@@ -137,6 +137,23 @@ expect(3 visnav-command standby --config "${OUT}/bad.toml" STDERR "bad.toml")
 expect(2 visnav-closedloop --scenario warp)
 expect(3 visnav-closedloop --scenario ci --config-dir "${missing}" STDERR "no-such-file")
 
+# Numbers on the command line (visnav/cli/numbers.hpp): the whole argument, finite, and a count an integer;
+# each of these was accepted before the shared parser (as NaN, infinity, a blank, or a count truncated,
+# clamped or wrapped).
+expect(2 visnav-csvdiff "${OUT}/a.csv" "${OUT}/a.csv" --abs-tol inf)
+expect(2 visnav-csvdiff "${OUT}/a.csv" "${OUT}/a.csv" --column-tol "x_m=inf")
+expect(2 visnav-eval --sequence "${OUT}/seq" --replay "${OUT}/replay.csv" --min-inside-fraction nan)
+expect(2 visnav-far-eval --sequence "${OUT}/seq" --require-right-fraction nan)
+expect(2 visnav-calibrate-gamma --pixels 16 --distance 750 --max-range inf)
+expect(2 visnav-campaign --runs 1 --seed " -1")
+expect(2 visnav-synth --scenario "${SOURCE_DIR}/config/scenarios/approach_ci.toml" --dry-run
+       --frames 99999999999999999999)
+expect(2 visnav-replay --sequence "${OUT}/seq" --out "${OUT}/r.csv" --max-frames " 3")
+expect(2 visnav-edge-score --sequence "${OUT}/seq" --pose 0,0,20,0,0,180 --max-frames 1e3)
+expect(2 visnav-jitter --priority 50.5)
+expect(2 visnav-monitor --samples 1.5 --duration 0.1)
+expect(2 visnav-command standby --id -4294967295)
+
 if(failures)
   message(FATAL_ERROR "${failures}")
 endif()

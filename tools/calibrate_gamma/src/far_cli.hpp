@@ -1,7 +1,7 @@
-// Small helpers shared by the two far-range tools: number parsing and parameter loading.
+// Small helpers shared by the two far-range tools: parameter loading and method names (numbers:
+// visnav/cli/numbers.hpp).
 #pragma once
 
-#include <cstdlib>
 #include <string>
 
 #include "visnav/core/status.hpp"
@@ -9,12 +9,6 @@
 #include "visnav/io/config_io.hpp"
 
 namespace visnav::far_eval {
-
-inline bool parseNumber(const std::string& text, double& out) {
-  char* end = nullptr;
-  out = std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size();
-}
 
 /// Table 1 defaults, then the [farrange] table of `config_path` (if given); other tables are ignored here
 /// (visnav-params --check validates whole files).

@@ -1,42 +1,10 @@
 #include "visnav/campaign/options.hpp"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
+#include <limits>
+
+#include "visnav/cli/numbers.hpp"
 
 namespace visnav::campaign {
-namespace {
-
-bool parseInt(const std::string& text, long long lo, long long hi, long long& out) {
-  if (text.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const long long v = std::strtoll(text.c_str(), &end, 10);
-  if (errno != 0 || end == nullptr || *end != '\0' || v < lo || v > hi) return false;
-  out = v;
-  return true;
-}
-
-bool parseU64(const std::string& text, std::uint64_t& out) {
-  if (text.empty() || text[0] == '-' || text[0] == '+') return false;
-  errno = 0;
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (errno != 0 || end == nullptr || *end != '\0') return false;
-  out = static_cast<std::uint64_t>(v);
-  return true;
-}
-
-bool parseDouble(const std::string& text, double& out) {
-  if (text.empty()) return false;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end == nullptr || *end != '\0' || !std::isfinite(v)) return false;
-  out = v;
-  return true;
-}
-
-}  // namespace
 
 std::string usageText() {
   return "usage: visnav-campaign --runs N [--seed S] [--families plate,octagon,box,smallsat,cao]\n"
@@ -84,7 +52,7 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
       if (!value(v)) return LoadError::failure(a + ": needs a value");
       const long long lo = a == "--runs" || a == "--jobs" ? 1 : 0;
       const long long hi = a == "--jobs" ? 64 : 1000000;
-      if (!parseInt(v, lo, hi, n))
+      if (!cli::parseInteger(v, lo, hi, n))
         return LoadError::failure(a + ": expected an integer in [" + std::to_string(lo) + ", " +
                                   std::to_string(hi) + "], got '" + v + "'");
       const int k = static_cast<int>(n);
@@ -100,12 +68,14 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
         o.gates.max_mode_changes = k;
       }
     } else if (a == "--seed") {
-      if (!value(v) || !parseU64(v, o.seed))
+      unsigned long long seed = 0;
+      if (!value(v) || !cli::parseUnsigned(v, std::numeric_limits<std::uint64_t>::max(), seed))
         return LoadError::failure("--seed: expected an unsigned 64-bit integer" +
                                   (v.empty() ? "" : ", got '" + v + "'"));
+      o.seed = static_cast<std::uint64_t>(seed);
     } else if (a == "--require-tracked-fraction") {
       double f = 0.0;
-      if (!value(v) || !parseDouble(v, f) || f < 0.0 || f > 1.0)
+      if (!value(v) || !cli::parseNumber(v, f) || f < 0.0 || f > 1.0)
         return LoadError::failure("--require-tracked-fraction: expected a fraction in [0, 1]" +
                                   (v.empty() ? "" : ", got '" + v + "'"));
       o.gates.tracked_fraction = true;

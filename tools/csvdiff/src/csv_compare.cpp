@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "visnav/cli/numbers.hpp"
+
 namespace visnav::csvdiff {
 namespace {
 
@@ -74,9 +76,10 @@ bool parseColumnTolerance(const std::string& text, ColumnTolerance& out) {
   const std::string values = text.substr(eq + 1);
   const std::size_t colon = values.find(':');
   out.rel_tol = 0.0;
-  if (!asNumber(values.substr(0, colon), out.abs_tol) || out.abs_tol < 0.0) return false;
+  // Command-line numbers (visnav/cli/numbers.hpp, as --abs-tol and --rel-tol), not cells: "inf" is refused.
+  if (!cli::parseNumber(values.substr(0, colon), out.abs_tol) || out.abs_tol < 0.0) return false;
   if (colon == std::string::npos) return true;
-  return asNumber(values.substr(colon + 1), out.rel_tol) && out.rel_tol >= 0.0;
+  return cli::parseNumber(values.substr(colon + 1), out.rel_tol) && out.rel_tol >= 0.0;
 }
 
 CompareOptions toleranceFor(const std::string& column, const CompareOptions& options) {

@@ -21,7 +21,9 @@ std::string trim(const std::string& s) {
 
 std::string where(const std::string& name, int line) { return name + ":" + std::to_string(line) + ": "; }
 
-// Whole-field parse: "12abc" is rejected, unlike a bare strtod.
+// Whole-field parse: "12abc" is rejected, unlike a bare strtod. A cell, not a command-line value, so not
+// visnav::cli::parseNumber: "nan" is a number here (a lost row's pose) and each caller says where a
+// non-finite value is allowed.
 bool parseDouble(const std::string& text, double& out) {
   if (text.empty()) return false;
   errno = 0;

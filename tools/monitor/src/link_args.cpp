@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "visnav/cli/numbers.hpp"
 #include "visnav/cli/standard_options.hpp"
 #include "visnav/io/config_io.hpp"
 
@@ -22,9 +23,8 @@ bool parseLinkArgument(int argc, char** argv, int& i, telemetry::TelemetryParams
     return true;
   }
   if (std::strcmp(arg, "--domain") == 0 && has_value) {
-    char* end = nullptr;
-    const long domain = std::strtol(argv[++i], &end, 10);
-    if (*end != '\0' || domain < 0 || domain > 232)
+    long long domain = 0;
+    if (!cli::parseInteger(argv[++i], 0, 232, domain))
       error = LoadError::failure(std::string("--domain wants 0..232, got '") + argv[i] + "'");
     else
       link.domain_id = static_cast<int>(domain);
