@@ -26,6 +26,7 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (e.ok) e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange);
   if (!e.ok) return e;
   m_fdir.init(m_params.navigation, model.boundingRadius(), camera.intrinsics().fx_px);
+  m_branch.init(m_params.navigation.branch_confirm_frames);
   m_last_command = CommandAck{};
   copyBounded("none", m_last_command.reason.data(), m_last_command.reason.size());
   return LoadError::success();
@@ -42,8 +43,23 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_have_pose = true;
   m_coasted = 0;
   m_filter.reset();
+  // The given pose starts the filter (start_pose_sigma_*): the first measurements are checked against it.
+  // Without it an ambiguous first fit (which never starts a track) left the filter empty and the prediction
+  // frozen at the start pose while the target approached (campaign box/26).
+  const NavigationParams& nav = m_params.navigation;
+  const double range = pose.t_c_m.norm();
+  if (nav.start_pose_sigma_deg > 0.0 && nav.start_pose_sigma_rel > 0.0 && range > 0.0) {
+    // sqrt(trace) is the configured sigma: a third of its square on each axis.
+    const double attitude_var = std::pow(nav.start_pose_sigma_deg * kRadPerDeg, 2) / 3.0;
+    const double position_var = std::pow(nav.start_pose_sigma_rel * range, 2) / 3.0;
+    Mat6 covariance = Mat6::Zero();
+    covariance.topLeftCorner<3, 3>() = attitude_var * Mat3::Identity();
+    covariance.bottomRightCorner<3, 3>() = position_var * Mat3::Identity();
+    m_filter.initialise(pose, covariance);
+  }
   m_near.reset();
   m_reacquisition.stop();
+  m_branch.setKnown();  // the operator's pose says which branch
   m_modes.transition(NavMode::kNearRange, "start: initial pose given", frame_number);
   m_fdir.resetPersistence();
 }
@@ -143,6 +159,15 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
   out.quality = quality;
 }
 
+void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
+  // track_branch.hpp says why. A fit without corners (point-to-line fallback) is not checked against its
+  // twin well enough to count as rival-free.
+  const bool rival_free = processed_in != NavMode::kNearRange ||
+                          (m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U;
+  const bool confirmed = processed_in == NavMode::kAcquisition || m_reacquisition_step.found;
+  out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
+}
+
 bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck& check) {
   // The filter judges the measurement (NIS gate), but an innovation fault alone never throws away a
   // measurement whose image evidence is good: the image wins and the filter restarts from it.
@@ -153,7 +178,11 @@ bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck&
     m_filter.initialise(r.pose, r.covariance);
     return true;
   }
-  const FilterUpdate u = m_filter.update(r.pose, r.covariance);
+  // Only a measurement with good image evidence may say the target moved more than the model allows (it
+  // then also restarts the filter below); a weak one that disagrees may simply be wrong.
+  const FilterUpdate u = m_filter.update(
+      r.pose, r.covariance,
+      check.evidence_good ? RejectedInnovation::kRaisesProcessNoise : RejectedInnovation::kIgnored);
   m_last_pose_update = u;
   check.innovation_checked = true;
   check.innovation_accepted = u.accepted;
@@ -297,6 +326,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
       case NavMode::kNearRange: runNearRange(frame->image, out.frame_number, out, in); break;
     }
   }
+  confirmBranch(mode_before, out);
   if (m_modes.step(in, out.frame_number)) enterMode(m_modes.mode());
   out.fault_bits = m_fdir.endFrame();
   if (m_clock != nullptr) out.timing.process_us = static_cast<double>(m_clock() - start) * 1e-3;

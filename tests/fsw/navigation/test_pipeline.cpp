@@ -143,6 +143,34 @@ TEST_F(PipelineTest, WeakEvidenceTheFilterRejectsIsNotDelivered) {
   }
 }
 
+TEST_F(PipelineTest, AGivenStartPoseStartsTheFilterSoTheFirstFitIsChecked) {
+  // With start_pose_sigma_* the operator's pose starts the filter at once (its attitude block's square root
+  // of the trace is the configured sigma) and the first frame's fit is a gated update (dof 6). With 0 the
+  // filter stays empty until the first fit starts it (no update that frame): campaign box/26 showed how that
+  // leaves the prediction frozen at the start pose when the first fits are ambiguous.
+  for (const double sigma_deg : {2.5, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.start_pose_sigma_deg = sigma_deg;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    EXPECT_EQ(pipeline.filter().initialised(), sigma_deg > 0.0);
+    if (sigma_deg > 0.0) {
+      const Mat6 c = pipeline.filter().poseCovariance();
+      EXPECT_NEAR(std::sqrt(c.topLeftCorner<3, 3>().trace()) * kDegPerRad, 2.5, 1e-9);
+      EXPECT_NEAR(std::sqrt(c.bottomRightCorner<3, 3>().trace()) / 26.0, 0.025, 1e-3);
+    }
+    const Frame f = frameAt(0);
+    NavSolution out;
+    ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+    EXPECT_TRUE(out.pose_valid) << "sigma " << sigma_deg;
+    EXPECT_EQ(pipeline.lastPoseUpdate().dof, sigma_deg > 0.0 ? 6 : 0) << "sigma " << sigma_deg;
+    if (sigma_deg > 0.0) {
+      EXPECT_TRUE(pipeline.lastPoseUpdate().accepted);
+    }
+  }
+}
+
 TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   // The same ten near-range frames under three limits on the pose's own 1-sigma attitude: one no fit
   // exceeds (this plate at 26 m is known to about 2.2 deg, near the 2.5 deg default), a limit below what any

@@ -134,5 +134,46 @@ TEST(PoseFilter, ProcessNoiseFollowsATumbleThatStartsAndDecaysBack) {
   }
 }
 
+// A measurement the caller cannot vouch for (weak image evidence) that is wrong the same way for several
+// frames, as after a slew onto the wrong edges (campaign smallsat/128): taken as unmodelled motion, its
+// rejected innovations raise the process noise until the gate lets it in; marked kIgnored, it stays out and
+// the noise stays nominal.
+TEST(PoseFilter, RepeatedWrongMeasurementGetsInOnlyWhenItMayTeachMotion) {
+  for (const RejectedInnovation mode :
+       {RejectedInnovation::kRaisesProcessNoise, RejectedInnovation::kIgnored}) {
+    PoseFilter f = makeFilter();
+    Pcg32 rng(11, 5);
+    const Mat6 cov = trackerLikeCovariance();
+    Truth truth;
+    truth.pose = Pose::fromYpr({0.2, 0.1, kPi}, Vec3(0.0, 0.0, 30.0));
+    ASSERT_EQ(f.initialise(truth.pose, cov), Status::kOk);
+    for (int k = 0; k < 30; ++k) {  // a steady track first
+      truth.step(kDt, 0.0, 0.0, rng);
+      ASSERT_EQ(f.predict(kDt), Status::kOk);
+      ASSERT_TRUE(f.update(measure(truth.pose, cov, rng), cov).accepted);
+    }
+    Vec6 wrong;
+    wrong << 0.0, 8.0 * kRadPerDeg, 0.0, 0.0, 0.0, 0.0;  // 8 deg off in attitude: far outside the gate
+    int first_accepted = -1;
+    for (int k = 0; k < 20 && first_accepted < 0; ++k) {
+      truth.step(kDt, 0.0, 0.0, rng);
+      ASSERT_EQ(f.predict(kDt), Status::kOk);
+      if (f.update(truth.pose.boxPlus(wrong), cov, mode).accepted) first_accepted = k;
+    }
+    std::printf("%s: wrong measurement first accepted at repeat %d, noise scale %.1f\n",
+                mode == RejectedInnovation::kIgnored ? "ignored" : "raises noise", first_accepted,
+                f.processNoiseScale());
+    if (mode == RejectedInnovation::kIgnored) {
+      // Only the prediction's own growth over the coasted frames (2 s and more) ever admits it; FDIR's
+      // persistence (5 frames by default) drops the track long before.
+      EXPECT_TRUE(first_accepted == -1 || first_accepted >= 10) << first_accepted;
+      EXPECT_DOUBLE_EQ(f.processNoiseScale(), 1.0);
+    } else {
+      EXPECT_GE(first_accepted, 1) << "control: the first repeat is rejected";
+      EXPECT_LE(first_accepted, 6) << "control: the raised noise lets the wrong measurement in";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace visnav::nav

@@ -33,6 +33,9 @@ struct NavigationParams {
   double evidence_min_edge_support = 0.5;     ///< inlier points / scanlines cast
   double max_valid_attitude_sigma_deg = 2.5;  ///< a pose less certain than this is not delivered as valid
   double max_valid_position_sigma_rel = 0.025;
+  double start_pose_sigma_deg = 2.5;    ///< 1-sigma (sqrt of trace) of a given start pose's attitude; 0: none
+  double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
+  int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
   int filter_diverged_rejections = 2;   ///< consecutive rejections of a clean track: restart the filter
   int far_filter_reset_rejections = 3;  ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
@@ -132,6 +135,28 @@ struct NavigationParams {
             "the same for the position: 1-sigma (square root of the trace) over the range; 0.025 puts 5 % "
             "of the range 2 sigma out; 0 switches the check off"},
            max_valid_position_sigma_rel);
+    v.real({"navigation", "start_pose_sigma_deg", "deg", 0.0, 180.0,
+            "a start pose given by the operator (startNearRange, visnav-replay --initial-pose) starts the "
+            "filter with this 1-sigma attitude uncertainty (square root of the trace), so the first "
+            "measurements are checked against it instead of starting a track on their own: an ambiguous "
+            "first fit no longer leaves the filter empty and the prediction frozen at the start pose "
+            "(campaign box/26: lost on frame 3 of a 0.5 m/frame approach, then 180 frames of search at "
+            "the start range); a measurement it rejects still wins with good image evidence; 0: the first "
+            "measurement starts the filter, as before"},
+           start_pose_sigma_deg);
+    v.real({"navigation", "start_pose_sigma_rel", "-", 0.0, 1.0,
+            "the same for the start pose's position: 1-sigma (square root of the trace) over the range"},
+           start_pose_sigma_rel);
+    v.integer(
+        {"navigation", "branch_confirm_frames", "count", 0, 1000,
+         "a track's branch (which of two mirror poses, e.g. a plate's two tilts) is known from the given "
+         "start pose, an acquisition or reacquisition confirmation, or this many consecutive valid "
+         "frames whose fit had corners and no mirrored rival; any frame without a valid pose loses it. "
+         "While it is unknown no pose is valid: a track carried through withheld frames can come out "
+         "on the mirror branch, fitting the image as well with a tight covariance (campaign "
+         "octagon/174: 26 withheld frames, then 66 valid ones 34-140 deg off); 0 switches the check "
+         "off"},
+        branch_confirm_frames);
     v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
                "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
                "filter from it"},

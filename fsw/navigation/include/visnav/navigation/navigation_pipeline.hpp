@@ -15,6 +15,7 @@
 #include "visnav/navigation/nav_solution.hpp"
 #include "visnav/navigation/navigation_params.hpp"
 #include "visnav/navigation/pose_filter.hpp"
+#include "visnav/navigation/track_branch.hpp"
 #include "visnav/nearrange/near_range_tracker.hpp"
 
 namespace visnav::nav {
@@ -70,6 +71,9 @@ class NavigationPipeline {
   Pose predictedPose() const;
   bool closeRange() const;
   void deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out);
+  /// The last word on validity: a pose is valid only while the track's mirror branch is known
+  /// (track_branch.hpp).
+  void confirmBranch(NavMode processed_in, NavSolution& out);
   bool fuseNearRange(const NearRangeResult& r, NearRangeCheck& check);
   void startReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                           ModeInputs& in);
@@ -95,7 +99,8 @@ class NavigationPipeline {
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
   Pose m_last_pose;                 ///< last trusted 6-DOF pose
   bool m_have_pose = false;
-  int m_coasted = 0;  ///< consecutive near-range frames the prediction filled in
+  int m_coasted = 0;     ///< consecutive near-range frames the prediction filled in
+  TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
   std::uint64_t m_frames_processed = 0;

@@ -18,6 +18,12 @@ namespace visnav::nav {
 using Vec12 = Eigen::Matrix<double, 12, 1>;
 using Mat12 = Eigen::Matrix<double, 12, 12>;
 
+/// What a gated-out 6-DOF innovation says about the motion model.
+enum class RejectedInnovation : std::uint8_t {
+  kRaisesProcessNoise,  ///< taken as unmodelled motion (a tumble that starts): the process noise adapts
+  kIgnored,             ///< the measurement itself may be wrong: its innovation teaches the filter nothing
+};
+
 /// Outcome of one measurement update.
 struct FilterUpdate {
   Status status = Status::kOk;  ///< kInvalidArgument: not initialised, non-finite or non-positive covariance
@@ -52,7 +58,11 @@ class PoseFilter {
   /// 6-DOF measurement (tracker pose and its 6x6 covariance over (omega, dt)). Innovation
   /// y = predicted.boxMinus(measured); rejected when NIS > pose_gate_chi2. Joseph-form covariance update.
   /// While the attitude is unknown, the measured attitude is adopted and only the position is gated/fused.
-  FilterUpdate update(const Pose& measured, const Mat6& covariance);
+  /// `rejected` says whether a gated-out innovation may raise the process noise (a caller that cannot vouch
+  /// for the measurement passes kIgnored: otherwise a wrong measurement repeated for a few frames inflates
+  /// the noise until the gate lets it in).
+  FilterUpdate update(const Pose& measured, const Mat6& covariance,
+                      RejectedInnovation rejected = RejectedInnovation::kRaisesProcessNoise);
   /// Position-only measurement, gated by position_gate_chi2.
   FilterUpdate updatePosition(const Vec3& t_c_m, const Mat3& covariance);
   /// Far-range measurement (unit direction, distance = t_c_m.z) through positionFromFarRange with the
@@ -79,7 +89,7 @@ class PoseFilter {
 
  private:
   void inject(const Vec12& dx);
-  void adaptProcessNoise(const FilterUpdate& result);
+  void adaptProcessNoise(const FilterUpdate& result, RejectedInnovation rejected);
   /// Adaptation constants: an exponential average of NIS / dof (weight 0.3: about the last 3 updates; on a
   /// consistent model it is 1 +- 0.24, so 2 is a 4-sigma event) above 2 raises the noise by 4x per frame
   /// (a tumble that starts is followed within 2-3 frames); otherwise it decays by 0.8x per frame (back to
