@@ -16,6 +16,7 @@ else
   packages+=(git clang-format cppcheck)        # static checks (scripts/lint.sh); CI runs format_check and cppcheck
   packages+=(clang libclang-rt-14-dev)         # fuzz targets (scripts/fuzz.sh): clang 14 with libFuzzer
   packages+=(help2man lintian)                 # man pages from --help at build time; the .deb's check
+  packages+=(python3)                          # tools/campaign/gate_replay.py (ctest campaign_gate_replay)
   packages+=(systemd)                          # systemd-analyze: the unit's sandbox rating (ctest unit_security)
   packages+=(octave octave-dev)                # Octave MEX (tools/matlab): octave-cli; mkoctfile (octave-dev = liboctave-dev)
   packages+=(debootstrap)                      # scripts/test-package.sh: a clean Debian 12 root for the .deb

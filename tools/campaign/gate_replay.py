@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Replays visnav's output gates over a campaign's frames.csv (visnav-campaign --frames).
+
+Whether a pose is delivered as valid does not feed back into the pipeline: the same frames are tracked, the
+same filter updated, whatever the gates decide. frames.csv records each frame's candidate pose (delivered or
+withheld) with its errors, its own sigmas and the tracker's flags, so a gate can be judged offline over a
+whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed, with the shipped defaults:
+
+  certainty   candidate with attitude 1-sigma <= --attitude-sigma-deg and position 1-sigma / range
+              <= --position-sigma-rel ([navigation] max_valid_attitude_sigma_deg / _position_sigma_rel)
+  branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
+              without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
+              frames whose tracker flags have none of --rival-flags, or an acquisition / reacquisition
+              confirmation (unless --no-confirmed-sources)
+  --max-nis   (not shipped) withhold frames whose filter NIS exceeds this
+
+Prints tracked mean and confidently wrong frames (scenes) per family, as visnav-campaign defines them.
+--check SCENES_CSV: with the gates as given, every scene's tracked and confidently wrong counts must equal
+the campaign's own (exit 1 otherwise): the replay's self-check, run by ctest campaign_gate_replay.
+"""
+import argparse
+import collections
+import csv
+import sys
+
+AMBIGUOUS = 0x400          # kFlagAmbiguous
+RESIDUAL_FALLBACK = 0x100  # kFlagResidualFallback
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    p.add_argument('frames_csv')
+    p.add_argument('--attitude-sigma-deg', type=float, default=2.5)
+    p.add_argument('--position-sigma-rel', type=float, default=0.025)
+    p.add_argument('--branch-confirm-frames', type=int, default=3)
+    p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
+    p.add_argument('--no-confirmed-sources', action='store_true')
+    p.add_argument('--break-after', type=int, default=1)
+    p.add_argument('--max-nis', type=float, default=0.0)
+    p.add_argument('--check', metavar='SCENES_CSV')
+    return p.parse_args(argv)
+
+
+def replay_scene(rows, a):
+    """Per-frame (valid, wrong) under the gates, in frame order."""
+    known, run, bad = True, 0, 0  # the near scenes start from a given pose: the branch is known
+    out = []
+    for r in rows:
+        certain = (r['candidate'] == '1' and float(r['attitude_sigma_deg']) <= a.attitude_sigma_deg
+                   and float(r['position_sigma_rel']) <= a.position_sigma_rel)
+        if certain and a.max_nis > 0 and r['nis'] and float(r['nis']) > a.max_nis:
+            certain = False
+        valid = certain
+        if a.branch_confirm_frames > 0:
+            if not certain:
+                bad += 1
+                run = 0
+                if bad >= a.break_after:
+                    known = False
+            else:
+                bad = 0
+                if not a.no_confirmed_sources and (r['mode'] == 'acquisition' or r['reacquired'] == '1'):
+                    known = True
+                rival_free = r['mode'] != 'near_range' or (int(r['near_flags']) & a.rival_flags) == 0
+                if not rival_free:
+                    run = 0
+                elif run < a.branch_confirm_frames:
+                    run += 1
+                    if run >= a.branch_confirm_frames:
+                        known = True
+                valid = known
+        range_m = float(r['range_m'])
+        wrong = valid and (float(r['candidate_position_error_m']) > 0.05 * range_m
+                           or float(r['candidate_attitude_error_deg']) > 5.0)
+        out.append((valid, wrong))
+    return out
+
+
+def main(argv):
+    a = parse_args(argv)
+    scenes = collections.OrderedDict()
+    with open(a.frames_csv, newline='') as f:
+        for r in csv.DictReader(f):
+            scenes.setdefault(r['scene'], []).append(r)
+    families = collections.OrderedDict()
+    per_scene = {}
+    for name, rows in scenes.items():
+        verdicts = replay_scene(rows, a)
+        expected = tracked = wrong = 0
+        for r, (valid, is_wrong) in zip(rows, verdicts):
+            wrong += is_wrong
+            if r['expected'] == '1':
+                expected += 1
+                tracked += valid and not is_wrong and r['mode'] in ('near_range', 'acquisition')
+        per_scene[name] = (tracked, wrong)
+        fam = families.setdefault(rows[0]['family'], {'fractions': [], 'wrong': 0, 'wrong_scenes': 0})
+        if expected > 0:
+            fam['fractions'].append(tracked / expected)
+        fam['wrong'] += wrong
+        fam['wrong_scenes'] += wrong > 0
+    total = {'fractions': [], 'wrong': 0, 'wrong_scenes': 0}
+    for fam in families.values():
+        for k in total:
+            total[k] += fam[k]
+    for name, fam in [('overall', total)] + list(families.items()):
+        mean = sum(fam['fractions']) / len(fam['fractions']) if fam['fractions'] else float('nan')
+        print(f"{name:9s} tracked mean {mean:.3f}  confidently wrong {fam['wrong']} ({fam['wrong_scenes']} scenes)")
+    if a.check:
+        mismatches = 0
+        with open(a.check, newline='') as f:
+            for r in csv.DictReader(f):
+                got = per_scene.get(r['name'])
+                want = (int(r['tracked']), int(r['confidently_wrong']))
+                if got != want:
+                    mismatches += 1
+                    print(f"check: {r['name']}: replay tracked/wrong {got}, campaign {want}", file=sys.stderr)
+        print(f"check: {len(per_scene)} scenes, {mismatches} differ from {a.check}")
+        return 1 if mismatches else 0
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))
