@@ -1,5 +1,7 @@
 #include "visnav/navigation/nav_solution.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace visnav::nav {
@@ -12,6 +14,14 @@ void copyBounded(const char* text, char* out, std::size_t capacity) {
     ++n;
   }
   std::memset(out + n, 0, capacity - n);
+}
+
+PoseSigmas poseSigmas(const Pose& pose, const Mat6& covariance) {
+  PoseSigmas s;
+  s.attitude_deg = std::sqrt(covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
+  s.position_rel =
+      std::sqrt(covariance.bottomRightCorner<3, 3>().trace()) / std::max(pose.t_c_m.norm(), 1e-9);
+  return s;
 }
 
 const char* toString(NavMode mode) {

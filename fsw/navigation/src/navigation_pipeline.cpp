@@ -147,12 +147,10 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
   // far out has an attitude the image barely constrains, and a pose wrong by degrees then looks as good as
   // a right one (campaign plate/12: 12 deg off from the true start, 3.9 deg 1-sigma).
   const NavigationParams& nav = m_params.navigation;
-  const double attitude_sigma_deg = std::sqrt(covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
-  const double position_sigma_rel =
-      std::sqrt(covariance.bottomRightCorner<3, 3>().trace()) / std::max(pose.t_c_m.norm(), 1e-9);
+  const PoseSigmas sigma = poseSigmas(pose, covariance);
   const bool certain =
-      (nav.max_valid_attitude_sigma_deg <= 0.0 || attitude_sigma_deg <= nav.max_valid_attitude_sigma_deg) &&
-      (nav.max_valid_position_sigma_rel <= 0.0 || position_sigma_rel <= nav.max_valid_position_sigma_rel);
+      (nav.max_valid_attitude_sigma_deg <= 0.0 || sigma.attitude_deg <= nav.max_valid_attitude_sigma_deg) &&
+      (nav.max_valid_position_sigma_rel <= 0.0 || sigma.position_rel <= nav.max_valid_position_sigma_rel);
   out.pose_valid = certain;
   out.pose = pose;
   out.covariance = covariance;

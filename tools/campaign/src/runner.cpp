@@ -174,9 +174,9 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     if (f.has_candidate) {
       f.candidate_position_error_m = (sol.pose.t_c_m - truth.t_c_m).norm();
       f.candidate_attitude_error_deg = attitudeErrorModuloDeg(sol.pose.R_c_m, truth.R_c_m, scene.symmetries);
-      f.attitude_sigma_deg = std::sqrt(sol.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
-      f.position_sigma_rel =
-          std::sqrt(sol.covariance.bottomRightCorner<3, 3>().trace()) / std::max(sol.pose.t_c_m.norm(), 1e-9);
+      const nav::PoseSigmas sigma = nav::poseSigmas(sol.pose, sol.covariance);  // as the pipeline judged it
+      f.attitude_sigma_deg = sigma.attitude_deg;
+      f.position_sigma_rel = sigma.position_rel;
     }
     f.near_flags = pipeline->lastNearRange().flags;
     f.lines_used = pipeline->lastNearRange().lines_used;

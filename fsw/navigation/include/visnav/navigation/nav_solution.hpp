@@ -72,6 +72,16 @@ struct NavSolution {
   StageTimes timing;
 };
 
+/// A 6-DOF pose's own 1-sigma uncertainties from its covariance over (omega, dt): the square root of the
+/// trace of the attitude block [deg] (the rms of the total rotation error), and that of the position block
+/// over the range. What `[navigation] max_valid_*` judge, and what the campaign records for its offline
+/// replay.
+struct PoseSigmas {
+  double attitude_deg = 0.0;
+  double position_rel = 0.0;
+};
+PoseSigmas poseSigmas(const Pose& pose, const Mat6& covariance);
+
 /// Timing statistics of one executive task, from fixed storage [us].
 struct TaskTimingSummary {
   double min_us = 0.0;
