@@ -152,6 +152,8 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
     return;
   }
   m_candidate = best.pose;
+  m_candidate_covariance = best.covariance;
+  m_candidate_moving = false;
   m_confirming = true;
   m_confirmed = 0;
   m_flight.reset();
@@ -159,15 +161,33 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
 }
 
 void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out) {
+  // The candidate moved on by a frame's motion: the last measured one once known. The wide tracker pulls it
+  // in over that motion where the flight tracker alone loses it (a target moving 16 px a frame, campaign
+  // cao/45); the flight tracker judges it as the hand-over will meet it. Flight first: among the many edges
+  // of a satellite the wide scanlines may catch a neighbour the flight tracker would not.
+  const Pose start = m_candidate_moving ? m_candidate.boxPlus(m_candidate_motion) : m_candidate;
   NearRangeResult r;
-  m_flight.track(image, m_candidate, frame_number, r);
-  const bool good = imageEvidenceGood(r, m_params);
-  const bool consistent = tolerance(r).holds(r.pose, m_candidate) && consistentWithPrediction(r.pose);
+  m_flight.track(image, start, frame_number, r);
+  bool good = imageEvidenceGood(r, m_params);
+  if (!good) {
+    NearRangeResult wide;
+    good = trackFrom(m_wide, image, start, frame_number, kPassesPerStart, wide);
+    if (good) {
+      m_flight.track(image, wide.pose, frame_number, r);
+      good = imageEvidenceGood(r, m_params);
+    }
+  }
+  const bool consistent = good && tolerance(r).holds(r.pose, start) && consistentWithPrediction(r.pose);
   if (!good || !consistent) {
     m_confirming = false;  // back to searching on the next frame
     return;
   }
+  out.previous_pose = m_candidate;
+  out.previous_covariance = m_candidate_covariance;
+  m_candidate_motion = m_candidate.boxMinus(r.pose);
+  m_candidate_moving = true;
   m_candidate = r.pose;
+  m_candidate_covariance = r.covariance;
   out.candidate = true;
   if (++m_confirmed < m_params.reacquire_confirm_frames) return;
   out.found = true;

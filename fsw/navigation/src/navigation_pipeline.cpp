@@ -210,7 +210,7 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
   if (step.found) {
     m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
     m_near.reset();
-    m_filter.initialise(step.pose, step.covariance);
+    startFilterFromReacquisition(step);
     m_fdir.resetPersistence();
     deliver(step.pose, step.covariance, step.quality, out);
   } else {
@@ -218,6 +218,31 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     in.reacquisition_timed_out =
         m_reacquisition.framesSearching() >= m_params.navigation.reacquire_timeout_frames;
   }
+}
+
+void NavigationPipeline::startFilterFromReacquisition(const ReacquisitionStep& step) {
+  // From the frame before, predicted over the exposure interval and corrected with this frame's pose, the
+  // filter leaves with the target's motion across the image instead of zero velocity, which a target moving
+  // 16 px a frame outran on the next frame (campaign cao/45). Only that lateral motion is taken: the frame
+  // before is set to this frame's attitude and range, because the difference of two single fits in
+  // attitude or depth is their noise (a 1 deg difference read as 5 deg/s turned the prediction 35 deg away
+  // over 20 frames of search, smallsat/72). A motion the filter rejects restarts it from this frame alone.
+  const double dt_s = m_previous_exposure_ns > 0
+                          ? static_cast<double>(m_last_exposure_ns - m_previous_exposure_ns) * 1e-9
+                          : 0.0;
+  const double range_m = step.pose.t_c_m.norm();
+  const double previous_range_m = step.previous_pose.t_c_m.norm();
+  if (dt_s > 0.0 && range_m > 0.0 && previous_range_m > 0.0) {
+    Pose before;
+    before.R_c_m = step.pose.R_c_m;
+    before.t_c_m = step.previous_pose.t_c_m * (range_m / previous_range_m);
+    if (m_filter.initialise(before, step.previous_covariance) == Status::kOk &&
+        m_filter.predict(dt_s) == Status::kOk) {
+      const FilterUpdate u = m_filter.update(step.pose, step.covariance, RejectedInnovation::kIgnored);
+      if (u.status == Status::kOk && u.accepted) return;
+    }
+  }
+  m_filter.initialise(step.pose, step.covariance);
 }
 
 void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
@@ -315,6 +340,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
       const double dt_s = static_cast<double>(frame->exposure_time_ns - m_last_exposure_ns) * 1e-9;
       if (dt_s > 0.0) m_filter.predict(dt_s);
     }
+    m_previous_exposure_ns = m_have_last_exposure ? m_last_exposure_ns : 0;
     m_have_last_exposure = true;
     m_last_exposure_ns = frame->exposure_time_ns;
     switch (mode_before) {

@@ -81,6 +81,30 @@ TEST_F(ReacquisitionTest, FindsASlewedTargetAndDeliversItOnlyAfterConfirmation) 
   EXPECT_FALSE(reacquisition.active());
 }
 
+TEST_F(ReacquisitionTest, ATargetCrossingTheImageIsConfirmedAndItsMotionReported) {
+  // 0.16 m a frame across the line of sight at 10 m and f = 1000 px: 16 px a frame, beyond the flight
+  // tracker's 10 px scanlines. The prediction stays where the track was lost (the filter had no velocity).
+  const Vec3 motion(0.16, 0.0, 0.0);
+  const Pose predicted = truth;
+  reacquisition.start();
+  int found_at = -1;
+  for (int i = 0; i < 8 && found_at < 0; ++i) {
+    Pose moved = truth;
+    moved.t_c_m += motion * i;
+    const test::RenderedFrame frame = test::renderFrame(renderer, moved, 20U + i);
+    ReacquisitionStep step;
+    reacquisition.step(frame.image(), predicted, static_cast<std::uint64_t>(i), step);
+    if (!step.found) continue;
+    found_at = i;
+    EXPECT_LT((step.pose.t_c_m - moved.t_c_m).norm(), 0.02) << "frame " << i;
+    // The frame before, from which the pipeline takes the target's motion for its filter.
+    EXPECT_LT((step.previous_pose.t_c_m - (moved.t_c_m - motion)).norm(), 0.02) << "frame " << i;
+    EXPECT_LT(rotationAngleRad(step.previous_pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0);
+  }
+  ASSERT_GE(found_at, 0) << "a target moving 16 px a frame was never confirmed";
+  EXPECT_LE(found_at, 3) << "found on frame 0, confirmed on the next two";
+}
+
 TEST_F(ReacquisitionTest, AnEmptyImageNeverYieldsAPoseAndTheSearchWidens) {
   synthetic::Renderer empty;
   ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);

@@ -194,6 +194,13 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     if (trace) {
       res.trace += traceLine(f, pipeline->lastNearRange(), u);
       if (pipeline->lastNearRange().lines_total > 0) res.trace += traceEdges(pipeline->nearRange(), truth);
+      if (pipeline->filter().initialised()) {
+        char buf[160];
+        std::snprintf(
+            buf, sizeof buf, "       filter: v=%.3f m/s w=%.2f deg/s, prediction for the next frame\n",
+            pipeline->filter().velocity().norm(), pipeline->filter().angularVelocity().norm() * 180.0 / kPi);
+        res.trace += buf;
+      }
       if (f.mode == nav::NavMode::kFarRange) {
         const far::FarRangeResult& fr = pipeline->lastFarRange();
         char buf[200];
@@ -205,13 +212,20 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       }
       const nav::ReacquisitionStep& rs = pipeline->lastReacquisition();
       if (rs.hypotheses > 0 || rs.candidate || rs.found) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf,
-                      "       reacq: starts=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
-                      "candidate=%d found=%d best_q=%.2f\n",
-                      rs.hypotheses, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
-                      rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
-                      rs.best_quality);
+        // The search is centred on the prediction: how far it is from the truth says whether the grid can
+        // reach the target at all.
+        const Pose predicted = pipeline->predictedPose();
+        char buf[260];
+        std::snprintf(
+            buf, sizeof buf,
+            "       reacq: starts=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
+            "candidate=%d found=%d best_q=%.2f pred_dp=%.3f pred_da=%.2f last_dp=%.3f last_da=%.2f\n",
+            rs.hypotheses, rs.search_radius_px, rs.starts_lost, rs.starts_weak, rs.starts_inconsistent,
+            rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0, rs.best_quality,
+            (predicted.t_c_m - truth.t_c_m).norm(),
+            attitudeErrorModuloDeg(predicted.R_c_m, truth.R_c_m, scene.symmetries),
+            (pipeline->lastTrustedPose().t_c_m - truth.t_c_m).norm(),
+            attitudeErrorModuloDeg(pipeline->lastTrustedPose().R_c_m, truth.R_c_m, scene.symmetries));
         res.trace += buf;
       }
     }

@@ -27,6 +27,11 @@ struct ReacquisitionStep {
   Pose pose;
   Mat6 covariance = Mat6::Zero();
   double quality = 0.0;
+  /// found: the confirmation's pose on the frame before (the target's motion between the two starts the
+  /// filter's velocity; a target moving 16 px a frame outruns the flight tracker's scanlines at zero
+  /// velocity).
+  Pose previous_pose;
+  Mat6 previous_covariance = Mat6::Zero();
   int hypotheses = 0;  ///< tracker starts tried this frame
   int search_radius_px = 0;
   // Why the starts of this frame were not taken (diagnostics: the campaign's --trace).
@@ -77,7 +82,10 @@ class LocalReacquisition {
   int m_cursor = 0;
   int m_confirmed = 0;
   Pose m_candidate;
-  Pose m_predicted;  ///< this frame's prediction (step())
+  Mat6 m_candidate_covariance = Mat6::Zero();
+  Vec6 m_candidate_motion = Vec6::Zero();  ///< per frame, between the last two confirmation frames
+  bool m_candidate_moving = false;         ///< m_candidate_motion measured
+  Pose m_predicted;                        ///< this frame's prediction (step())
 };
 
 }  // namespace visnav::nav

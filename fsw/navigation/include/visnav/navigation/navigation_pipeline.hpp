@@ -55,6 +55,11 @@ class NavigationPipeline {
   const far::FarRangeEstimator& farRange() const { return m_far; }
   const far::FarRangeResult& lastFarRange() const { return m_far_result; }
   const PoseFilter& filter() const { return m_filter; }
+  /// Where the next frame's tracker (or reacquisition search) starts: the filter's prediction once it knows
+  /// the attitude, else the last trusted pose.
+  Pose predictedPose() const;
+  /// The last pose the pipeline trusted (delivered, valid or not).
+  const Pose& lastTrustedPose() const { return m_last_pose; }
   /// This frame's 6-DOF measurement update of the filter (near range): `dof` 0 when there was none (no pose,
   /// or the filter was (re)started from it). Its `nis` is what the innovation gate judged.
   const FilterUpdate& lastPoseUpdate() const { return m_last_pose_update; }
@@ -68,7 +73,6 @@ class NavigationPipeline {
   void runAcquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void coast(NavSolution& out);
-  Pose predictedPose() const;
   bool closeRange() const;
   void deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out);
   /// The last word on validity: a pose is valid only while the track's mirror branch is known
@@ -78,6 +82,8 @@ class NavigationPipeline {
   void startReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                           ModeInputs& in);
   void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
+  /// Restarts the filter from a reacquisition's confirmation: its last two frames give the velocity.
+  void startFilterFromReacquisition(const ReacquisitionStep& step);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
 
@@ -103,6 +109,7 @@ class NavigationPipeline {
   TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
+  std::int64_t m_previous_exposure_ns = 0;  ///< the frame before the last one (0: none)
   std::uint64_t m_frames_processed = 0;
   std::int64_t m_nominal_frame_period_ns = 0;
   std::uint64_t m_cycles = 0;             ///< process() calls: NavSolution::cycle_number
