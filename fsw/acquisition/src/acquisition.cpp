@@ -81,11 +81,16 @@ void Acquisition::start(const FarRangeSolution& cue) {
 }
 
 void Acquisition::start(const Vec3& direction_c, double distance_m) {
+  start(direction_c, distance_m, m_params.direction_margin_deg);
+}
+
+void Acquisition::start(const Vec3& direction_c, double distance_m, double direction_margin_deg) {
   reset();
   const double norm = direction_c.norm();
   Vec2 centre_px;
   if (!direction_c.allFinite() || !(norm > 0.0) || !(direction_c.z() / norm > 0.05) ||
-      !std::isfinite(distance_m) || !(distance_m > 0.0) || !m_camera.project(direction_c / norm, centre_px)) {
+      !(direction_margin_deg >= 0.0 && direction_margin_deg < 80.0) || !std::isfinite(distance_m) ||
+      !(distance_m > 0.0) || !m_camera.project(direction_c / norm, centre_px)) {
     fail(AcquisitionFailure::kInvalidCue);
     return;
   }
@@ -96,7 +101,7 @@ void Acquisition::start(const Vec3& direction_c, double distance_m) {
   const double range = distance_m / m_cue_direction.z();
   const double nearest = range / (1.0 + m_params.range_span_rel);
   const double half_px = m_params.window_margin * k.fx_px * m_bounding_radius_m / nearest +
-                         k.fx_px * std::tan(m_params.direction_margin_deg * kRadPerDeg);
+                         k.fx_px * std::tan(direction_margin_deg * kRadPerDeg);
   const double expected_radius_px = k.fx_px * m_bounding_radius_m / range;
   const int scale = std::max(1, static_cast<int>(expected_radius_px / m_params.working_radius_px + 0.5));
   m_window.setWindow(centre_px, half_px, scale);
@@ -250,6 +255,7 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
     m_last.covariance = m_verified[0].covariance;
     m_last.quality = m_verified[0].quality;
     m_last.rms_px = m_verified[0].rms_px;
+    m_last.flags = 0U;
     m_state = AcquisitionState::kSucceeded;
     return;
   }
@@ -373,6 +379,7 @@ Status Acquisition::step(const MonoImage& image, std::uint64_t frame_number, Acq
     out.covariance = m_last.covariance;
     out.quality = m_last.quality;
     out.rms_px = m_last.rms_px;
+    out.tracker_flags = m_last.flags;
   }
   return status;
 }

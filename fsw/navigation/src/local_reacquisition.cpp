@@ -182,6 +182,7 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
     m_confirming = false;  // back to searching on the next frame
     return;
   }
+  out.has_previous = true;
   out.previous_pose = m_candidate;
   out.previous_covariance = m_candidate_covariance;
   m_candidate_motion = m_candidate.boxMinus(r.pose);

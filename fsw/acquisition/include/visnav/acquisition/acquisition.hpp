@@ -49,10 +49,11 @@ struct AcquisitionResult {
   Mat6 covariance = Mat6::Zero();  ///< tracker covariance over (omega, dt) of `pose`
   double quality = 0.0;
   double rms_px = 0.0;
-  int frames = 0;             ///< frames stepped since start()
-  int hypotheses_scored = 0;  ///< this step
-  int hypotheses_done = 0;    ///< since start()
-  int hypotheses_total = 0;   ///< attitude grid x range steps
+  std::uint32_t tracker_flags = 0;  ///< succeeded: the confirming tracker's TrackFlag bits on the last frame
+  int frames = 0;                   ///< frames stepped since start()
+  int hypotheses_scored = 0;        ///< this step
+  int hypotheses_done = 0;          ///< since start()
+  int hypotheses_total = 0;         ///< attitude grid x range steps
   int candidates_verified = 0;
   int score_evaluations = 0;  ///< this step, including refinement
   int tracker_calls = 0;      ///< this step
@@ -84,6 +85,9 @@ class Acquisition {
 
   /// Begins a new acquisition from a cue: direction_c (unit, camera frame) and distance_m (t_c_m.z).
   void start(const Vec3& direction_c, double distance_m);
+  /// The same with the direction error covered given for this start (degrees, >= 0) instead of
+  /// `direction_margin_deg`: a cue from a track lost some frames ago is less certain than a far-range fix.
+  void start(const Vec3& direction_c, double distance_m, double direction_margin_deg);
   void start(const FarRangeSolution& cue);
   void reset();
 

@@ -30,9 +30,14 @@ struct ReacquisitionStep {
   /// found: the confirmation's pose on the frame before (the target's motion between the two starts the
   /// filter's velocity; a target moving 16 px a frame outruns the flight tracker's scanlines at zero
   /// velocity).
+  bool has_previous = false;  ///< previous_pose is set (not after an acquisition's find)
   Pose previous_pose;
   Mat6 previous_covariance = Mat6::Zero();
-  int hypotheses = 0;  ///< tracker starts tried this frame
+  /// found by the acquisition that searches alongside after reacquire_acquisition_after_frames
+  /// (navigation_pipeline.cpp), not by the local grid.
+  bool by_acquisition = false;
+  int acquisition_state = -1;  ///< that acquisition's AcquisitionState this frame (-1: not run)
+  int hypotheses = 0;          ///< tracker starts tried this frame
   int search_radius_px = 0;
   // Why the starts of this frame were not taken (diagnostics: the campaign's --trace).
   int starts_lost = 0;          ///< the wide tracker lost the target from the start
@@ -50,6 +55,10 @@ class LocalReacquisition {
   bool active() const { return m_active; }
   int framesSearching() const { return m_frames; }
   const ModelSymmetries& symmetries() const { return m_symmetries; }
+  /// The candidate keeps the last step's predicted range and look (attitude seen along its own line of
+  /// sight, modulo symmetries) within tolerances that widen with the frames searched: a slew or a missed
+  /// prediction moves the target across the image, but does not turn it over or move it in depth.
+  bool consistentWithPrediction(const Pose& candidate) const;
 
   /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
   void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
@@ -59,10 +68,7 @@ class LocalReacquisition {
   Pose hypothesis(const Pose& predicted, int index) const;
   /// One hypothesis: within one frame's motion plus what the tracker cannot resolve around `r`.
   PoseTolerance tolerance(const NearRangeResult& r) const;
-  /// The candidate keeps the predicted range and look (attitude seen along its own line of sight, modulo
-  /// symmetries) within tolerances that widen with the frames searched: a slew or a missed prediction moves
-  /// the target across the image, but does not turn it over or move it in depth.
-  bool consistentWithPrediction(const Pose& candidate) const;
+
   static int hypothesesWithinRings(int rings) { return 1 + 3 * rings * (rings + 1); }
   bool trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
                  std::uint64_t frame_number, int passes, NearRangeResult& result) const;

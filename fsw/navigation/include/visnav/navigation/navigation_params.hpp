@@ -47,9 +47,10 @@ struct NavigationParams {
   double reacquire_range_tolerance_rel = 0.05;     ///< a candidate's range against the prediction's
   double reacquire_attitude_tolerance_deg = 15.0;  ///< its attitude in the line-of-sight frame
   double reacquire_tolerance_growth_deg_per_frame = 1.0;
-  double reacquire_max_motion_rel = 0.05;   ///< confirmation: position change / range per frame
-  double reacquire_max_rotation_deg = 5.0;  ///< confirmation: attitude change per frame
-  int reacquire_timeout_frames = 300;       ///< searching longer: hand over to far range
+  double reacquire_max_motion_rel = 0.05;      ///< confirmation: position change / range per frame
+  double reacquire_max_rotation_deg = 5.0;     ///< confirmation: attitude change per frame
+  int reacquire_timeout_frames = 300;          ///< searching longer: hand over to far range
+  int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches, cued by the prediction
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -206,6 +207,12 @@ struct NavigationParams {
     v.integer({"navigation", "reacquire_timeout_frames", "count", 1, 100000,
                "close-range reacquisition searching longer than this hands over to far range"},
               reacquire_timeout_frames);
+    v.integer({"navigation", "reacquire_acquisition_after_frames", "count", 0, 100000,
+               "close-range reacquisition: after this many frames without a find, acquisition (attitude grid "
+               "x range steps) also searches each frame, cued by the filter's prediction with the lateral "
+               "search radius as its direction margin: an approaching or tumbling target leaves the "
+               "prediction's range and look, which the local search keeps (0: never)"},
+              reacquire_acquisition_after_frames);
   }
 
   /// The hand-over distances with the derived ones filled in (0 = derive) for a target of

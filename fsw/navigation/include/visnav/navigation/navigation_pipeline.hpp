@@ -84,11 +84,15 @@ class NavigationPipeline {
   void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   /// Restarts the filter from a reacquisition's confirmation: its last two frames give the velocity.
   void startFilterFromReacquisition(const ReacquisitionStep& step);
+  /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
+  /// searches too, cued by the prediction; its find is delivered as the step's.
+  void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
 
   PinholeCamera m_camera;
   PipelineParams m_params;
+  double m_model_radius_m = 0.0;  ///< the model's bounding radius
   MonotonicClockNs m_clock = nullptr;
   ModeManager m_modes;
   FdirMonitor m_fdir;
