@@ -258,8 +258,11 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
   // that approaches, recedes or tumbles while lost leaves it for good (on the campaign's longest searches
   // the prediction was > 5 % off in range on 58 % of the frames and > 10 deg in attitude on 60 %). The
   // acquisition searches attitude and range around the prediction's line of sight instead, its window as
-  // wide as the local search has grown (up to two target radii beyond the target). It runs in near range
-  // only while the reacquisition is active; a failed attempt restarts from the next frame's prediction.
+  // wide as the local search has grown, up to one target radius more (the lateral offset is the local
+  // grid's job, and the acquisition re-centres on the window's edges; a window twice as wide coarsened its
+  // working image and the right pose's edge agreement fell to 0.55, below the 0.7 it must keep). It runs in
+  // near range only while the reacquisition is active; a failed attempt restarts from the next frame's
+  // prediction.
   const int after = m_params.navigation.reacquire_acquisition_after_frames;
   if (after <= 0 || m_reacquisition.framesSearching() < after) return;
   const acq::AcquisitionState state = m_acquisition.state();
@@ -270,7 +273,7 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
     if (!(range_m > 0.0) || !(predicted.t_c_m.z() > 0.0)) return;
     const double focal_px = m_camera.intrinsics().fx_px;
     const double target_radius_px = focal_px * m_model_radius_m / range_m;
-    const double margin_px = std::min(static_cast<double>(step.search_radius_px), 2.0 * target_radius_px);
+    const double margin_px = std::min(static_cast<double>(step.search_radius_px), target_radius_px);
     m_acquisition.start(
         predicted.t_c_m / range_m, predicted.t_c_m.z(),
         m_params.acquisition.direction_margin_deg + std::atan(margin_px / focal_px) * kDegPerRad);

@@ -5,6 +5,7 @@
 // the tracker keeps.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <iterator>
 
@@ -160,6 +161,17 @@ TEST_F(PlateAcquisitionTest, InvalidCueFailsAtOnce) {
   EXPECT_EQ(acquisition.state(), AcquisitionState::kFailed);
   acquisition.start(Vec3(0.0, 0.0, 1.0), -5.0);
   EXPECT_EQ(acquisition.state(), AcquisitionState::kFailed);
+  // A direction margin given for the start (the close-range cue from a lost track) must be a real angle.
+  for (const double margin_deg : {-1.0, 80.0, std::nan("")}) {
+    acquisition.start(Vec3(0.0, 0.0, 1.0), 10.0, margin_deg);
+    EXPECT_EQ(acquisition.state(), AcquisitionState::kFailed) << margin_deg;
+  }
+  acquisition.start(Vec3(0.0, 0.0, 1.0), 10.0, 5.0);
+  EXPECT_EQ(acquisition.state(), AcquisitionState::kSearching);
+  const int wide = acquisition.window().width() * acquisition.window().scale();
+  acquisition.start(Vec3(0.0, 0.0, 1.0), 10.0);
+  EXPECT_LT(acquisition.window().width() * acquisition.window().scale(), wide)
+      << "the default 2 deg margin covers less than 5 deg";
 }
 
 TEST_F(PlateAcquisitionTest, WrongImageSizeIsSkippedAndEachStepIsBounded) {

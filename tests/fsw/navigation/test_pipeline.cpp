@@ -215,6 +215,72 @@ TEST_F(PipelineTest, AReacquisitionStartsTheFilterWithTheTargetsMotion) {
   EXPECT_EQ(valid_after, frames_after) << "the track held after the reacquisition";
 }
 
+TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcquisition) {
+  // Tracked at 15 m, hidden for 10 frames (an eclipse) while it comes 3 m closer and turns 20 deg: the
+  // prediction stays at 15 m (the filter had no motion to extrapolate), so the local search's candidates
+  // are 20 % off its range and never taken. After reacquire_acquisition_after_frames the acquisition,
+  // cued by the prediction's line of sight, searches range and attitude and finds it.
+  constexpr int kVisibleFrom = 13;
+  std::vector<test::RenderedFrame> seq;
+  synthetic::Renderer empty;
+  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  for (int i = 0; i < 30; ++i) {
+    if (i < 3) {
+      seq.push_back(test::renderFrame(renderer, test::plateAt(15.0, 0.3, 1.0, -1.0), 400U + i));
+    } else if (i < kVisibleFrom) {
+      Pose behind = test::plateAt(15.0, 0.3, 1.0, -1.0);
+      behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+      seq.push_back(test::renderFrame(empty, behind, 400U + i));
+      seq.back().truth = test::plateAt(15.0, 0.3, 1.0, -1.0);
+    } else {
+      seq.push_back(test::renderFrame(renderer, test::plateAt(12.0, 0.3, 25.0, -15.0), 400U + i));
+    }
+  }
+  for (const int after : {5, 0}) {
+    PipelineParams p = params;
+    p.navigation.reacquire_acquisition_after_frames = after;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int found_at = -1;
+    int valid_after = 0;
+    for (int i = 0; i < 30; ++i) {
+      Frame f;
+      f.image = seq[static_cast<std::size_t>(i)].image();
+      f.exposure_time_ns = 200000000LL * i;
+      f.sequence = static_cast<std::uint64_t>(i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (i < kVisibleFrom) {
+        EXPECT_FALSE(out.pose_valid && i >= 4) << "frame " << i << ": nothing to see";
+        continue;
+      }
+      if (found_at < 0 && pipeline.lastReacquisition().found) {
+        found_at = i;
+        EXPECT_TRUE(pipeline.lastReacquisition().by_acquisition);
+      }
+      if (out.pose_valid) {
+        ++valid_after;
+        const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
+        // Modulo the plate's half-turn symmetry about its normal.
+        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
+                      kDegPerRad,
+                  2.0)
+            << "frame " << i;
+      }
+    }
+    if (after > 0) {
+      ASSERT_GE(found_at, kVisibleFrom) << "never found again";
+      EXPECT_LE(found_at, kVisibleFrom + 8);
+      EXPECT_GE(valid_after, 30 - found_at - 1);
+    } else {
+      EXPECT_LT(found_at, 0) << "the local search alone took a candidate 20 % off the predicted range";
+      EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
 TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   // The same ten near-range frames under three limits on the pose's own 1-sigma attitude: one no fit
   // exceeds (this plate at 26 m is known to about 2.2 deg, near the 2.5 deg default), a limit below what any
