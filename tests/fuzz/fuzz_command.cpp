@@ -19,7 +19,7 @@ void requireTerminated(const std::array<char, N>& text) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace visnav;
   nav::NavigationParams params;
-  params.acquire_below_m = 30.0;  // the hand-over the pipeline derives for the plate (README, "Modes")
+  params.acquire_below_m = 30.0;  // a hand-over as the pipeline derives for a plate (README, "Modes")
   params.far_range_above_m = 40.0;
   nav::ModeManager modes;
   if (!modes.init(params).ok) __builtin_trap();

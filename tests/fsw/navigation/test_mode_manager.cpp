@@ -24,15 +24,24 @@ ModeInputs nearAt(double d) {
   return in;
 }
 
-// The derived hand-over for a 1.5 m target seen at f = 1000 px: acquire below 30 m, fall back above 40 m.
-NavigationParams plateHandover() { return NavigationParams{}.withDerivedHandover(1.5, 1000.0); }
+// A hand-over derived for a 1.5 m target seen at f = 1000 px at a 50 px radius: acquire below 30 m, fall
+// back above 40 m (round distances for the transitions the tests walk through).
+NavigationParams plateHandover() {
+  NavigationParams p;
+  p.handover_radius_px = 50.0;
+  return p.withDerivedHandover(1.5, 1000.0);
+}
 
 TEST(ModeManager, HandOverDistancesAreDerivedFromTheTargetsApparentSize) {
   const NavigationParams plate = plateHandover();
   EXPECT_DOUBLE_EQ(plate.acquire_below_m, 30.0);
   EXPECT_DOUBLE_EQ(plate.far_range_above_m, 40.0);
-  const NavigationParams sat = NavigationParams{}.withDerivedHandover(5.87, 1000.0);  // panels: 117 m
-  EXPECT_NEAR(sat.acquire_below_m, 117.4, 1e-9);
+  // The default 35 px: 42.9 m / 57.1 m for the plate, 168 m for the 5.87 m satellite with panels.
+  const NavigationParams plate_default = NavigationParams{}.withDerivedHandover(1.5, 1000.0);
+  EXPECT_NEAR(plate_default.acquire_below_m, 1500.0 / 35.0, 1e-9);
+  EXPECT_NEAR(plate_default.far_range_above_m, 4.0 / 3.0 * 1500.0 / 35.0, 1e-6);
+  const NavigationParams sat = NavigationParams{}.withDerivedHandover(5.87, 1000.0);
+  EXPECT_NEAR(sat.acquire_below_m, 5870.0 / 35.0, 1e-9);
   NavigationParams fixed;
   fixed.acquire_below_m = 20.0;
   fixed.far_range_above_m = 25.0;
