@@ -25,13 +25,15 @@ class PipelineTest : public ::testing::Test {
     // gamma for this plate (visnav-calibrate-gamma on approach_ci prints 2011): far range then reads ~26 m.
     params.farrange.gamma = 2011.0;
   }
-  Frame frameAt(int i) const {
+  /// Frame i of a rendered sequence at 5 Hz (exposure 200 ms apart, sequence number i).
+  static Frame frameOf(const std::vector<test::RenderedFrame>& sequence, int i) {
     Frame f;
-    f.image = frames[static_cast<std::size_t>(i)].image();
+    f.image = sequence[static_cast<std::size_t>(i)].image();
     f.exposure_time_ns = 200000000LL * i;
     f.sequence = static_cast<std::uint64_t>(i);
     return f;
   }
+  Frame frameAt(int i) const { return frameOf(frames, i); }
   static constexpr int kFrames = 60;
   PolygonModel model;
   synthetic::Renderer renderer;
@@ -188,10 +190,7 @@ TEST_F(PipelineTest, AReacquisitionStartsTheFilterWithTheTargetsMotion) {
   int frames_after = 0;
   int valid_after = 0;
   for (int i = 0; i < 16; ++i) {
-    Frame f;
-    f.image = moving[static_cast<std::size_t>(i)].image();
-    f.exposure_time_ns = 200000000LL * i;
-    f.sequence = static_cast<std::uint64_t>(i);
+    const Frame f = frameOf(moving, i);
     NavSolution out;
     ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
     if (reacquired_at < 0 && pipeline.lastReacquisition().found) {
@@ -245,10 +244,7 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
     int found_at = -1;
     int valid_after = 0;
     for (int i = 0; i < 30; ++i) {
-      Frame f;
-      f.image = seq[static_cast<std::size_t>(i)].image();
-      f.exposure_time_ns = 200000000LL * i;
-      f.sequence = static_cast<std::uint64_t>(i);
+      const Frame f = frameOf(seq, i);
       NavSolution out;
       ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
       if (i < kVisibleFrom) {
