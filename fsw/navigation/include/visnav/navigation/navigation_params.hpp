@@ -50,7 +50,7 @@ struct NavigationParams {
   double reacquire_max_motion_rel = 0.05;      ///< confirmation: position change / range per frame
   double reacquire_max_rotation_deg = 5.0;     ///< confirmation: attitude change per frame
   int reacquire_timeout_frames = 300;          ///< searching longer: hand over to far range
-  int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches, cued by the prediction
+  int reacquire_acquisition_after_frames = 0;  ///< then acquisition also searches (0: never; off: below)
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -209,12 +209,16 @@ struct NavigationParams {
     v.integer({"navigation", "reacquire_timeout_frames", "count", 1, 100000,
                "close-range reacquisition searching longer than this hands over to far range"},
               reacquire_timeout_frames);
-    v.integer({"navigation", "reacquire_acquisition_after_frames", "count", 0, 100000,
-               "close-range reacquisition: after this many frames without a find, acquisition (attitude grid "
-               "x range steps) also searches each frame, cued by the filter's prediction with the lateral "
-               "search radius as its direction margin: an approaching or tumbling target leaves the "
-               "prediction's range and look, which the local search keeps (0: never)"},
-              reacquire_acquisition_after_frames);
+    v.integer(
+        {"navigation", "reacquire_acquisition_after_frames", "count", 0, 100000,
+         "close-range reacquisition: after this many frames without a find, acquisition (attitude grid "
+         "x range steps) also searches each frame, cued by the filter's prediction with the lateral "
+         "search radius as its direction margin: an approaching or tumbling target leaves the "
+         "prediction's range and look, which the local search keeps (0: never, the default: on the full "
+         "campaign 5 tracked 0.562 of the expected frames instead of 0.516, but delivered 561 "
+         "confidently wrong frames instead of 396, most of them boxes found on a mirrored or "
+         "wrong-range pose that then tracked consistently)"},
+        reacquire_acquisition_after_frames);
   }
 
   /// The hand-over distances with the derived ones filled in (0 = derive) for a target of
