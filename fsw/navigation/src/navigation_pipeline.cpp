@@ -26,7 +26,6 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (e.ok) e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange);
   if (!e.ok) return e;
   m_fdir.init(m_params.navigation, model.boundingRadius(), camera.intrinsics().fx_px);
-  m_model_radius_m = model.boundingRadius();
   m_branch.init(m_params.navigation.branch_confirm_frames);
   m_last_command = CommandAck{};
   copyBounded("none", m_last_command.reason.data(), m_last_command.reason.size());
@@ -272,7 +271,7 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
     const double range_m = predicted.t_c_m.norm();
     if (!(range_m > 0.0) || !(predicted.t_c_m.z() > 0.0)) return;
     const double focal_px = m_camera.intrinsics().fx_px;
-    const double target_radius_px = focal_px * m_model_radius_m / range_m;
+    const double target_radius_px = focal_px * m_near.model().boundingRadius() / range_m;
     const double margin_px = std::min(static_cast<double>(step.search_radius_px), target_radius_px);
     m_acquisition.start(
         predicted.t_c_m / range_m, predicted.t_c_m.z(),

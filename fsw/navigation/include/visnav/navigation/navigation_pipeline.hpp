@@ -92,7 +92,6 @@ class NavigationPipeline {
 
   PinholeCamera m_camera;
   PipelineParams m_params;
-  double m_model_radius_m = 0.0;  ///< the model's bounding radius
   MonotonicClockNs m_clock = nullptr;
   ModeManager m_modes;
   FdirMonitor m_fdir;
