@@ -8,6 +8,10 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
 
   certainty   candidate with attitude 1-sigma <= --attitude-sigma-deg and position 1-sigma / range
               <= --position-sigma-rel ([navigation] max_valid_attitude_sigma_deg / _position_sigma_rel)
+  doubt       a near-range candidate the filter's innovation gate rejected (fault bit 0x10) or that used
+              fewer than --doubt-min-line-fraction of its selected lines needs attitude 1-sigma <=
+              --doubted-attitude-sigma-deg ([navigation] doubted_max_attitude_sigma_deg /
+              doubt_min_line_fraction; 0 switches it off)
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
               frames whose tracker flags have none of --rival-flags, or an acquisition / reacquisition
@@ -25,6 +29,7 @@ import sys
 
 AMBIGUOUS = 0x400          # kFlagAmbiguous
 RESIDUAL_FALLBACK = 0x100  # kFlagResidualFallback
+FAULT_INNOVATION = 0x10    # kFaultInnovation
 
 
 def parse_args(argv):
@@ -32,6 +37,8 @@ def parse_args(argv):
     p.add_argument('frames_csv')
     p.add_argument('--attitude-sigma-deg', type=float, default=2.5)
     p.add_argument('--position-sigma-rel', type=float, default=0.025)
+    p.add_argument('--doubted-attitude-sigma-deg', type=float, default=1.0)
+    p.add_argument('--doubt-min-line-fraction', type=float, default=0.75)
     p.add_argument('--branch-confirm-frames', type=int, default=3)
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
     p.add_argument('--no-confirmed-sources', action='store_true')
@@ -48,6 +55,11 @@ def replay_scene(rows, a):
     for r in rows:
         certain = (r['candidate'] == '1' and float(r['attitude_sigma_deg']) <= a.attitude_sigma_deg
                    and float(r['position_sigma_rel']) <= a.position_sigma_rel)
+        if certain and a.doubted_attitude_sigma_deg > 0 and r['mode'] == 'near_range' and r['reacquired'] != '1':
+            doubted = (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
+                int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total']))
+            if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
+                certain = False
         if certain and a.max_nis > 0 and r['nis'] and float(r['nis']) > a.max_nis:
             certain = False
         valid = certain

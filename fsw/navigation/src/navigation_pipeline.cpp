@@ -138,7 +138,8 @@ bool NavigationPipeline::closeRange() const {
   return m_last_pose.t_c_m.z() <= m_params.navigation.far_range_above_m;
 }
 
-void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out) {
+void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out,
+                                 bool doubted) {
   m_coasted = 0;
   m_last_pose = pose;
   m_have_pose = true;
@@ -147,9 +148,17 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
   // far out has an attitude the image barely constrains, and a pose wrong by degrees then looks as good as
   // a right one (campaign plate/12: 12 deg off from the true start, 3.9 deg 1-sigma).
   const NavigationParams& nav = m_params.navigation;
+  // A doubted pose (the filter disputes it, or part of its outline was not found) must be better determined:
+  // a fit on the wrong edges has few of them and weak geometry, its covariance knows the noise but not the
+  // bias (smallsat/83: 1.5 deg 1-sigma, 12 deg off).
   const PoseSigmas sigma = poseSigmas(pose, covariance);
+  double attitude_limit_deg = nav.max_valid_attitude_sigma_deg;
+  if (doubted && nav.doubted_max_attitude_sigma_deg > 0.0)
+    attitude_limit_deg = attitude_limit_deg > 0.0
+                             ? std::min(attitude_limit_deg, nav.doubted_max_attitude_sigma_deg)
+                             : nav.doubted_max_attitude_sigma_deg;
   const bool certain =
-      (nav.max_valid_attitude_sigma_deg <= 0.0 || sigma.attitude_deg <= nav.max_valid_attitude_sigma_deg) &&
+      (attitude_limit_deg <= 0.0 || sigma.attitude_deg <= attitude_limit_deg) &&
       (nav.max_valid_position_sigma_rel <= 0.0 || sigma.position_rel <= nav.max_valid_position_sigma_rel);
   out.pose_valid = certain;
   out.pose = pose;
@@ -329,7 +338,10 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   if (!dropped && accepted) {
     // A fault (e.g. the innovation gate on a measurement the image supports) is flagged in fault_bits and
     // halves the quality; it does not swap the measurement for the prediction.
-    deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out);
+    const bool doubted = (faults & kFaultInnovation) != 0U ||
+                         static_cast<double>(r.lines_used) <
+                             m_params.navigation.doubt_min_line_fraction * static_cast<double>(r.lines_total);
+    deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out, doubted);
   } else if (dropped && closeRange()) {
     startReacquisition(image, frame_number, out, in);
   } else {

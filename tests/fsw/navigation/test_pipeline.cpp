@@ -117,9 +117,11 @@ TEST_F(PipelineTest, WeakEvidenceTheFilterRejectsIsNotDelivered) {
   // Ten frames of a steady approach in near range, then the plate jumps 0.15 m sideways (6 px: within the
   // tracker's reach, far outside the filter's prediction, so the NIS gate rejects it). With good image
   // evidence the measurement wins and the filter restarts; when no frame's evidence counts as good
-  // (evidence_max_rms_px tiny), the disputed measurement must not be delivered as valid.
+  // (evidence_max_rms_px tiny), the disputed measurement must not be delivered as valid. The doubted-pose
+  // limit is off here (its own test follows).
   for (const bool weak : {false, true}) {
     PipelineParams p = params;
+    p.navigation.doubted_max_attitude_sigma_deg = 0.0;
     if (weak) p.navigation.evidence_max_rms_px = 1e-9;
     NavigationPipeline pipeline;
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
@@ -142,6 +144,51 @@ TEST_F(PipelineTest, WeakEvidenceTheFilterRejectsIsNotDelivered) {
       ASSERT_TRUE(out.pose_valid);
       EXPECT_NEAR(out.pose.t_c_m.x(), 0.25, 0.02);  // the image's pose, not the prediction's
     }
+  }
+}
+
+TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
+  // The same jump with good image evidence: the measurement wins and the track follows it, but the filter
+  // disputes it and a plate at 25 m on VGA has about 2 deg attitude 1-sigma, above the doubted-pose limit
+  // (1 deg), so that frame is withheld. Once the fits agree with the restarted filter again the branch is
+  // confirmed and the poses are valid. With a limit above the pose's sigma the disputed frame is valid.
+  for (const double limit_deg : {1.0, 2.4}) {
+    PipelineParams p = params;
+    p.navigation.doubted_max_attitude_sigma_deg = limit_deg;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    NavSolution out;
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameAt(i);
+      pipeline.process(&f, f.exposure_time_ns, out);
+    }
+    ASSERT_TRUE(out.pose_valid) << "limit " << limit_deg;
+    Frame f = frameAt(10);
+    const test::RenderedFrame jumped =
+        test::renderFrame(renderer, test::plateAt(25.0, 0.25, 1.0, -1.0), 777U);
+    f.image = jumped.image();
+    pipeline.process(&f, f.exposure_time_ns, out);
+    ASSERT_NE(out.fault_bits & kFaultInnovation, 0U);
+    const double sigma_deg = std::sqrt(out.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
+    ASSERT_GT(sigma_deg, 1.0);
+    ASSERT_LT(sigma_deg, 2.4);
+    EXPECT_NEAR(out.pose.t_c_m.x(), 0.25, 0.02) << "limit " << limit_deg;  // tracked either way
+    EXPECT_EQ(out.pose_valid, limit_deg > sigma_deg) << "limit " << limit_deg;
+    // The target stays where it jumped: no more doubt, and after the branch confirmation it is valid.
+    int valid = 0;
+    for (int i = 11; i < 16; ++i) {
+      Frame g = frameAt(i);
+      const test::RenderedFrame still =
+          test::renderFrame(renderer, test::plateAt(25.0, 0.25, 1.0, -1.0), 800U + static_cast<unsigned>(i));
+      g.image = still.image();
+      pipeline.process(&g, g.exposure_time_ns, out);
+      EXPECT_EQ(out.fault_bits & kFaultInnovation, 0U) << "frame " << i;
+      valid += out.pose_valid ? 1 : 0;
+    }
+    EXPECT_TRUE(out.pose_valid) << "limit " << limit_deg;
+    EXPECT_EQ(valid, limit_deg > sigma_deg ? 5 : 5 - (params.navigation.branch_confirm_frames - 1))
+        << "limit " << limit_deg;
   }
 }
 

@@ -74,7 +74,8 @@ class NavigationPipeline {
   void runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void coast(NavSolution& out);
   bool closeRange() const;
-  void deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out);
+  void deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out,
+               bool doubted = false);
   /// The last word on validity: a pose is valid only while the track's mirror branch is known
   /// (track_branch.hpp).
   void confirmBranch(NavMode processed_in, NavSolution& out);
