@@ -211,6 +211,56 @@ TEST(EdgeDetector, BandSamplesAverageAlongTheEdge) {
   EXPECT_FALSE(sampleScanlineBand(image, Vec2(1.0, 4.5), Vec2(0.0, 1.0), 2, 1, band));  // column -0.5
 }
 
+TEST(EdgeDetector, BandSamplingIsExactlyThePerSampleBilinearEverywhere) {
+  // The band sampler checks the band's corners once and then samples without per-sample checks: its values
+  // must equal sampleBrightness's bit for bit, and a band that leaves the image anywhere must still fail,
+  // at random centres, directions and depths, near and across the borders.
+  constexpr int kW = 40, kH = 30;
+  std::uint8_t pixels8[kW * kH];
+  std::uint16_t pixels16[kW * kH];
+  Pcg32 rng(7U, 3U);
+  for (int i = 0; i < kW * kH; ++i) {
+    pixels8[i] = static_cast<std::uint8_t>(rng.uniform() * 255.0);
+    pixels16[i] = static_cast<std::uint16_t>(rng.uniform() * 4095.0);
+  }
+  const MonoImage images[2] = {MonoImage::from8(ImageView8(pixels8, kW, kH)),
+                               MonoImage::from16(ImageView16(pixels16, kW, kH), 4095)};
+  int inside = 0, outside = 0;
+  for (const MonoImage& image : images) {
+    for (int trial = 0; trial < 4000; ++trial) {
+      const Vec2 centre(-2.0 + rng.uniform() * (kW + 4.0), -2.0 + rng.uniform() * (kH + 4.0));
+      const double angle = rng.uniform() * 6.283185307179586;
+      const Vec2 direction(std::cos(angle), std::sin(angle));
+      const int half = 1 + static_cast<int>(rng.uniform() * 8.0);
+      const int band = 1 + static_cast<int>(rng.uniform() * 3.0);
+      double got[kMaxScanlineSamples];
+      const bool ok = sampleScanlineBand(image, centre, direction, half, band, got);
+      const Vec2 along(-direction.y(), direction.x());
+      bool want_ok = true;
+      double want[kMaxScanlineSamples];
+      for (int k = -half; k <= half && want_ok; ++k) {
+        const Vec2 p = centre + static_cast<double>(k) * direction;
+        double sum = 0.0;
+        for (int j = -band; j <= band && want_ok; ++j) {
+          double v = 0.0;
+          want_ok = sampleBrightness(image, p + static_cast<double>(j) * along, v);
+          sum += v;
+        }
+        want[k + half] = sum * (1.0 / (2 * band + 1));
+      }
+      ASSERT_EQ(ok, want_ok) << "trial " << trial;
+      if (!ok) {
+        ++outside;
+        continue;
+      }
+      ++inside;
+      for (int k = 0; k <= 2 * half; ++k) ASSERT_EQ(got[k], want[k]) << "trial " << trial << " k " << k;
+    }
+  }
+  EXPECT_GT(inside, 1000);  // both branches exercised
+  EXPECT_GT(outside, 1000);
+}
+
 TEST(EdgeDetector, TextureLikelihoodIsDirichletMultinomial) {
   // All samples in one bin: p = prod_k (1 + k) / (bins + k).
   double s[6] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
