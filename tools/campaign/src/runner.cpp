@@ -203,11 +203,18 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       }
       if (f.mode == nav::NavMode::kFarRange) {
         const far::FarRangeResult& fr = pipeline->lastFarRange();
-        char buf[200];
+        char buf[260];
+        // dir_err: the fix's line of sight against the target's (deg); rad: the target's angular radius
+        // (deg).
+        const double dir_err_deg =
+            std::acos(std::clamp(fr.direction_c.dot(truth.t_c_m.normalized()), -1.0, 1.0)) * 180.0 / kPi;
+        const double radius_deg = std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * 180.0 / kPi;
         std::snprintf(buf, sizeof buf,
-                      "       far: valid=%d n=%d raw=%d clusters=%d flags=%04x d=%.1f c=%.3f q=%.2f\n",
+                      "       far: valid=%d n=%d raw=%d clusters=%d flags=%04x d=%.1f c=%.3f q=%.2f "
+                      "dir_err=%.2fdeg rad=%.2fdeg\n",
                       fr.valid ? 1 : 0, fr.cluster_pixels, fr.raw_pixels, fr.cluster_count,
-                      static_cast<unsigned>(fr.flags), fr.distance_m, fr.circularity, fr.quality);
+                      static_cast<unsigned>(fr.flags), fr.distance_m, fr.circularity, fr.quality, dir_err_deg,
+                      radius_deg);
         res.trace += buf;
       }
       const nav::ReacquisitionStep& rs = pipeline->lastReacquisition();
