@@ -5,56 +5,15 @@
 
 namespace visnav {
 
-bool sampleBrightness(const MonoImage& image, const Vec2& p, double& value) {
-  // Continuous coordinates have pixel centres at +0.5 (CONVENTIONS.md).
-  const double xs = p.x() - 0.5;
-  const double ys = p.y() - 0.5;
-  // Non-negative (and not NaN) first: truncation is then floor, without a library call.
-  if (!(xs >= 0.0 && ys >= 0.0 && xs < image.width() - 1.0 && ys < image.height() - 1.0)) return false;
-  const int x0 = static_cast<int>(xs);
-  const int y0 = static_cast<int>(ys);
-  const double ax = xs - static_cast<double>(x0);
-  const double ay = ys - static_cast<double>(y0);
-  double v00, v10, v01, v11;
-  if (image.depth == MonoImage::Depth::kU8) {
-    const std::uint8_t* r0 = image.u8.row(y0) + x0;
-    const std::uint8_t* r1 = image.u8.row(y0 + 1) + x0;
-    v00 = r0[0];
-    v10 = r0[1];
-    v01 = r1[0];
-    v11 = r1[1];
-  } else {
-    const std::uint16_t* r0 = image.u16.row(y0) + x0;
-    const std::uint16_t* r1 = image.u16.row(y0 + 1) + x0;
-    v00 = r0[0];
-    v10 = r0[1];
-    v01 = r1[0];
-    v11 = r1[1];
-  }
-  const double top = v00 + ax * (v10 - v00);
-  const double bottom = v01 + ax * (v11 - v01);
-  value = (top + ay * (bottom - top)) / static_cast<double>(image.max_code);
-  return true;
-}
-
-bool sampleScanline(const MonoImage& image, const Vec2& centre, const Vec2& direction, int half_length,
-                    double* samples) {
-  for (int k = -half_length; k <= half_length; ++k) {
-    if (!sampleBrightness(image, centre + static_cast<double>(k) * direction, samples[k + half_length]))
-      return false;
-  }
-  return true;
-}
-
 namespace {
 
-// sampleBrightness without its bounds check and depth dispatch, the same arithmetic in the same order (the
-// result is bit-identical): the caller has checked that every sample point lies inside.
+// Bilinear brightness at p in [0, 1] without a bounds check: the caller has checked that the four pixels
+// around p exist (sampleBrightness per sample, bandInside once per band), so both paths give the same bits.
 template <typename PixelT>
 inline double sampleInside(const ImageView<PixelT>& view, double max_code, const Vec2& p) {
   const double xs = p.x() - 0.5;
   const double ys = p.y() - 0.5;
-  // xs, ys > 0 here, so truncation is floor (std::floor is a library call without SSE4.1).
+  // xs, ys >= 0 here, so truncation is floor (std::floor is a library call without SSE4.1).
   const int x0 = static_cast<int>(xs);
   const int y0 = static_cast<int>(ys);
   const double ax = xs - static_cast<double>(x0);
@@ -104,6 +63,27 @@ bool bandInside(const MonoImage& image, const Vec2& centre, const Vec2& directio
 }
 
 }  // namespace
+
+bool sampleBrightness(const MonoImage& image, const Vec2& p, double& value) {
+  // Continuous coordinates have pixel centres at +0.5 (CONVENTIONS.md). The four pixels around p exist
+  // when 0 <= p - 0.5 < size - 1 (checked in this form, NaN fails it).
+  const double xs = p.x() - 0.5;
+  const double ys = p.y() - 0.5;
+  if (!(xs >= 0.0 && ys >= 0.0 && xs < image.width() - 1.0 && ys < image.height() - 1.0)) return false;
+  const double max_code = static_cast<double>(image.max_code);
+  value = image.depth == MonoImage::Depth::kU8 ? sampleInside(image.u8, max_code, p)
+                                               : sampleInside(image.u16, max_code, p);
+  return true;
+}
+
+bool sampleScanline(const MonoImage& image, const Vec2& centre, const Vec2& direction, int half_length,
+                    double* samples) {
+  for (int k = -half_length; k <= half_length; ++k) {
+    if (!sampleBrightness(image, centre + static_cast<double>(k) * direction, samples[k + half_length]))
+      return false;
+  }
+  return true;
+}
 
 bool sampleScanlineBand(const MonoImage& image, const Vec2& centre, const Vec2& direction, int half_length,
                         int band_half_width, double* samples) {
