@@ -14,8 +14,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               doubt_min_line_fraction; 0 switches it off)
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
-              frames whose tracker flags have none of --rival-flags (an acquisition frame counts as one),
-              or a close-range reacquisition confirmation (unless --no-confirmed-sources)
+              frames whose tracker flags have none of --rival-flags, or an acquisition / reacquisition
+              confirmation (unless --no-confirmed-sources)
   --max-nis   (not shipped) withhold frames whose filter NIS exceeds this
 
 Prints tracked mean and confidently wrong frames (scenes) per family, as visnav-campaign defines them.
@@ -71,7 +71,7 @@ def replay_scene(rows, a):
                     known = False
             else:
                 bad = 0
-                if not a.no_confirmed_sources and r['reacquired'] == '1':
+                if not a.no_confirmed_sources and (r['mode'] == 'acquisition' or r['reacquired'] == '1'):
                     known = True
                 rival_free = r['mode'] != 'near_range' or (int(r['near_flags']) & a.rival_flags) == 0
                 if not rival_free:

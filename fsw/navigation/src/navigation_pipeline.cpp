@@ -171,11 +171,7 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // twin well enough to count as rival-free.
   const bool rival_free = processed_in != NavMode::kNearRange ||
                           (m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U;
-  // A close-range reacquisition confirms the branch it found: it searched around the last trusted pose and
-  // refitted rivals. An acquisition does not: its window at hand-over size lets another face at another
-  // distance confirm as well (campaign box/39: 107 deg off with a 0.34 deg 1-sigma, then tracked on three
-  // corners), so its pose counts as the first of the rival-free frames the branch needs.
-  const bool confirmed = m_reacquisition_step.found;
+  const bool confirmed = processed_in == NavMode::kAcquisition || m_reacquisition_step.found;
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
 }
 

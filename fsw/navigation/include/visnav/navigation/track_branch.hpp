@@ -6,9 +6,8 @@
 // apart, but only while it is unbroken: carried through withheld or lost frames, a track can come out on the
 // twin's branch, and then every frame fits with a tight covariance while wrong by tens of degrees (campaign
 // octagon/174: 26 withheld frames, then 66 valid ones 34-140 deg off). So:
-//   - the branch is known at start (the operator's pose) and after a confirmed close-range reacquisition
-//     (several frames around the last trusted pose, rivals refitted); an acquisition's pose only counts as
-//     the first rival-free frame (navigation_pipeline.cpp, confirmBranch);
+//   - the branch is known at start (the operator's pose) and after a confirmed acquisition or close-range
+//     reacquisition (several frames, rivals refitted);
 //   - any frame without a valid pose makes it unknown;
 //   - confirm_frames consecutive valid frames whose fit is rival-free make it known again;
 //   - while it is unknown no pose is valid.
@@ -29,7 +28,7 @@ class TrackBranch {
     m_rival_free_run = 0;
   }
   /// One frame. `valid`: the pose passed every other check; `rival_free`: its fit had corners and no
-  /// mirrored rival; `confirmed`: it comes from a reacquisition confirmation. Returns
+  /// mirrored rival; `confirmed`: it comes from an acquisition or reacquisition confirmation. Returns
   /// whether the pose may be delivered as valid.
   bool step(bool valid, bool rival_free, bool confirmed) {
     if (m_confirm_frames <= 0) return valid;
