@@ -76,7 +76,7 @@ std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const 
       f.frame, f.range_m, nav::toString(f.mode), static_cast<int>(near.status), near.flags, near.lines_used,
       near.lines_total, near.silhouette_lines, near.scanlines, near.inlier_points, near.texture_points,
       near.weak_step_points, near.vertices, near.rms_px, near.quality,
-      std::sqrt(near.covariance.topLeftCorner<3, 3>().trace()) * 180.0 / kPi,
+      std::sqrt(near.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad,
       std::sqrt(near.covariance.bottomRightCorner<3, 3>().trace()) / std::max(f.range_m, 1e-9),
       update.status == Status::kOk ? "" : "-", update.status == Status::kOk ? update.nis : 0.0,
       static_cast<unsigned>(f.fault_bits), f.pose_valid ? 1 : 0,
@@ -198,7 +198,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         char buf[160];
         std::snprintf(
             buf, sizeof buf, "       filter: v=%.3f m/s w=%.2f deg/s, prediction for the next frame\n",
-            pipeline->filter().velocity().norm(), pipeline->filter().angularVelocity().norm() * 180.0 / kPi);
+            pipeline->filter().velocity().norm(), pipeline->filter().angularVelocity().norm() * kDegPerRad);
         res.trace += buf;
       }
       if (f.mode == nav::NavMode::kFarRange) {
@@ -207,8 +207,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         // dir_err: the fix's line of sight against the target's (deg); rad: the target's angular radius
         // (deg).
         const double dir_err_deg =
-            std::acos(std::clamp(fr.direction_c.dot(truth.t_c_m.normalized()), -1.0, 1.0)) * 180.0 / kPi;
-        const double radius_deg = std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * 180.0 / kPi;
+            std::acos(std::clamp(fr.direction_c.dot(truth.t_c_m.normalized()), -1.0, 1.0)) * kDegPerRad;
+        const double radius_deg = std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * kDegPerRad;
         std::snprintf(buf, sizeof buf,
                       "       far: valid=%d n=%d raw=%d clusters=%d flags=%04x d=%.1f c=%.3f q=%.2f "
                       "dir_err=%.2fdeg rad=%.2fdeg\n",
@@ -234,7 +234,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             (predicted.t_c_m - truth.t_c_m).norm(),
             attitudeErrorModuloDeg(predicted.R_c_m, truth.R_c_m, scene.symmetries),
             std::acos(std::clamp(predicted.t_c_m.normalized().dot(truth.t_c_m.normalized()), -1.0, 1.0)) *
-                180.0 / kPi,
+                kDegPerRad,
             predicted.t_c_m.norm() / truth.t_c_m.norm() - 1.0,
             (pipeline->lastTrustedPose().t_c_m - truth.t_c_m).norm(),
             attitudeErrorModuloDeg(pipeline->lastTrustedPose().R_c_m, truth.R_c_m, scene.symmetries),
