@@ -63,6 +63,19 @@ TEST(Daemon, PublishesWhatThePipelineComputesForEveryFrame) {
   options.wait_subscribers = 1;
   options.apply_realtime = false;
   ASSERT_EQ(daemon.init(config, options), kExitOk) << log.text();
+  // The writers keep the last [telemetry] history_depth samples (8): a reader that falls further behind loses
+  // the oldest, by design (the newest pose matters in flight). On a loaded machine the in-process reader does
+  // fall behind a replay that runs as fast as it can (seen in CI: 77 of 80 poses), so the frames are cycled
+  // one at a time, each cycle's samples acknowledged before the next; run() then takes the end-of-stream
+  // cycle. Discovery is two-sided too: init() waited for the writers to match the readers; a reader that has
+  // not matched the writer yet drops what it sends.
+  for (int i = 0; i < 1000 && !ground.allReadersMatched(); ++i)  // bounded: 10 s
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(ground.allReadersMatched());
+  for (int cycle = 0; cycle < kFrames; ++cycle) {
+    ASSERT_EQ(daemon.executive().run(1), exec::StopReason::kCycleLimit) << cycle;
+    ASSERT_TRUE(daemon.telemetryWriter().waitForAcks(10'000'000'000LL)) << cycle;
+  }
   ASSERT_EQ(daemon.run(), kExitOk);
 
   // Reference: the same pipeline driven directly over the same frames at their recorded times.

@@ -69,6 +69,10 @@ class TelemetryDds : public ::testing::Test {
     for (Topic t : {Topic::kPose, Topic::kFarRange, Topic::kHealth})
       ASSERT_TRUE(waitForReaders(ddsWriter(writer, t), 1, 5 * kSecond)) << topicName(t);
     ASSERT_TRUE(waitForReaders(ground.commandWriter(), 1, 5 * kSecond));
+    // Discovery is two-sided: until a reader has matched the writer too, it drops what that writer sends.
+    for (Topic t : {Topic::kPose, Topic::kFarRange, Topic::kHealth})
+      ASSERT_TRUE(waitForWriters(ground.reader(t), 1, 5 * kSecond)) << topicName(t);
+    ASSERT_TRUE(waitForWriters(ddsReader(commands), 1, 5 * kSecond));
   }
 
   TelemetryParams params;
@@ -82,7 +86,12 @@ TEST_F(TelemetryDds, PoseAndFarRangeRoundTripFieldByField) {
   connectGround();
   constexpr std::uint64_t kCount = 22;  // covers tracking, degraded, lost and far-range solutions
   const std::int64_t before = monotonicNowNs();
-  for (std::uint64_t i = 1; i <= kCount; ++i) ASSERT_TRUE(writer.publishNav(test::makeNavSolution(i)));
+  // Each acknowledged before the next: the writer keeps only the last history_depth (8) samples, and a reader
+  // on a loaded machine can fall that far behind a burst.
+  for (std::uint64_t i = 1; i <= kCount; ++i) {
+    ASSERT_TRUE(writer.publishNav(test::makeNavSolution(i)));
+    ASSERT_TRUE(writer.waitForAcks(10 * kSecond)) << i;
+  }
   const std::int64_t after = monotonicNowNs();
   const auto poses = receivePose(ground, kCount, 10 * kSecond);
   const auto fars = receiveFar(ground, kCount, 10 * kSecond);
