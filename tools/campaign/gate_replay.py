@@ -8,8 +8,10 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
 
   certainty   candidate with attitude 1-sigma <= --attitude-sigma-deg and position 1-sigma / range
               <= --position-sigma-rel ([navigation] max_valid_attitude_sigma_deg / _position_sigma_rel)
-  doubt       a near-range candidate the filter's innovation gate rejected (fault bit 0x10) or that used
-              fewer than --doubt-min-line-fraction of its selected lines needs attitude 1-sigma <=
+  doubt       a near-range candidate the filter's innovation gate rejected (fault bit 0x10), that used
+              fewer than --doubt-min-line-fraction of its selected lines, or whose track began with a
+              reacquisition's find and has not yet had a pose within the doubted limit
+              needs attitude 1-sigma <=
               --doubted-attitude-sigma-deg ([navigation] doubted_max_attitude_sigma_deg /
               doubt_min_line_fraction; 0 switches it off)
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
@@ -51,15 +53,23 @@ def parse_args(argv):
 def replay_scene(rows, a):
     """Per-frame (valid, wrong) under the gates, in frame order."""
     known, run, bad = True, 0, 0  # the near scenes start from a given pose: the branch is known
+    track_doubted = False  # the track began with a find and none of its poses met the doubted limit yet
     out = []
     for r in rows:
+        if r['reacquired'] == '1':
+            track_doubted = True
+        elif r['mode'] == 'acquisition':
+            track_doubted = False
         certain = (r['candidate'] == '1' and float(r['attitude_sigma_deg']) <= a.attitude_sigma_deg
                    and float(r['position_sigma_rel']) <= a.position_sigma_rel)
-        if certain and a.doubted_attitude_sigma_deg > 0 and r['mode'] == 'near_range' and r['reacquired'] != '1':
-            doubted = (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
+        if certain and a.doubted_attitude_sigma_deg > 0 and r['mode'] == 'near_range':
+            doubted = track_doubted or (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
                 int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total']))
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
+        if (r['mode'] == 'near_range' and r['candidate'] == '1' and a.doubted_attitude_sigma_deg > 0
+                and float(r['attitude_sigma_deg']) <= a.doubted_attitude_sigma_deg):
+            track_doubted = False
         if certain and a.max_nis > 0 and r['nis'] and float(r['nis']) > a.max_nis:
             certain = False
         valid = certain

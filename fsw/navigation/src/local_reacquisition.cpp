@@ -70,18 +70,22 @@ Pose LocalReacquisition::hypothesis(const Pose& predicted, int index) const {
   return h;
 }
 
-bool LocalReacquisition::consistentWithPrediction(const Pose& candidate) const {
-  const double range = m_predicted.t_c_m.norm();
+bool LocalReacquisition::agrees(const Pose& reference, const Pose& candidate, std::uint64_t frames,
+                                bool check_range) const {
+  const double range = reference.t_c_m.norm();
   if (!(range > 0.0) || !(candidate.t_c_m.norm() > 0.0)) return false;
-  // The prediction turned about the camera centre onto the candidate's line of sight: what a slew does.
-  const Mat3 r = rotationBetween(m_predicted.t_c_m / range, candidate.t_c_m.normalized());
+  // The reference turned about the camera centre onto the candidate's line of sight: what a slew does.
+  const Mat3 r = rotationBetween(reference.t_c_m / range, candidate.t_c_m.normalized());
   Pose aligned;
-  aligned.R_c_m = r * m_predicted.R_c_m;
-  aligned.t_c_m = r * m_predicted.t_c_m;
+  aligned.R_c_m = r * reference.R_c_m;
+  aligned.t_c_m = r * reference.t_c_m;
   PoseTolerance tol;
-  tol.position_m = m_params.reacquire_range_tolerance_rel * range;
+  // Turned onto the candidate's line of sight, the reference differs from it in position by the range
+  // difference alone: a tolerance beyond both ranges leaves the look as the only test.
+  tol.position_m =
+      check_range ? m_params.reacquire_range_tolerance_rel * range : 2.0 * (range + candidate.t_c_m.norm());
   tol.attitude_rad = (m_params.reacquire_attitude_tolerance_deg +
-                      m_params.reacquire_tolerance_growth_deg_per_frame * m_frames) *
+                      m_params.reacquire_tolerance_growth_deg_per_frame * static_cast<double>(frames)) *
                      kRadPerDeg;
   return m_symmetries.equivalent(candidate, aligned, tol);
 }

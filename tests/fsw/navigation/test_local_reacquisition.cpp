@@ -105,6 +105,30 @@ TEST_F(ReacquisitionTest, ATargetCrossingTheImageIsConfirmedAndItsMotionReported
   EXPECT_LE(found_at, 3) << "found on frame 0, confirmed on the next two";
 }
 
+TEST_F(ReacquisitionTest, TheLookCheckIgnoresRangeAndSlewButNotATurnAndWidensWithAge) {
+  // What the close-range acquisition's find must keep against the last valid pose: the attitude seen along
+  // its own line of sight, within reacquire_attitude_tolerance_deg (15) + 1 deg per frame since that pose.
+  const Pose reference = truth;
+  Pose slewed_closer = slewed(6.0);  // elsewhere in the image and 30 % closer: same look
+  slewed_closer.t_c_m *= 0.7;
+  EXPECT_TRUE(reacquisition.lookConsistentWith(reference, 0, slewed_closer));
+  // The box's half turn about its own axes is a symmetry (ModelSymmetries): the same look.
+  Pose twin = truth;
+  twin.R_c_m = truth.R_c_m * expSo3(Vec3::UnitZ() * kPi);
+  EXPECT_TRUE(reacquisition.lookConsistentWith(reference, 0, twin));
+  // Turned onto another face (a quarter turn, campaign box/160 was re-found 89 deg off): refused 11 frames
+  // after the last valid pose (26 deg allowed), taken after 80 frames (95 deg: the target may have turned).
+  Pose other_face = truth;
+  other_face.R_c_m = truth.R_c_m * expSo3(Vec3::UnitX() * (0.5 * kPi));
+  EXPECT_FALSE(reacquisition.lookConsistentWith(reference, 11, other_face));
+  EXPECT_TRUE(reacquisition.lookConsistentWith(reference, 80, other_face));
+  // A 20 deg turn: beyond the base tolerance, within it after 6 frames.
+  Pose turned = truth;
+  turned.R_c_m = expSo3(Vec3::UnitY() * (20.0 * kRadPerDeg)) * truth.R_c_m;
+  EXPECT_FALSE(reacquisition.lookConsistentWith(reference, 0, turned));
+  EXPECT_TRUE(reacquisition.lookConsistentWith(reference, 6, turned));
+}
+
 TEST_F(ReacquisitionTest, AnEmptyImageNeverYieldsAPoseAndTheSearchWidens) {
   synthetic::Renderer empty;
   ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);

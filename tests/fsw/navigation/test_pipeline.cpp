@@ -34,6 +34,27 @@ class PipelineTest : public ::testing::Test {
     return f;
   }
   Frame frameAt(int i) const { return frameOf(frames, i); }
+  /// Tracked at 15 m for 3 frames, then hidden for 10 frames (an eclipse: background and noise only) while
+  /// the plate comes 3 m closer and turns 20 deg; visible again from frame kHiddenUntil on (30 frames).
+  static constexpr int kHiddenUntil = 13;
+  std::vector<test::RenderedFrame> hiddenApproach() {
+    std::vector<test::RenderedFrame> seq;
+    synthetic::Renderer empty;
+    EXPECT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    for (int i = 0; i < 30; ++i) {
+      if (i < 3) {
+        seq.push_back(test::renderFrame(renderer, test::plateAt(15.0, 0.3, 1.0, -1.0), 400U + i));
+      } else if (i < kHiddenUntil) {
+        Pose behind = test::plateAt(15.0, 0.3, 1.0, -1.0);
+        behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+        seq.push_back(test::renderFrame(empty, behind, 400U + i));
+        seq.back().truth = test::plateAt(15.0, 0.3, 1.0, -1.0);
+      } else {
+        seq.push_back(test::renderFrame(renderer, test::plateAt(12.0, 0.3, 25.0, -15.0), 400U + i));
+      }
+    }
+    return seq;
+  }
   /// Ten frames of the steady approach from the start pose, then frame 10 with the plate 0.15 m (6 px)
   /// sideways of where the motion says: within the tracker's reach, far outside the filter's prediction.
   /// `steady` is the last steady frame's solution, `out` the jumped frame's.
@@ -265,22 +286,8 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
   // prediction stays at 15 m (the filter had no motion to extrapolate), so the local search's candidates
   // are 20 % off its range and never taken. After reacquire_acquisition_after_frames the acquisition,
   // cued by the prediction's line of sight, searches range and attitude and finds it.
-  constexpr int kVisibleFrom = 13;
-  std::vector<test::RenderedFrame> seq;
-  synthetic::Renderer empty;
-  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-  for (int i = 0; i < 30; ++i) {
-    if (i < 3) {
-      seq.push_back(test::renderFrame(renderer, test::plateAt(15.0, 0.3, 1.0, -1.0), 400U + i));
-    } else if (i < kVisibleFrom) {
-      Pose behind = test::plateAt(15.0, 0.3, 1.0, -1.0);
-      behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
-      seq.push_back(test::renderFrame(empty, behind, 400U + i));
-      seq.back().truth = test::plateAt(15.0, 0.3, 1.0, -1.0);
-    } else {
-      seq.push_back(test::renderFrame(renderer, test::plateAt(12.0, 0.3, 25.0, -15.0), 400U + i));
-    }
-  }
+  constexpr int kVisibleFrom = kHiddenUntil;
+  const std::vector<test::RenderedFrame> seq = hiddenApproach();
   for (const int after : {5, 0}) {
     PipelineParams p = params;
     p.navigation.reacquire_acquisition_after_frames = after;
@@ -319,6 +326,51 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
     } else {
       EXPECT_LT(found_at, 0) << "the local search alone took a candidate 20 % off the predicted range";
       EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
+TEST_F(PipelineTest, AReacquiredTrackIsDoubtedUntilOneOfItsPosesMeetsTheDoubtedLimit) {
+  // A find has no track behind it yet: its pose, and the track continued from it, are doubted until one of
+  // them has an attitude 1-sigma within doubted_max_attitude_sigma_deg. The plate re-found at 12 m meets the
+  // default (1 deg) at once; no fit meets 1e-4 deg, so that track is followed but never valid; 0 switches
+  // the doubt off.
+  const std::vector<test::RenderedFrame> seq = hiddenApproach();
+  for (const double doubted_limit_deg : {1.0, 1e-4, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.doubted_max_attitude_sigma_deg = doubted_limit_deg;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int found_at = -1;
+    bool valid_when_found = false;
+    int valid_after = 0;
+    int tracked_after = 0;
+    // The local search and the close-range acquisition run in near range after init's allocations.
+    const std::uint64_t allocations_before = test::allocationCount();
+    for (int i = 0; i < 30; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (i < kHiddenUntil) continue;
+      if (found_at < 0 && pipeline.lastReacquisition().found) {
+        found_at = i;
+        valid_when_found = out.pose_valid;
+      } else if (found_at >= 0) {
+        valid_after += out.pose_valid ? 1 : 0;
+        tracked_after += pipeline.lastNearRange().status != TrackStatus::kLost ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(test::allocationCount() - allocations_before, 0U) << "malloc counted: " << test::countsMalloc();
+    ASSERT_GE(found_at, kHiddenUntil) << "never found again";
+    const int after = 30 - found_at - 1;
+    EXPECT_GE(tracked_after, after - 2) << "limit " << doubted_limit_deg << ": the find is tracked on";
+    if (doubted_limit_deg == 1e-4) {
+      EXPECT_FALSE(valid_when_found);
+      EXPECT_EQ(valid_after, 0) << "the doubt stays with the track";
+    } else {
+      EXPECT_TRUE(valid_when_found) << "limit " << doubted_limit_deg;
+      EXPECT_GE(valid_after, after - 2) << "limit " << doubted_limit_deg;
     }
   }
 }

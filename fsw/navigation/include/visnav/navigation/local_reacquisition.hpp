@@ -58,13 +58,22 @@ class LocalReacquisition {
   /// The candidate keeps the last step's predicted range and look (attitude seen along its own line of
   /// sight, modulo symmetries) within tolerances that widen with the frames searched: a slew or a missed
   /// prediction moves the target across the image, but does not turn it over or move it in depth.
-  bool consistentWithPrediction(const Pose& candidate) const;
+  bool consistentWithPrediction(const Pose& candidate) const {
+    return agrees(m_predicted, candidate, static_cast<std::uint64_t>(m_frames), true);
+  }
+  /// The look alone (no range) against a pose `frames` frames old, with the same widening tolerance: what
+  /// the close-range acquisition's find must keep against the last valid pose. Its range may be far from
+  /// it (an approach while lost), but in a few frames a target cannot turn over.
+  bool lookConsistentWith(const Pose& reference, std::uint64_t frames, const Pose& candidate) const {
+    return agrees(reference, candidate, frames, false);
+  }
 
   /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
   void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
             ReacquisitionStep& out);
 
  private:
+  bool agrees(const Pose& reference, const Pose& candidate, std::uint64_t frames, bool check_range) const;
   Pose hypothesis(const Pose& predicted, int index) const;
   /// One hypothesis: within one frame's motion plus what the tracker cannot resolve around `r`.
   PoseTolerance tolerance(const NearRangeResult& r) const;

@@ -109,7 +109,12 @@ class NavigationPipeline {
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
   Pose m_last_pose;                 ///< last trusted 6-DOF pose
   bool m_have_pose = false;
-  int m_coasted = 0;     ///< consecutive near-range frames the prediction filled in
+  int m_coasted = 0;  ///< consecutive near-range frames the prediction filled in
+  /// The track began with a reacquisition's find and none of its poses has yet met
+  /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
+  bool m_track_doubted = false;
+  Pose m_last_valid_pose;                      ///< the last pose delivered as valid
+  std::uint64_t m_frames_since_valid = ~0ULL;  ///< frames since then (~0: none yet)
   TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
