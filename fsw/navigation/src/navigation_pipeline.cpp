@@ -237,8 +237,8 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     startFilterFromReacquisition(step);
     m_fdir.resetPersistence();
     // A find has no track behind it yet, only its confirmation frames: it is doubted like a disputed pose
-    // (campaign plate/135: re-found 13.8 deg off with a 1.7 deg 1-sigma; replayed on the full run of
-    // 2026-11-25, wrong frames 165 -> 160 for 0.001 of tracked mean).
+    // (campaign plate/135: re-found 13.8 deg off with a 1.7 deg 1-sigma; replayed on the full run
+    // before the close-range acquisition was on: wrong frames 165 -> 160 for 0.001 of tracked mean).
     m_track_doubted = true;
     deliver(step.pose, step.covariance, step.quality, out, true);
   } else {
