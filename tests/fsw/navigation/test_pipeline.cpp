@@ -55,6 +55,35 @@ class PipelineTest : public ::testing::Test {
     }
     return seq;
   }
+  /// One run over hiddenApproach() from the true start pose: each frame's solution, whether the near-range
+  /// tracker held, and the first visible frame on which a reacquisition found the target (-1: never).
+  struct HiddenRun {
+    std::vector<NavSolution> out;
+    std::vector<bool> tracked;
+    int found_at = -1;
+    bool found_by_acquisition = false;
+    std::uint64_t allocations = 0;  ///< over the frames, after init
+  };
+  void runHidden(const std::vector<test::RenderedFrame>& seq, const PipelineParams& p,
+                 NavigationPipeline& pipeline, HiddenRun& run) {
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    run.out.reserve(seq.size());
+    run.tracked.reserve(seq.size());
+    const std::uint64_t before = test::allocationCount();
+    for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      run.out.push_back(out);
+      run.tracked.push_back(pipeline.lastNearRange().status != TrackStatus::kLost);
+      if (run.found_at < 0 && i >= kHiddenUntil && pipeline.lastReacquisition().found) {
+        run.found_at = i;
+        run.found_by_acquisition = pipeline.lastReacquisition().by_acquisition;
+      }
+    }
+    run.allocations = test::allocationCount() - before;
+  }
   /// Ten frames of the steady approach from the start pose, then frame 10 with the plate 0.15 m (6 px)
   /// sideways of where the motion says: within the tracker's reach, far outside the filter's prediction.
   /// `steady` is the last steady frame's solution, `out` the jumped frame's.
@@ -286,45 +315,35 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
   // prediction stays at 15 m (the filter had no motion to extrapolate), so the local search's candidates
   // are 20 % off its range and never taken. After reacquire_acquisition_after_frames the acquisition,
   // cued by the prediction's line of sight, searches range and attitude and finds it.
-  constexpr int kVisibleFrom = kHiddenUntil;
   const std::vector<test::RenderedFrame> seq = hiddenApproach();
   for (const int after : {5, 0}) {
     PipelineParams p = params;
     p.navigation.reacquire_acquisition_after_frames = after;
     NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
-    int found_at = -1;
+    HiddenRun run;
+    runHidden(seq, p, pipeline, run);
     int valid_after = 0;
-    for (int i = 0; i < 30; ++i) {
-      const Frame f = frameOf(seq, i);
-      NavSolution out;
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      if (i < kVisibleFrom) {
-        EXPECT_FALSE(out.pose_valid && i >= 4) << "frame " << i << ": nothing to see";
-        continue;
-      }
-      if (found_at < 0 && pipeline.lastReacquisition().found) {
-        found_at = i;
-        EXPECT_TRUE(pipeline.lastReacquisition().by_acquisition);
-      }
-      if (out.pose_valid) {
-        ++valid_after;
-        const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
-        // Modulo the plate's half-turn symmetry about its normal.
-        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
-                      kDegPerRad,
-                  2.0)
-            << "frame " << i;
-      }
+    for (int i = 4; i < kHiddenUntil; ++i)
+      EXPECT_FALSE(run.out[static_cast<std::size_t>(i)].pose_valid) << "frame " << i << ": nothing to see";
+    for (int i = kHiddenUntil; i < 30; ++i) {
+      const NavSolution& out = run.out[static_cast<std::size_t>(i)];
+      if (!out.pose_valid) continue;
+      ++valid_after;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
+      // Modulo the plate's half-turn symmetry about its normal.
+      EXPECT_LT(
+          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
+          2.0)
+          << "frame " << i;
     }
     if (after > 0) {
-      ASSERT_GE(found_at, kVisibleFrom) << "never found again";
-      EXPECT_LE(found_at, kVisibleFrom + 8);
-      EXPECT_GE(valid_after, 30 - found_at - 1);
+      ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
+      EXPECT_TRUE(run.found_by_acquisition);
+      EXPECT_LE(run.found_at, kHiddenUntil + 8);
+      EXPECT_GE(valid_after, 30 - run.found_at - 1);
     } else {
-      EXPECT_LT(found_at, 0) << "the local search alone took a candidate 20 % off the predicted range";
+      EXPECT_LT(run.found_at, 0) << "the local search alone took a candidate 20 % off the predicted range";
       EXPECT_EQ(valid_after, 0);
     }
   }
@@ -340,30 +359,19 @@ TEST_F(PipelineTest, AReacquiredTrackIsDoubtedUntilOneOfItsPosesMeetsTheDoubtedL
     PipelineParams p = params;
     p.navigation.doubted_max_attitude_sigma_deg = doubted_limit_deg;
     NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
-    int found_at = -1;
-    bool valid_when_found = false;
+    HiddenRun run;
+    runHidden(seq, p, pipeline, run);
+    // The local search and the close-range acquisition ran in near range after init's allocations.
+    EXPECT_EQ(run.allocations, 0U) << "malloc counted: " << test::countsMalloc();
+    ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
+    const bool valid_when_found = run.out[static_cast<std::size_t>(run.found_at)].pose_valid;
     int valid_after = 0;
     int tracked_after = 0;
-    // The local search and the close-range acquisition run in near range after init's allocations.
-    const std::uint64_t allocations_before = test::allocationCount();
-    for (int i = 0; i < 30; ++i) {
-      const Frame f = frameOf(seq, i);
-      NavSolution out;
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      if (i < kHiddenUntil) continue;
-      if (found_at < 0 && pipeline.lastReacquisition().found) {
-        found_at = i;
-        valid_when_found = out.pose_valid;
-      } else if (found_at >= 0) {
-        valid_after += out.pose_valid ? 1 : 0;
-        tracked_after += pipeline.lastNearRange().status != TrackStatus::kLost ? 1 : 0;
-      }
+    for (int i = run.found_at + 1; i < 30; ++i) {
+      valid_after += run.out[static_cast<std::size_t>(i)].pose_valid ? 1 : 0;
+      tracked_after += run.tracked[static_cast<std::size_t>(i)] ? 1 : 0;
     }
-    EXPECT_EQ(test::allocationCount() - allocations_before, 0U) << "malloc counted: " << test::countsMalloc();
-    ASSERT_GE(found_at, kHiddenUntil) << "never found again";
-    const int after = 30 - found_at - 1;
+    const int after = 30 - run.found_at - 1;
     EXPECT_GE(tracked_after, after - 2) << "limit " << doubted_limit_deg << ": the find is tracked on";
     if (doubted_limit_deg == 1e-4) {
       EXPECT_FALSE(valid_when_found);
