@@ -121,6 +121,55 @@ double EdgeScorer::scoreAligned(const Pose& pose, const WorkingImage& image, Evi
   return best;
 }
 
+int EdgeScorer::bestShifts(const Pose& pose, const WorkingImage& image, double max_shift_px, double step_px,
+                           double min_separation_px, ShiftPeak* out, int capacity) {
+  if (capacity <= 0 || !(step_px > 0.0) || !(max_shift_px >= 0.0) || !sample(pose, image)) return 0;
+  const int steps = static_cast<int>(max_shift_px / step_px);
+  const double max2 = max_shift_px * max_shift_px;
+  const double sep2 = min_separation_px * min_separation_px;
+  int count = 0;
+  for (int j = -steps; j <= steps; ++j) {
+    for (int i = -steps; i <= steps; ++i) {
+      const Vec2 offset = step_px * Vec2(i, j);
+      if (offset.squaredNorm() > max2) continue;
+      const double s = evaluate(image, Evidence::kCoarse, offset);
+      if (!(s > 0.0)) continue;
+      bool suppressed = false;
+      for (int k = 0; k < count && !suppressed; ++k)
+        suppressed = out[k].score >= s && (out[k].shift - offset).squaredNorm() < sep2;
+      if (suppressed) continue;
+      int kept = 0;  // drop the worse peaks this one suppresses
+      for (int k = 0; k < count; ++k)
+        if ((out[k].shift - offset).squaredNorm() >= sep2) out[kept++] = out[k];
+      count = kept;
+      int at = count;  // sorted insert, best first; the worst falls off a full list
+      while (at > 0 && out[at - 1].score < s) --at;
+      if (at >= capacity) continue;
+      for (int k = std::min(count, capacity - 1); k > at; --k) out[k] = out[k - 1];
+      out[at] = ShiftPeak{offset, s};
+      count = std::min(count + 1, capacity);
+    }
+  }
+  // Each peak to the fine evidence: the coarse spread's plateau leaves it up to half a step off.
+  const double fine_step = 0.5 * step_px;
+  for (int k = 0; k < count; ++k) {
+    const Vec2 centre = out[k].shift;
+    double best = evaluate(image, Evidence::kFine, centre);
+    for (int j = -2; j <= 2; ++j) {
+      for (int i = -2; i <= 2; ++i) {
+        if (i == 0 && j == 0) continue;
+        const Vec2 offset = centre + fine_step * Vec2(i, j);
+        const double s = evaluate(image, Evidence::kFine, offset);
+        if (s > best) {
+          best = s;
+          out[k].shift = offset;
+        }
+      }
+    }
+  }
+  return count;
+}
+
 EdgeAgreement EdgeScorer::agreement(const Pose& pose, const WorkingImage& image, double tolerance_px) {
   EdgeAgreement a;
   if (!sample(pose, image)) return a;

@@ -21,6 +21,17 @@ Mat3 rotationBetween(const Vec3& a, const Vec3& b) {
 constexpr int kPassesPerStart = 2;
 /// A rival must track at least this share of the best start's quality to make the frame ambiguous.
 constexpr double kRivalQualityShare = 0.9;
+/// The outline cue's window: at most this many working pixels a side (the disc is box-averaged to fit), and
+/// the target's radius at about kCueTargetRadiusPx working pixels at most (more adds cost, not evidence).
+constexpr int kCueWindowSidePx = 160;
+constexpr double kCueTargetRadiusPx = 32.0;
+/// Its evidence as the acquisition's (acquisition_params.hpp defaults): spreads of 2 and 8 working pixels,
+/// saturated at 4 x the presence threshold, 64 samples, edges between two front faces at half weight.
+constexpr int kCueFineSpreadPx = 2;
+constexpr int kCueCoarseSpreadPx = 8;
+constexpr double kCueEvidenceCap = 4.0;
+/// Shifts tried 4 working px apart (half the coarse spread: a peak is never missed between two).
+constexpr double kCueShiftStepPx = 4.0;
 
 }  // namespace
 
@@ -32,8 +43,11 @@ LoadError LocalReacquisition::init(const PinholeCamera& camera, const PolygonMod
   NearRangeParams wide = nearrange;
   wide.scanline_half_length_px = params.reacquire_scanline_half_length_px;
   m_step_px = std::max(1.0, params.reacquire_step_rel * params.reacquire_scanline_half_length_px);
+  m_bounding_radius_m = model.boundingRadius();
   LoadError e = m_wide.init(camera, model, wide);
   if (e.ok) e = m_flight.init(camera, model, nearrange);
+  if (e.ok) e = m_cue_window.init(kCueWindowSidePx, 256);
+  if (e.ok) e = m_cue_scorer.init(camera, model, acq::ScorerSettings{64, 0.5});
   if (!e.ok) return LoadError::failure("reacquisition: " + e.message);
   m_active = false;
   return LoadError::success();
@@ -59,15 +73,46 @@ Pose LocalReacquisition::hypothesis(const Pose& predicted, int index) const {
   while (hypothesesWithinRings(ring) <= index) ++ring;  // bounded: ring <= the largest ring searched
   const int j = index - hypothesesWithinRings(ring - 1);
   const double angle = 2.0 * kPi * j / (6.0 * ring);
-  const Vec2 offset = ring * m_step_px * Vec2(std::cos(angle), std::sin(angle));
+  return movedAcrossImage(predicted, ring * m_step_px * Vec2(std::cos(angle), std::sin(angle)));
+}
+
+Pose LocalReacquisition::movedAcrossImage(const Pose& pose, const Vec2& offset_px) const {
   Vec2 centre_px;
-  if (!m_camera.project(predicted.t_c_m, centre_px)) return predicted;
+  if (!m_camera.project(pose.t_c_m, centre_px)) return pose;
   // Rotating the pose about the camera centre moves the target in the image as a slew does.
-  const Mat3 r = rotationBetween(m_camera.bearing(centre_px), m_camera.bearing(centre_px + offset));
+  const Mat3 r = rotationBetween(m_camera.bearing(centre_px), m_camera.bearing(centre_px + offset_px));
   Pose h;
-  h.R_c_m = r * predicted.R_c_m;
-  h.t_c_m = r * predicted.t_c_m;
+  h.R_c_m = r * pose.R_c_m;
+  h.t_c_m = r * pose.t_c_m;
   return h;
+}
+
+int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, double radius_px,
+                                 int capacity) {
+  // The grid walks its rings a dozen starts a frame: a target that moved 150 px while lost waited ~10
+  // frames for the walk to reach it, and had moved on by then (campaign box/114: 17 px a frame). The
+  // outline at the predicted look and range, slid over the whole disc on the frame's polarity-free edge
+  // evidence, points at it in one frame; the starts there are judged like any other (image evidence,
+  // consistency with the prediction, rivals), so a cue on clutter costs a start, never a wrong pose.
+  Vec2 centre_px;
+  const double range_m = predicted.t_c_m.z();
+  if (capacity <= 0 || !(range_m > 0.0) || !m_camera.project(predicted.t_c_m, centre_px)) return 0;
+  const double target_radius_px = m_camera.intrinsics().fx_px * m_bounding_radius_m / range_m;
+  const double half_px = radius_px + 1.2 * target_radius_px;
+  const int scale = std::max({1, static_cast<int>(std::ceil(2.0 * half_px / kCueWindowSidePx)),
+                              static_cast<int>(target_radius_px / kCueTargetRadiusPx + 0.5)});
+  const int used = m_cue_window.setWindow(centre_px, half_px, scale);
+  m_cue_window.prepare(image, kCueFineSpreadPx, kCueCoarseSpreadPx, kCueEvidenceCap);
+  const double separation_px = std::max(2.0 * kCueShiftStepPx, 0.5 * target_radius_px / used);
+  const int peaks = m_cue_scorer.bestShifts(predicted, m_cue_window, radius_px / used, kCueShiftStepPx,
+                                            separation_px, m_cue_peaks.data(), capacity);
+  int count = 0;
+  for (int k = 0; k < peaks; ++k) {
+    const Vec2 offset_px = m_cue_peaks[static_cast<std::size_t>(k)].shift * static_cast<double>(used);
+    if (offset_px.norm() < 0.5 * m_step_px) continue;  // the prediction itself: tried already
+    m_cue_offsets_px[static_cast<std::size_t>(count++)] = offset_px;
+  }
+  return count;
 }
 
 bool LocalReacquisition::agrees(const Pose& reference, const Pose& candidate, std::uint64_t frames,
@@ -119,13 +164,21 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
   // stopped, so the whole widening grid is covered over the frames.
   const int inner = std::min(hypothesesWithinRings(1), total);
   const int budget = std::min(m_params.reacquire_hypotheses_per_frame, total);
+  // Then the outline's best matches over the disc, then the outer rings with what is left of the budget.
+  const int cues = budget > inner ? findCues(image, predicted, out.search_radius_px,
+                                             std::min(m_params.reacquire_cue_starts, budget - inner))
+                                  : 0;
   for (int n = 0; n < budget; ++n) {
-    int index = n;
-    if (n >= inner) {
+    Pose start;
+    if (n < inner) {
+      start = hypothesis(predicted, n);
+    } else if (n < inner + cues) {
+      start = movedAcrossImage(predicted, m_cue_offsets_px[static_cast<std::size_t>(n - inner)]);
+      ++out.cue_starts;
+    } else {
       if (m_cursor < inner || m_cursor >= total) m_cursor = inner;  // re-centred on each frame's prediction
-      index = m_cursor++;
+      start = hypothesis(predicted, m_cursor++);
     }
-    const Pose start = hypothesis(predicted, index);
     ++out.hypotheses;
     if (!trackFrom(m_wide, image, start, frame_number, kPassesPerStart, r)) {
       ++(r.status == TrackStatus::kLost ? out.starts_lost : out.starts_weak);

@@ -3,6 +3,7 @@
 // images.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -165,6 +166,40 @@ TEST_F(ScorerTest, AlignedScoreFindsTheShift) {
   scorer.scoreAligned(truth, window, Evidence::kCoarse, window.stats().strong_centroid_w, 1, 8.0,
                       coarse_shift);
   EXPECT_LT(coarse_shift.norm(), 2.0);
+}
+
+TEST_F(ScorerTest, BestShiftsFindTheOutlineWhereverItMovedAndKeepTheirPeaksApart) {
+  // The close-range reacquisition's cue: the outline at a stale pose slid over the window. 0.9 m and
+  // -0.6 m at 12 m are 75 and 50 px (19 and 12.5 working px) from where the stale pose puts the plate.
+  Vec6 off;
+  off << 0.0, 0.0, 0.0, 0.9, -0.6, 0.0;
+  const Pose stale = truth.boxPlus(off);
+  std::array<ShiftPeak, 4> peaks{};
+  const int n = scorer.bestShifts(stale, window, 40.0, 4.0, 20.0, peaks.data(), 4);
+  ASSERT_GE(n, 1);
+  ASSERT_LE(n, 4);
+  const Pose back = scorer.shifted(stale, window, peaks[0].shift);
+  EXPECT_LT((back.t_c_m - truth.t_c_m).norm(), 0.1) << "within 2 working px (one is 4.8 cm here)";
+  EXPECT_GT(peaks[0].score, 0.5);
+  for (int i = 1; i < n; ++i) {
+    EXPECT_LE(peaks[static_cast<std::size_t>(i)].score, peaks[static_cast<std::size_t>(i - 1)].score);
+    // 20 px apart on the coarse grid; the fine refinement moves each by at most two half steps
+    // diagonally (2 sqrt(2) 2 px).
+    for (int j = 0; j < i; ++j)
+      EXPECT_GE((peaks[static_cast<std::size_t>(i)].shift - peaks[static_cast<std::size_t>(j)].shift).norm(),
+                20.0 - 2.0 * 4.0 * std::sqrt(2.0));
+  }
+  // Out of reach (the disc is smaller than the motion): no peak there.
+  const int near_only = scorer.bestShifts(stale, window, 8.0, 4.0, 8.0, peaks.data(), 4);
+  for (int i = 0; i < near_only; ++i)
+    EXPECT_GT(
+        (scorer.shifted(stale, window, peaks[static_cast<std::size_t>(i)].shift).t_c_m - truth.t_c_m).norm(),
+        0.3);
+  // Nothing visible or nowhere to write: nothing.
+  Pose behind = truth;
+  behind.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitX()).toRotationMatrix();
+  EXPECT_EQ(scorer.bestShifts(behind, window, 40.0, 4.0, 8.0, peaks.data(), 4), 0);
+  EXPECT_EQ(scorer.bestShifts(stale, window, 40.0, 4.0, 8.0, peaks.data(), 0), 0);
 }
 
 /// RMS image distance [px, full resolution] between the model's vertices at two poses.

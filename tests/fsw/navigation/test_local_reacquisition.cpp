@@ -105,6 +105,46 @@ TEST_F(ReacquisitionTest, ATargetCrossingTheImageIsConfirmedAndItsMotionReported
   EXPECT_LE(found_at, 3) << "found on frame 0, confirmed on the next two";
 }
 
+/// First frame on which a target `deg` of slew away from the prediction is delivered (-1: not in `frames`).
+int framesToFind(LocalReacquisition& reacquisition, synthetic::Renderer& renderer, const Pose& truth,
+                 const Pose& predicted, int frames, int& cue_starts) {
+  reacquisition.start();
+  cue_starts = 0;
+  for (int i = 0; i < frames; ++i) {
+    const test::RenderedFrame frame = test::renderFrame(renderer, truth, 30U + i);
+    ReacquisitionStep step;
+    reacquisition.step(frame.image(), predicted, static_cast<std::uint64_t>(i), step);
+    cue_starts += step.cue_starts;
+    if (step.found) {
+      EXPECT_LT((step.pose.t_c_m - truth.t_c_m).norm(), 0.01 * truth.t_c_m.norm());
+      EXPECT_LT(rotationAngleRad(step.pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0);
+      return i;
+    }
+  }
+  return -1;
+}
+
+TEST_F(ReacquisitionTest, TheOutlineCueFindsATargetFarFromThePredictionWithinAFewFrames) {
+  // 8.5 deg at f = 1000 px: 150 px from the prediction. The searched disc reaches it on frame 3 (19 + 40 px
+  // a frame); the grid alone would walk ~200 starts to its ring, 5 a frame. The cue slides the predicted
+  // outline over the disc and starts the tracker where it matches.
+  const Pose predicted = slewed(-8.5);
+  int cue_starts = 0;
+  const int with_cue = framesToFind(reacquisition, renderer, truth, predicted, 12, cue_starts);
+  EXPECT_GE(with_cue, 0) << "not found in 12 frames with the cue";
+  EXPECT_LE(with_cue, 6) << "disc on frame 3, a candidate there, two confirming frames";
+  EXPECT_GT(cue_starts, 0);
+  // The control: the grid alone.
+  NavigationParams grid_only = params;
+  grid_only.reacquire_cue_starts = 0;
+  LocalReacquisition without;
+  ASSERT_TRUE(without.init(test::vgaCamera(), model, grid_only, NearRangeParams{}).ok);
+  const int without_cue = framesToFind(without, renderer, truth, predicted, 12, cue_starts);
+  EXPECT_EQ(cue_starts, 0);
+  EXPECT_TRUE(without_cue < 0 || without_cue > with_cue + 3)
+      << "the grid alone found it on frame " << without_cue << ", the cue on " << with_cue;
+}
+
 TEST_F(ReacquisitionTest, TheLookCheckIgnoresRangeAndSlewButNotATurnAndWidensWithAge) {
   // What the close-range acquisition's find must keep against the last valid pose: the attitude seen along
   // its own line of sight, within reacquire_attitude_tolerance_deg (15) + 1 deg per frame since that pose.

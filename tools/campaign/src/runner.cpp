@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 
 #include "visnav/core/frame.hpp"
@@ -225,13 +224,13 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         char buf[320];
         std::snprintf(
             buf, sizeof buf,
-            "       reacq: starts=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
+            "       reacq: starts=%d cue=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
             "candidate=%d found=%d best_q=%.2f pred_dp=%.3f pred_da=%.2f pred_lat=%.1fdeg pred_rng=%.3f "
             "last_dp=%.3f "
             "last_da=%.2f acq=%d%s\n",
-            rs.hypotheses, rs.search_radius_px, rs.starts_lost, rs.starts_weak, rs.starts_inconsistent,
-            rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0, rs.best_quality,
-            (predicted.t_c_m - truth.t_c_m).norm(),
+            rs.hypotheses, rs.cue_starts, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
+            rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
+            rs.best_quality, (predicted.t_c_m - truth.t_c_m).norm(),
             attitudeErrorModuloDeg(predicted.R_c_m, truth.R_c_m, scene.symmetries),
             std::acos(std::clamp(predicted.t_c_m.normalized().dot(truth.t_c_m.normalized()), -1.0, 1.0)) *
                 kDegPerRad,

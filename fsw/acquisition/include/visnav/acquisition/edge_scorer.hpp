@@ -25,6 +25,12 @@ struct EdgeAgreement {
   double f1 = 0.0;         ///< harmonic mean: a pose must explain the image and be explained by it
 };
 
+/// A lateral shift of a projected model (working px) and its score (EdgeScorer::bestShifts).
+struct ShiftPeak {
+  Vec2 shift = Vec2::Zero();
+  double score = 0.0;
+};
+
 /// Pattern-search refinement settings (steps halve per level). The evidence goes from the coarse spread
 /// (first third of the levels) over the fine spread to the raw channels (last third).
 struct RefineSettings {
@@ -47,6 +53,15 @@ class EdgeScorer {
   /// (n = shift_steps). The shift used (working px) is returned in `shift`.
   double scoreAligned(const Pose& pose, const WorkingImage& image, Evidence level, const Vec2& align_to,
                       int shift_steps, double step_px, Vec2& shift);
+
+  /// The model at `pose` slid over the window: its score at every shift on a grid `step_px` apart within
+  /// `max_shift_px` of no shift (coarse evidence), the best peaks at least `min_separation_px` apart (greedy
+  /// suppression: a shift near a better kept one is dropped), each then refined on the fine evidence over
+  /// the 5 x 5 shifts `step_px / 2` apart around it. Writes up to `capacity` peaks with a score > 0, best
+  /// first, and returns their count (0 when no edge is visible). Bounded: (2 max_shift / step + 1)^2 + 25
+  /// capacity evaluations of the samples.
+  int bestShifts(const Pose& pose, const WorkingImage& image, double max_shift_px, double step_px,
+                 double min_separation_px, ShiftPeak* out, int capacity);
 
   /// Two-way agreement at `pose`: precision from the fine-spread evidence above the window's presence
   /// threshold, recall from the strong pixels within `tolerance_px` of a visible model edge whose normal is

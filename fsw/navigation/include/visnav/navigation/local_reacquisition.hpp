@@ -11,8 +11,11 @@
 // All memory is sized in init(); step() allocates nothing and is bounded by the parameters.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
+#include "visnav/acquisition/edge_scorer.hpp"
+#include "visnav/acquisition/working_image.hpp"
 #include "visnav/geometry/model_symmetry.hpp"
 #include "visnav/navigation/navigation_params.hpp"
 #include "visnav/nearrange/near_range_tracker.hpp"
@@ -38,6 +41,7 @@ struct ReacquisitionStep {
   bool by_acquisition = false;
   int acquisition_state = -1;  ///< that acquisition's AcquisitionState this frame (-1: not run)
   int hypotheses = 0;          ///< tracker starts tried this frame
+  int cue_starts = 0;          ///< of them, at the outline's best shifts (reacquire_cue_starts)
   int search_radius_px = 0;
   // Why the starts of this frame were not taken (diagnostics: the campaign's --trace).
   int starts_lost = 0;          ///< the wide tracker lost the target from the start
@@ -75,6 +79,11 @@ class LocalReacquisition {
  private:
   bool agrees(const Pose& reference, const Pose& candidate, std::uint64_t frames, bool check_range) const;
   Pose hypothesis(const Pose& predicted, int index) const;
+  /// The pose turned about the camera centre so that its projected centre moves by offset_px (a slew).
+  Pose movedAcrossImage(const Pose& pose, const Vec2& offset_px) const;
+  /// The predicted outline slid over the disc of radius_px around it: the image offsets (full px) of its
+  /// best matches into m_cue_offsets_px, at most `capacity`; returns their count.
+  int findCues(const MonoImage& image, const Pose& predicted, double radius_px, int capacity);
   /// One hypothesis: within one frame's motion plus what the tracker cannot resolve around `r`.
   PoseTolerance tolerance(const NearRangeResult& r) const;
 
@@ -101,6 +110,11 @@ class LocalReacquisition {
   Vec6 m_candidate_motion = Vec6::Zero();  ///< per frame, between the last two confirmation frames
   bool m_candidate_moving = false;         ///< m_candidate_motion measured
   Pose m_predicted;                        ///< this frame's prediction (step())
+  double m_bounding_radius_m = 0.0;
+  acq::WorkingImage m_cue_window;  ///< the searched disc, box-averaged to kCueWindowSidePx at most
+  acq::EdgeScorer m_cue_scorer;
+  std::array<acq::ShiftPeak, LocalSearchLimits::kMaxCueStarts> m_cue_peaks{};
+  std::array<Vec2, LocalSearchLimits::kMaxCueStarts> m_cue_offsets_px{};
 };
 
 }  // namespace visnav::nav

@@ -6,6 +6,11 @@
 
 namespace visnav::nav {
 
+/// Compile-time capacities of the close-range reacquisition.
+struct LocalSearchLimits {
+  static constexpr int kMaxCueStarts = 8;
+};
+
 struct NavigationParams {
   // Mode hysteresis (distances along the boresight, counts of consecutive frames).
   int start_mode = 1;                ///< NavMode index the pipeline starts in (1 = far range)
@@ -53,6 +58,7 @@ struct NavigationParams {
   double reacquire_max_rotation_deg = 5.0;     ///< confirmation: attitude change per frame
   int reacquire_timeout_frames = 300;          ///< searching longer: hand over to far range
   int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches (0: never)
+  int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -236,6 +242,13 @@ struct NavigationParams {
          "recoveries that never came 544 -> 451, "
          "confidently wrong frames 165 -> 193; 0: never"},
         reacquire_acquisition_after_frames);
+    v.integer(
+        {"navigation", "reacquire_cue_starts", "count", 0, LocalSearchLimits::kMaxCueStarts,
+         "close-range reacquisition: of the starts of a frame, this many go where the predicted outline, "
+         "slid across the searched disc, best matches the frame's edges (polarity-free, either "
+         "contrast), before the grid's outer rings: a target that moved while lost is found in one "
+         "frame instead of when the grid walk reaches it; 0: grid only"},
+        reacquire_cue_starts);
   }
 
   /// The hand-over distances with the derived ones filled in (0 = derive) for a target of
