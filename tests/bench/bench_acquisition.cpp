@@ -6,6 +6,10 @@
 // acquisition the sum over every frame from start() to success.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 #include "../fsw/acquisition/acquisition_fixture.hpp"
 
 namespace visnav {
@@ -101,6 +105,34 @@ void BM_PrepareWindow(benchmark::State& state) {
   state.counters["side_px"] = w.width();
 }
 BENCHMARK(BM_PrepareWindow)->Unit(benchmark::kMicrosecond);
+
+// What the close-range reacquisition's outline cue adds to a search frame (fsw/navigation/README.md): the
+// window over the searched disc (radius = the argument, px; box-averaged to <= 160 working px a side, as
+// LocalReacquisition::findCues does) and the plate's outline slid over it (3 peaks).
+void BM_OutlineCue(benchmark::State& state) {
+  const Bench& b = bench(0);
+  const double radius_px = static_cast<double>(state.range(0));
+  acq::WorkingImage window;
+  window.init(160, 256);
+  acq::EdgeScorer scorer;
+  scorer.init(test::vgaCamera(), b.scene.model, acq::ScorerSettings{64, 0.5});
+  Vec2 centre;
+  test::vgaCamera().project(b.truth.t_c_m, centre);
+  const double target_radius_px = 1000.0 * b.scene.model.boundingRadius() / b.truth.t_c_m.z();
+  const double half_px = radius_px + 1.2 * target_radius_px;
+  const int scale = std::max({1, static_cast<int>(std::ceil(2.0 * half_px / 160.0)),
+                              static_cast<int>(target_radius_px / 32.0 + 0.5)});
+  std::array<acq::ShiftPeak, 3> peaks{};
+  int found = 0;
+  for (auto _ : state) {
+    const int used = window.setWindow(centre, half_px, scale);
+    window.prepare(b.frames[0].image(), 2, 8, 4.0);
+    found = scorer.bestShifts(b.truth, window, radius_px / used, 4.0, 8.0, peaks.data(), 3);
+    benchmark::DoNotOptimize(peaks);
+  }
+  state.counters["peaks"] = found;
+}
+BENCHMARK(BM_OutlineCue)->Arg(100)->Arg(300)->Arg(600)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace visnav
