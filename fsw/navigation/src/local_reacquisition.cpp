@@ -106,8 +106,6 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   const double separation_px = std::max(2.0 * kCueShiftStepPx, 0.5 * target_radius_px / used);
   const int peaks = m_cue_scorer.bestShifts(predicted, m_cue_window, radius_px / used, kCueShiftStepPx,
                                             separation_px, m_cue_peaks.data(), capacity);
-  m_has_cue = peaks > 0;
-  if (m_has_cue) m_best_cue_px = m_cue_peaks[0].shift * static_cast<double>(used);
   int count = 0;
   for (int k = 0; k < peaks; ++k) {
     const Vec2 offset_px = m_cue_peaks[static_cast<std::size_t>(k)].shift * static_cast<double>(used);
@@ -261,7 +259,6 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
 void LocalReacquisition::step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
                               ReacquisitionStep& out) {
   out = ReacquisitionStep{};
-  m_has_cue = false;
   if (!m_active) return;
   m_predicted = predicted;
   if (m_confirming) {

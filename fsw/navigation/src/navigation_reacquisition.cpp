@@ -84,9 +84,7 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
   const acq::AcquisitionState state = m_acquisition.state();
   if (state == acq::AcquisitionState::kIdle || state == acq::AcquisitionState::kFailed ||
       state == acq::AcquisitionState::kSucceeded) {
-    // Centred on the outline cue when there is one: a target that moved while lost is where its outline
-    // matches the edges, not where the prediction put it.
-    const Pose predicted = m_reacquisition.cued(predictedPose());
+    const Pose predicted = predictedPose();
     const double range_m = predicted.t_c_m.norm();
     if (!(range_m > 0.0) || !(predicted.t_c_m.z() > 0.0)) return;
     const double focal_px = m_camera.intrinsics().fx_px;

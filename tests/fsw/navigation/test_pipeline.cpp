@@ -37,7 +37,7 @@ class PipelineTest : public ::testing::Test {
   /// Tracked at 15 m for 3 frames, then hidden for 10 frames (an eclipse: background and noise only) while
   /// the plate comes 3 m closer and turns 20 deg; visible again from frame kHiddenUntil on (30 frames).
   static constexpr int kHiddenUntil = 13;
-  std::vector<test::RenderedFrame> hiddenApproach(double reappears_at_x_m = 0.3) {
+  std::vector<test::RenderedFrame> hiddenApproach() {
     std::vector<test::RenderedFrame> seq;
     synthetic::Renderer empty;
     EXPECT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
@@ -50,8 +50,7 @@ class PipelineTest : public ::testing::Test {
         seq.push_back(test::renderFrame(empty, behind, 400U + i));
         seq.back().truth = test::plateAt(15.0, 0.3, 1.0, -1.0);
       } else {
-        seq.push_back(
-            test::renderFrame(renderer, test::plateAt(12.0, reappears_at_x_m, 25.0, -15.0), 400U + i));
+        seq.push_back(test::renderFrame(renderer, test::plateAt(12.0, 0.3, 25.0, -15.0), 400U + i));
       }
     }
     return seq;
@@ -345,44 +344,6 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
       EXPECT_GE(valid_after, 30 - run.found_at - 1);
     } else {
       EXPECT_LT(run.found_at, 0) << "the local search alone took a candidate 20 % off the predicted range";
-      EXPECT_EQ(valid_after, 0);
-    }
-  }
-}
-
-TEST_F(PipelineTest, ATargetThatAlsoMovedSidewaysWhileHiddenIsFoundWhereItsOutlineMatches) {
-  // As above, and it reappears 2.9 m further left (its left edge 7 px from the image border): 237 px from
-  // where the prediction puts it, 2.4 of its radii there, beyond the acquisition's window around the
-  // prediction (one radius). The outline cue (the predicted outline slid over the searched disc) centres
-  // the acquisition on it; without it the acquisition searches around the prediction and the grid's finds
-  // are 20 % off in range: never found. (2.6 m: both find it on frame 16; 3.2 m, its edge out of view:
-  // neither.)
-  const std::vector<test::RenderedFrame> seq = hiddenApproach(-2.6);
-  for (const int cue_starts : {3, 0}) {
-    PipelineParams p = params;
-    p.navigation.reacquire_cue_starts = cue_starts;
-    NavigationPipeline pipeline;
-    HiddenRun run;
-    runHidden(seq, p, pipeline, run);
-    EXPECT_EQ(run.allocations, 0U);
-    int valid_after = 0;
-    for (int i = kHiddenUntil; i < 30; ++i) {
-      const NavSolution& out = run.out[static_cast<std::size_t>(i)];
-      if (!out.pose_valid) continue;
-      ++valid_after;
-      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
-      EXPECT_LT(
-          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
-          2.0)
-          << "frame " << i;
-    }
-    if (cue_starts > 0) {
-      ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
-      EXPECT_LE(run.found_at, kHiddenUntil + 8);
-      EXPECT_GE(valid_after, 30 - run.found_at - 1);
-    } else {
-      EXPECT_LT(run.found_at, 0) << "found without the cue on frame " << run.found_at;
       EXPECT_EQ(valid_after, 0);
     }
   }

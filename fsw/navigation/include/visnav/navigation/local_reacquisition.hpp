@@ -75,12 +75,6 @@ class LocalReacquisition {
     return agrees(reference, candidate, frames, false);
   }
 
-  /// `predicted` moved across the image onto this frame's best outline cue (findCues), or unchanged when the
-  /// frame had none: where the close-range acquisition centres its window.
-  Pose cued(const Pose& predicted) const {
-    return m_has_cue ? movedAcrossImage(predicted, m_best_cue_px) : predicted;
-  }
-
   /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
   void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
             ReacquisitionStep& out);
@@ -124,8 +118,6 @@ class LocalReacquisition {
   acq::EdgeScorer m_cue_scorer;
   std::array<acq::ShiftPeak, LocalSearchLimits::kMaxCueStarts> m_cue_peaks{};
   std::array<Vec2, LocalSearchLimits::kMaxCueStarts> m_cue_offsets_px{};
-  bool m_has_cue = false;             ///< this frame's search found an outline cue
-  Vec2 m_best_cue_px = Vec2::Zero();  ///< its best offset from the prediction
 };
 
 }  // namespace visnav::nav
