@@ -5,12 +5,12 @@
 // radius that widens with the frames searched (a slew moves the whole image; an eclipse or a missed
 // prediction leaves the target near where it was). Before the outer rings, reacquire_cue_starts starts go
 // where the predicted outline, slid over the searched disc on the frame's polarity-free edge evidence
-// (acq::EdgeScorer::bestShifts), matches best: the outline cue. A start is a candidate only with good image evidence
-// (lines, inliers, residual, edge support), and only when no distinct pose (modulo the model's symmetries)
-// tracks as well in the same frame; it is delivered after it keeps tracking with the flight settings and
-// moves consistently for reacquire_confirm_frames, and only when its range and its look along the line of
-// sight agree with the prediction. Until then the answer is "lost", never a guess.
-// All memory is sized in init(); step() allocates nothing and is bounded by the parameters.
+// (acq::EdgeScorer::bestShifts), matches best: the outline cue. A start is a candidate only with good image
+// evidence (lines, inliers, residual, edge support), and only when no distinct pose (modulo the model's
+// symmetries) tracks as well in the same frame; it is delivered after it keeps tracking with the flight
+// settings and moves consistently for reacquire_confirm_frames, and only when its range and its look along
+// the line of sight agree with the prediction. Until then the answer is "lost", never a guess. All memory is
+// sized in init(); step() allocates nothing and is bounded by the parameters.
 #pragma once
 
 #include <array>
