@@ -25,18 +25,14 @@ constexpr double kRivalQualityShare = 0.9;
 /// the target's radius at about kCueTargetRadiusPx working pixels at most (more adds cost, not evidence).
 constexpr int kCueWindowSidePx = 160;
 constexpr double kCueTargetRadiusPx = 32.0;
-/// Its evidence as the acquisition's (acquisition_params.hpp defaults): spreads of 2 and 8 working pixels,
-/// saturated at 4 x the presence threshold, 64 samples, edges between two front faces at half weight.
-constexpr int kCueFineSpreadPx = 2;
-constexpr int kCueCoarseSpreadPx = 8;
-constexpr double kCueEvidenceCap = 4.0;
-/// Shifts tried 4 working px apart (half the coarse spread: a peak is never missed between two).
+/// Shifts tried 4 working px apart (half the default coarse spread, 8: a peak is not missed between two).
 constexpr double kCueShiftStepPx = 4.0;
 
 }  // namespace
 
 LoadError LocalReacquisition::init(const PinholeCamera& camera, const PolygonModel& model,
-                                   const NavigationParams& params, const NearRangeParams& nearrange) {
+                                   const NavigationParams& params, const NearRangeParams& nearrange,
+                                   const acq::AcquisitionParams& evidence) {
   m_camera = camera;
   m_params = params;
   m_symmetries.find(model);
@@ -47,7 +43,10 @@ LoadError LocalReacquisition::init(const PinholeCamera& camera, const PolygonMod
   LoadError e = m_wide.init(camera, model, wide);
   if (e.ok) e = m_flight.init(camera, model, nearrange);
   if (e.ok) e = m_cue_window.init(kCueWindowSidePx, 256);
-  if (e.ok) e = m_cue_scorer.init(camera, model, acq::ScorerSettings{64, 0.5});
+  m_evidence = evidence;
+  if (e.ok)
+    e = m_cue_scorer.init(
+        camera, model, acq::ScorerSettings{evidence.samples_per_hypothesis, evidence.internal_edge_weight});
   if (!e.ok) return LoadError::failure("reacquisition: " + e.message);
   m_active = false;
   return LoadError::success();
@@ -102,7 +101,8 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   const int scale = std::max({1, static_cast<int>(std::ceil(2.0 * half_px / kCueWindowSidePx)),
                               static_cast<int>(target_radius_px / kCueTargetRadiusPx + 0.5)});
   const int used = m_cue_window.setWindow(centre_px, half_px, scale);
-  m_cue_window.prepare(image, kCueFineSpreadPx, kCueCoarseSpreadPx, kCueEvidenceCap);
+  m_cue_window.prepare(image, m_evidence.fine_spread_px, m_evidence.coarse_spread_px,
+                       m_evidence.evidence_cap);
   const double separation_px = std::max(2.0 * kCueShiftStepPx, 0.5 * target_radius_px / used);
   const int peaks = m_cue_scorer.bestShifts(predicted, m_cue_window, radius_px / used, kCueShiftStepPx,
                                             separation_px, m_cue_peaks.data(), capacity);
@@ -110,7 +110,7 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   for (int k = 0; k < peaks; ++k) {
     const Vec2 offset_px = m_cue_peaks[static_cast<std::size_t>(k)].shift * static_cast<double>(used);
     if (offset_px.norm() < 0.5 * m_step_px) continue;  // the prediction itself: tried already
-    m_cue_offsets_px[static_cast<std::size_t>(count++)] = offset_px;
+    m_cue_peaks[static_cast<std::size_t>(count++)].shift = offset_px;
   }
   return count;
 }
@@ -173,7 +173,7 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
     if (n < inner) {
       start = hypothesis(predicted, n);
     } else if (n < inner + cues) {
-      start = movedAcrossImage(predicted, m_cue_offsets_px[static_cast<std::size_t>(n - inner)]);
+      start = movedAcrossImage(predicted, m_cue_peaks[static_cast<std::size_t>(n - inner)].shift);
       ++out.cue_starts;
     } else {
       if (m_cursor < inner || m_cursor >= total) m_cursor = inner;  // re-centred on each frame's prediction

@@ -23,7 +23,8 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (e.ok) e = m_near.init(camera, model, params.nearrange);
   if (e.ok) e = m_far.init(camera, params.farrange);
   if (e.ok) e = m_acquisition.init(camera, model, params.acquisition, params.nearrange);
-  if (e.ok) e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange);
+  if (e.ok)
+    e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange, params.acquisition);
   if (!e.ok) return e;
   m_fdir.init(m_params.navigation, model.boundingRadius(), camera.intrinsics().fx_px);
   m_branch.init(m_params.navigation.branch_confirm_frames);

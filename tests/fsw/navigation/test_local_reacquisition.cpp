@@ -105,7 +105,8 @@ TEST_F(ReacquisitionTest, ATargetCrossingTheImageIsConfirmedAndItsMotionReported
   EXPECT_LE(found_at, 3) << "found on frame 0, confirmed on the next two";
 }
 
-/// First frame on which a target `deg` of slew away from the prediction is delivered (-1: not in `frames`).
+/// First frame on which the target is delivered when the search starts from `predicted` (-1: not within
+/// `frames`); `cue_starts` counts the starts the outline cue placed.
 int framesToFind(LocalReacquisition& reacquisition, synthetic::Renderer& renderer, const Pose& truth,
                  const Pose& predicted, int frames, int& cue_starts) {
   reacquisition.start();

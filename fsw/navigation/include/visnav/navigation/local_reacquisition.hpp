@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdint>
 
+#include "visnav/acquisition/acquisition_params.hpp"
 #include "visnav/acquisition/edge_scorer.hpp"
 #include "visnav/acquisition/working_image.hpp"
 #include "visnav/geometry/model_symmetry.hpp"
@@ -54,8 +55,10 @@ struct ReacquisitionStep {
 
 class LocalReacquisition {
  public:
+  /// `evidence`: the outline cue reads edges as the acquisition does (its spreads, cap, samples and
+  /// internal-edge weight).
   LoadError init(const PinholeCamera& camera, const PolygonModel& model, const NavigationParams& params,
-                 const NearRangeParams& nearrange);
+                 const NearRangeParams& nearrange, const acq::AcquisitionParams& evidence = {});
   void start();
   void stop() { m_active = false; }
   bool active() const { return m_active; }
@@ -84,7 +87,7 @@ class LocalReacquisition {
   /// The pose turned about the camera centre so that its projected centre moves by offset_px (a slew).
   Pose movedAcrossImage(const Pose& pose, const Vec2& offset_px) const;
   /// The predicted outline slid over the disc of radius_px around it: the image offsets (full px) of its
-  /// best matches into m_cue_offsets_px, at most `capacity`; returns their count.
+  /// best matches into m_cue_peaks' shifts, at most `capacity`; returns their count.
   int findCues(const MonoImage& image, const Pose& predicted, double radius_px, int capacity);
   /// One hypothesis: within one frame's motion plus what the tracker cannot resolve around `r`.
   PoseTolerance tolerance(const NearRangeResult& r) const;
@@ -115,8 +118,9 @@ class LocalReacquisition {
   double m_bounding_radius_m = 0.0;
   acq::WorkingImage m_cue_window;  ///< the searched disc, box-averaged to kCueWindowSidePx at most
   acq::EdgeScorer m_cue_scorer;
+  acq::AcquisitionParams m_evidence;  ///< fine/coarse spread and cap of m_cue_window
+  /// This frame's cue: bestShifts' peaks, then (findCues) their offsets in full-resolution px.
   std::array<acq::ShiftPeak, LocalSearchLimits::kMaxCueStarts> m_cue_peaks{};
-  std::array<Vec2, LocalSearchLimits::kMaxCueStarts> m_cue_offsets_px{};
 };
 
 }  // namespace visnav::nav
