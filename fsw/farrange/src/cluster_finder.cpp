@@ -46,7 +46,7 @@ void ClusterFinder::init(int width, int height, int max_clusters, int max_pixels
 }
 
 void ClusterFinder::find(const ResponseImage& response, const std::uint8_t* row_max, std::uint8_t t_in_q,
-                         std::uint8_t t_out_q) {
+                         std::uint8_t t_out_q, int min_keep_px) {
   // Forget the last frame's labels: only its cluster pixels were labelled.
   for (const std::uint32_t p : m_pixels) {
     m_label[static_cast<std::size_t>(pixelY(p)) * m_width + static_cast<std::size_t>(pixelX(p))] = 0;
@@ -67,12 +67,13 @@ void ClusterFinder::find(const ResponseImage& response, const std::uint8_t* row_
         ++m_seeds_skipped;
         continue;
       }
-      grow(response, roi.x0 + rx, y, t_out_q);
+      grow(response, roi.x0 + rx, y, t_out_q, min_keep_px);
     }
   }
 }
 
-void ClusterFinder::grow(const ResponseImage& response, int seed_x, int seed_y, std::uint8_t t_out_q) {
+void ClusterFinder::grow(const ResponseImage& response, int seed_x, int seed_y, std::uint8_t t_out_q,
+                         int min_keep_px) {
   const Roi& roi = response.roi();
   const auto id = static_cast<std::uint16_t>(m_clusters.size() + 1);
   Cluster c;
@@ -104,6 +105,9 @@ void ClusterFinder::grow(const ResponseImage& response, int seed_x, int seed_y, 
     }
   }
   c.pixel_count = static_cast<int>(m_pixels.size()) - c.first_pixel;
+  // A dropped cluster's pixels stay in m_pixels (the next find() clears their labels) and its id is reused:
+  // labels are only tested for zero.
+  if (c.pixel_count < min_keep_px) return;
   measure(c, roi);
   for (int i = 0; i < c.pixel_count; ++i) {
     const std::uint32_t p = m_pixels[static_cast<std::size_t>(c.first_pixel) + static_cast<std::size_t>(i)];

@@ -38,6 +38,8 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   // "Exceeds t": S / 255 > t  <=>  S > floor(255 t) for the integer S.
   m_t_in_q = static_cast<std::uint8_t>(std::floor(params.t_in * 255.0));
   m_t_out_q = static_cast<std::uint8_t>(std::floor(params.t_out * 255.0));
+  m_ext_spawn_q = static_cast<std::uint8_t>(std::floor(params.extended_spawn * 255.0));
+  m_ext_grow_q = static_cast<std::uint8_t>(std::floor(params.extended_grow * 255.0));
   reset();
   return LoadError::success();
 }
@@ -133,6 +135,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
       searchRegion(image, roi, out);
       std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
       selected = selectRobust(gate, out.flags);
+      if (selected < 0) selected = searchExtended(gate, out.flags);
       out.timing.select_us += elapsedUs(stamp);
       if (selected < 0) out.flags |= kFlagRoiFallback;
     }
@@ -141,9 +144,11 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     searchRegion(image, full, out);
     std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
     selected = m_robust ? selectRobust(gate, out.flags) : selectPaper();
+    if (selected < 0 && m_robust) selected = searchExtended(gate, out.flags);
     out.timing.select_us += elapsedUs(stamp);
   }
   if (selected >= 0) {
+    out.cluster_count = static_cast<int>(m_finder.clusters().size());
     out.selected = selected;
     report(m_finder.clusters()[static_cast<std::size_t>(selected)], gate, out);
   } else {
@@ -154,6 +159,56 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   m_has_prediction = false;  // a filter prediction holds for one frame
   out.timing.total_us = elapsedUs(start);
   return Status::kOk;
+}
+
+int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
+  // Close in, the target's own grey levels fill the histogram and eq. 12 no longer calls them rare: with
+  // t_in 0.9 and equal weights no pixel spawns a cluster although the outline is a strong edge (campaign
+  // octagon/26: tracked from 750 m to 48 m, then nothing), or only a fragment of the target does, and the
+  // track then holds that fragment's size (plate/3: n = 42 at 53 m, read as 408 m). A tracked target is then
+  // looked for by its outline alone: clusters of strong edge response, holes filled, inside the gate. Only
+  // with a track: without one, a strong edge anywhere (limb, glow) would do.
+  if (!(m_params.extended_min_half_px > 0.0) || !gate.active) return -1;
+  const Roi& roi = m_edge_response.roi();
+  std::uint8_t* row_max = m_row_max.data();
+  for (int ry = 0; ry < roi.height; ++ry) {
+    const std::uint8_t* s = m_edge_response.row(ry);
+    row_max[ry] = *std::max_element(s, s + roi.width);
+  }
+  m_finder.find(m_edge_response, row_max, m_ext_spawn_q, m_ext_grow_q, m_params.min_cluster_px);
+  // The gate as in selectRobust, but the silhouette may be up to extended_max_growth times the tracked
+  // size (a fragment's track), never smaller than max_size_ratio allows, at least extended_min_half_px in
+  // half extent (a small outline is the eq. 13 search's job), and not cut by the image border (the limb's
+  // arc is).
+  auto& clusters = m_finder.clusters();
+  const double down_limit = std::log(std::max(m_params.max_size_ratio, 1.000001));
+  const double up_limit = std::log(std::max(m_params.extended_max_growth, m_params.max_size_ratio));
+  int best = -1;
+  double best_score = 0.0;
+  for (std::size_t i = 0; i < clusters.size(); ++i) {
+    Cluster& c = clusters[i];
+    if (c.pixel_count < m_params.min_cluster_px || c.halfExtentPx() < m_params.extended_min_half_px) continue;
+    if (c.x_min == 0 || c.y_min == 0 || c.x_max == m_camera.width() - 1 || c.y_max == m_camera.height() - 1)
+      continue;
+    // Holes are filled (twice the bounding box's area) only for an outline that can reach the gate: the
+    // filled centre lies in the bounding box.
+    const double gap_x = std::max({c.x_min - gate.centre_px.x(), gate.centre_px.x() - (c.x_max + 1.0), 0.0});
+    const double gap_y = std::max({c.y_min - gate.centre_px.y(), gate.centre_px.y() - (c.y_max + 1.0), 0.0});
+    if (std::hypot(gap_x, gap_y) > gate.radius_px) continue;
+    if (m_params.fill_holes) m_finder.fillHoles(c);
+    const Vec2 centre = m_params.fill_holes && c.filled_count > 0 ? c.filled_com_px : c.com_px;
+    const double offset = (centre - gate.centre_px).norm();
+    if (offset > gate.radius_px) continue;
+    const double log_ratio = std::log(usedPixels(c) / std::max(gate.size_px, 1.0));
+    if (log_ratio < -down_limit || log_ratio > up_limit) continue;
+    const double score = offset / gate.radius_px + std::abs(log_ratio) / up_limit;  // lower is better
+    if (best < 0 || score < best_score) {
+      best = static_cast<int>(i);
+      best_score = score;
+    }
+  }
+  if (best >= 0) flags |= kFlagExtended | kFlagGated;
+  return best;
 }
 
 void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResult& out) const {

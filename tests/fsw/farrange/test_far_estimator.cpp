@@ -24,6 +24,10 @@ struct Scene {
   explicit Scene(const synthetic::RenderOptions& options = test::farRender()) {
     EXPECT_TRUE(renderer.init(camera, model, options).ok);
   }
+  Scene(const synthetic::RenderOptions& options, const PinholeCamera& c, const PolygonModel& m)
+      : camera(c), model(m) {
+    EXPECT_TRUE(renderer.init(camera, model, options).ok);
+  }
   test::FarFrame frame(const Pose& pose, std::uint64_t seed = 1, std::int64_t index = 0) {
     return test::renderFar(renderer, pose, seed, index);
   }
@@ -36,6 +40,42 @@ FarRangeResult estimateOnce(const PinholeCamera& camera, const FarRangeParams& p
   FarRangeResult r;
   EXPECT_EQ(e.estimate(f.image(), r), Status::kOk);
   return r;
+}
+
+// A bright flat plate approaching from 200 m to 12 m at 3 % a frame in noise (campaign octagon/26 in kind:
+// 640x480, f 1180 px, noise 0.063). Once the plate's own grey levels fill the histogram, eq. 12 no longer
+// calls them rare and no pixel reaches t_in (here below 19 m, 150 px across). `last_good_m` is the closest
+// range with a fix on the target (direction inside its bounding sphere, distance within 25 %).
+std::vector<FarRangeResult> approach(const FarRangeParams& p, double& last_good_m) {
+  synthetic::RenderOptions o;
+  o.background = 0.28;
+  o.target_brightness = 0.87;
+  o.noise_sigma = 0.063;
+  o.blur_sigma_px = 0.33;
+  CameraIntrinsics k = CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320.0, 240.0);
+  k.fx_px = k.fy_px = 1180.0;
+  Scene s(o, PinholeCamera(k), makeRectanglePlate(2.0, 2.2));
+  FarRangeParams q = p;
+  // gamma calibrated at the start distance (eq. 16), as visnav-calibrate-gamma would.
+  const FarRangeResult cal = estimateOnce(s.camera, p, s.frame(test::satAt(200.0, 1.0, -0.5, 10.0), 99));
+  EXPECT_TRUE(cal.valid);
+  q.gamma = 200.0 * std::sqrt(static_cast<double>(cal.cluster_pixels));
+  FarRangeEstimator e;
+  EXPECT_TRUE(e.init(s.camera, q).ok);
+  std::vector<FarRangeResult> results;
+  last_good_m = 1e9;
+  for (int i = 0; i < 93; ++i) {
+    const double range = 200.0 * std::pow(0.97, i);
+    const test::FarFrame f = s.frame(test::satAt(range, 1.0 + 0.02 * i, -0.5, 10.0 + 0.3 * i), 100 + i, i);
+    FarRangeResult r;
+    e.estimate(f.image(), r);
+    const double radius_deg = std::atan(s.model.boundingRadius() / range) * kDegPerRad;
+    if (r.valid && angleDeg(r.direction_c, f.truth.t_c_m.normalized()) < radius_deg &&
+        std::abs(r.distance_m / range - 1.0) < 0.25)
+      last_good_m = range;
+    results.push_back(r);
+  }
+  return results;
 }
 
 TEST(FarRangeEstimator, DirectionGoesThroughTheDistortedCameraModel) {
@@ -263,6 +303,25 @@ TEST(FarRangeEstimator, TheFilterSetIsOpen) {
     }
   }
   EXPECT_GT(checked, 10);  // the window holds non-trivial responses
+}
+
+TEST(FarRangeEstimator, AnExtendedTargetIsTrackedByItsOutlineWhenItsGreyLevelsAreNoLongerRare) {
+  FarRangeParams without;
+  without.extended_min_half_px = 0.0;
+  double last_without = 0.0;
+  approach(without, last_without);
+  EXPECT_GT(last_without, 17.0) << "eq. 13 alone loses the plate below 19 m";
+  double last_with = 0.0;
+  const std::vector<FarRangeResult> with = approach(FarRangeParams{}, last_with);
+  EXPECT_LT(last_with, 12.2) << "the outline search holds it to the end";
+  int extended = 0;
+  for (std::size_t i = 0; i < with.size(); ++i) {
+    if ((with[i].flags & kFlagExtended) == 0U) continue;
+    ++extended;
+    const double range = 200.0 * std::pow(0.97, static_cast<double>(i));
+    EXPECT_NEAR(with[i].distance_m / range, 1.0, 0.25) << "frame " << i << " at " << range << " m";
+  }
+  EXPECT_GE(extended, 10);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // REQUIREMENT: the per-frame far-range call allocates nothing after init (fsw/farrange/README.md), in every
-// path: full frame, region of interest, ROI fallback, coasting, lost, both methods, 8- and 16-bit frames.
+// path: full frame, region of interest, ROI fallback, coasting, lost, both methods, 8- and 16-bit frames,
+// the outline search of an extended target.
 #include <gtest/gtest.h>
 
 #include "../../support/alloc_counter.hpp"
@@ -72,6 +73,36 @@ TEST(FarRangeNoAlloc, EveryPathOverManyFrames) {
       EXPECT_GT(valid, 30);  // the frames really exercised the full pipeline
     }
   }
+}
+
+TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
+  // A plate close enough that eq. 12 no longer finds it (test_far_estimator's approach): the outline search
+  // on the edge response runs on most of these frames.
+  synthetic::RenderOptions o;
+  o.background = 0.28;
+  o.target_brightness = 0.87;
+  o.noise_sigma = 0.063;
+  o.blur_sigma_px = 0.33;
+  CameraIntrinsics k = CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320.0, 240.0);
+  k.fx_px = k.fy_px = 1180.0;
+  const PinholeCamera camera(k);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(camera, makeRectanglePlate(2.0, 2.2), o).ok);
+  std::vector<test::FarFrame> f;
+  for (int i = 0; i < 16; ++i)
+    f.push_back(
+        test::renderFar(renderer, test::satAt(21.0 * std::pow(0.97, i), 1.0, -0.5, 30.0 + i), 50 + i, i));
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(camera, FarRangeParams{}).ok);
+  FarRangeResult r;
+  int extended = 0;
+  const std::uint64_t before = test::allocationCount();
+  for (int i = 0; i < 64; ++i) {
+    e.estimate(f[static_cast<std::size_t>(i) % f.size()].image(), r);
+    extended += (r.flags & kFlagExtended) != 0U ? 1 : 0;
+  }
+  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
+  EXPECT_GT(extended, 20);
 }
 
 TEST(FarRangeNoAlloc, CounterSeesAllocations) {

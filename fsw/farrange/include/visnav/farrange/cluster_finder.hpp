@@ -44,8 +44,11 @@ class ClusterFinder {
 
   /// Clusters of `response` over its ROI. `row_max` (one per ROI row) lets rows without a spawn pixel be
   /// skipped. Thresholds in response units (255 = 1.0): spawn where S > t_in_q, grow where S > t_out_q.
+  /// Clusters of fewer than `min_keep_px` pixels are not kept (their pixels stay labelled, so they are not
+  /// spawned again): on a noisy edge response the speckle would otherwise use up max_clusters before the
+  /// scan reaches the target.
   void find(const ResponseImage& response, const std::uint8_t* row_max, std::uint8_t t_in_q,
-            std::uint8_t t_out_q);
+            std::uint8_t t_out_q, int min_keep_px = 0);
   /// Fills the cluster's enclosed holes (exterior flood fill, 4-connected, of its padded bounding box) and
   /// sets filled_count / filled_com_px. Cost: twice the bounding-box area.
   void fillHoles(Cluster& cluster);
@@ -58,7 +61,7 @@ class ClusterFinder {
   bool pixelCapacityHit() const { return m_pixel_capacity_hit; }
 
  private:
-  void grow(const ResponseImage& response, int seed_x, int seed_y, std::uint8_t t_out_q);
+  void grow(const ResponseImage& response, int seed_x, int seed_y, std::uint8_t t_out_q, int min_keep_px);
   void measure(Cluster& c, const Roi& roi) const;
 
   int m_width = 0;

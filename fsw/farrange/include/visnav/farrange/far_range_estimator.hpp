@@ -35,6 +35,7 @@ enum FarRangeFlag : std::uint32_t {
   kFlagAtBorder = 1U << 8,         ///< the target touches the image border: n is too small
   kFlagAmbiguous = 1U << 9,        ///< a second acceptable cluster came close in score
   kFlagUnconfirmed = 1U << 10,     ///< picked without a track (largest plausible cluster)
+  kFlagExtended = 1U << 11,        ///< found by its outline on the edge response alone (extended target)
 };
 
 /// Execution time of one estimate() per stage [us] (zeros when no clock is set).
@@ -123,6 +124,7 @@ class FarRangeEstimator {
   int selectPaper() const;
   int selectRobust(const Gate& gate, std::uint32_t& flags);
   void prepareCandidates();
+  int searchExtended(const Gate& gate, std::uint32_t& flags);
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;  ///< n of eq. 16 for this method
   void report(const Cluster& c, const Gate& gate, FarRangeResult& out) const;
@@ -146,6 +148,8 @@ class FarRangeEstimator {
   BoundedBuffer<std::uint8_t> m_row_max;
   std::uint8_t m_t_in_q = 229;
   std::uint8_t m_t_out_q = 127;
+  std::uint8_t m_ext_spawn_q = 252;
+  std::uint8_t m_ext_grow_q = 153;
   Track m_track;
   bool m_has_prediction = false;
   Vec2 m_prediction_px = Vec2::Zero();

@@ -40,6 +40,10 @@ struct FarRangeParams {
   bool use_roi = true;
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
+  double extended_min_half_px = 12.0;
+  double extended_spawn = 0.99;
+  double extended_grow = 0.6;
+  double extended_max_growth = 64.0;
   // Capacities (memory is sized from these and the image size at init).
   int max_clusters = 256;
   int max_cluster_pixels = 262144;
@@ -121,6 +125,21 @@ struct FarRangeParams {
            roi_extent_factor);
     v.integer({"farrange", "roi_min_half_px", "px", 8, 100000, "robust: smallest ROI half size"},
               roi_min_half_px);
+    v.real({"farrange", "extended_min_half_px", "px", 0.0, 100000.0,
+            "robust: when eq. 13 finds no tracked target, its outline is searched on the edge response alone "
+            "inside the gate (eq. 12's rarity fails once the target's own grey levels fill the histogram); "
+            "an outline of at least this half extent is taken; 0 switches this off"},
+           extended_min_half_px);
+    v.real({"farrange", "extended_spawn", "-", 0.0, 1.0,
+            "robust: that outline search spawns where the edge response of eq. 10 exceeds this"},
+           extended_spawn);
+    v.real({"farrange", "extended_grow", "-", 0.0, 1.0,
+            "robust: ... and grows over edge responses above this; the filled outline is the silhouette"},
+           extended_grow);
+    v.real({"farrange", "extended_max_growth", "-", 1.0, 1.0e6,
+            "robust: the outline found may be up to this many times the tracked n (a track held on a "
+            "fragment of the target: its n is a lower bound)"},
+           extended_max_growth);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
     v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},
@@ -132,6 +151,8 @@ struct FarRangeParams {
     if (std::abs(edge_weight + histogram_weight - 1.0) > 1e-9)
       return "[farrange] edge_weight + histogram_weight must sum to 1 (paper eq. 14)";
     if (!(t_out <= t_in)) return "[farrange] t_out must be <= t_in (clusters grow from spawn pixels)";
+    if (!(extended_grow <= extended_spawn))
+      return "[farrange] extended_grow must be <= extended_spawn (clusters grow from spawn pixels)";
     return nullptr;
   }
 };
