@@ -34,6 +34,7 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   m_histogram_response.init(w, h);
   m_combined.init(w, h);
   m_row_max.reserve(static_cast<std::size_t>(h));
+  m_edge_row_max.reserve(static_cast<std::size_t>(h));
   m_finder.init(w, h, params.max_clusters, params.max_cluster_pixels);
   // "Exceeds t": S / 255 > t  <=>  S > floor(255 t) for the integer S.
   m_t_in_q = static_cast<std::uint8_t>(std::floor(params.t_in * 255.0));
@@ -147,6 +148,8 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     if (selected < 0 && m_robust) selected = searchExtended(gate, out.flags);
     out.timing.select_us += elapsedUs(stamp);
   }
+  if (selected >= 0 && m_robust && (out.flags & kFlagExtended) == 0U)
+    selected = preferEnclosingOutline(gate, selected, out.flags);
   if (selected >= 0) {
     out.cluster_count = static_cast<int>(m_finder.clusters().size());
     out.selected = selected;
@@ -161,6 +164,30 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   return Status::kOk;
 }
 
+int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags) {
+  // eq. 13 may hold only a fragment of a target that grew (plate/50: n = 1 to 3 at 50 m in noise 0.11, read
+  // as 2000 m), and the gate's size consistency then keeps the fragment. An outline on the edge response
+  // that encloses the fragment and is at least twice its size is the target.
+  if (!gate.active || !(m_params.extended_min_half_px > 0.0)) return selected;
+  const Cluster fragment = m_finder.clusters()[static_cast<std::size_t>(selected)];
+  const Vec2 at = m_params.fill_holes && fragment.filled_count > 0 ? fragment.filled_com_px : fragment.com_px;
+  std::uint32_t outline_flags = 0;
+  const int outline = searchExtended(gate, outline_flags);
+  if (outline >= 0) {
+    const Cluster& c = m_finder.clusters()[static_cast<std::size_t>(outline)];
+    if (at.x() >= c.x_min && at.x() <= c.x_max + 1.0 && at.y() >= c.y_min && at.y() <= c.y_max + 1.0 &&
+        usedPixels(c) >= 2 * usedPixels(fragment)) {
+      flags |= outline_flags;
+      return outline;
+    }
+  }
+  // The fragment stays: the eq. 13 clusters are found again (same response, same thresholds, same result).
+  m_finder.find(m_combined, m_row_max.data(), m_t_in_q, m_t_out_q);
+  prepareCandidates();
+  std::uint32_t again = 0;
+  return selectRobust(gate, again);
+}
+
 int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
   // Close in, the target's own grey levels fill the histogram and eq. 12 no longer calls them rare: with
   // t_in 0.9 and equal weights no pixel spawns a cluster although the outline is a strong edge (campaign
@@ -170,7 +197,7 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
   // with a track: without one, a strong edge anywhere (limb, glow) would do.
   if (!(m_params.extended_min_half_px > 0.0) || !gate.active) return -1;
   const Roi& roi = m_edge_response.roi();
-  std::uint8_t* row_max = m_row_max.data();
+  std::uint8_t* row_max = m_edge_row_max.data();
   for (int ry = 0; ry < roi.height; ++ry) {
     const std::uint8_t* s = m_edge_response.row(ry);
     row_max[ry] = *std::max_element(s, s + roi.width);

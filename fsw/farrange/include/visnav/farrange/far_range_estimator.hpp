@@ -125,6 +125,7 @@ class FarRangeEstimator {
   int selectRobust(const Gate& gate, std::uint32_t& flags);
   void prepareCandidates();
   int searchExtended(const Gate& gate, std::uint32_t& flags);
+  int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;  ///< n of eq. 16 for this method
   void report(const Cluster& c, const Gate& gate, FarRangeResult& out) const;
@@ -146,6 +147,7 @@ class FarRangeEstimator {
   ResponseImage m_histogram_response;
   ResponseImage m_combined;
   BoundedBuffer<std::uint8_t> m_row_max;
+  BoundedBuffer<std::uint8_t> m_edge_row_max;  ///< the outline search's, so m_row_max stays eq. 13's
   std::uint8_t m_t_in_q = 229;
   std::uint8_t m_t_out_q = 127;
   std::uint8_t m_ext_spawn_q = 252;
