@@ -89,6 +89,7 @@ TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
   synthetic::Renderer renderer;
   ASSERT_TRUE(renderer.init(camera, makeRectanglePlate(2.0, 2.2), o).ok);
   std::vector<test::FarFrame> f;
+  f.reserve(16);
   for (int i = 0; i < 16; ++i)
     f.push_back(
         test::renderFar(renderer, test::satAt(21.0 * std::pow(0.97, i), 1.0, -0.5, 30.0 + i), 50 + i, i));
