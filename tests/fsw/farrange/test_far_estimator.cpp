@@ -51,32 +51,30 @@ struct ApproachScene {
   double gamma = 0.0;  ///< 0: calibrated on a frame at 200 m
 };
 
-// octagon/26 in kind: a bright flat plate on 640x480, f 1180 px, noise 0.063.
-ApproachScene brightPlate() {
+// A flat plate of `width_m` x `height_m` (brightness on background level, noise, blur) seen by a
+// width_px x height_px camera of focal length f_px.
+ApproachScene plateScene(double width_m, double height_m, double brightness, double background, double noise,
+                         double blur_px, int width_px, int height_px, double f_px) {
   ApproachScene a;
-  a.render.background = 0.28;
-  a.render.target_brightness = 0.87;
-  a.render.noise_sigma = 0.063;
-  a.render.blur_sigma_px = 0.33;
-  CameraIntrinsics k = CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320.0, 240.0);
-  k.fx_px = k.fy_px = 1180.0;
+  a.render.background = background;
+  a.render.target_brightness = brightness;
+  a.render.noise_sigma = noise;
+  a.render.blur_sigma_px = blur_px;
+  CameraIntrinsics k =
+      CameraIntrinsics::fromSi(width_px, height_px, 6e-3, 6e-6, 6e-6, 0.0, 0.5 * width_px, 0.5 * height_px);
+  k.fx_px = k.fy_px = f_px;
   a.camera = PinholeCamera(k);
-  a.model = makeRectanglePlate(2.0, 2.2);
+  a.model = makeRectanglePlate(width_m, height_m);
   return a;
 }
+
+// octagon/26 in kind: a bright flat plate on 640x480, f 1180 px, noise 0.063.
+ApproachScene brightPlate() { return plateScene(2.0, 2.2, 0.87, 0.28, 0.063, 0.33, 640, 480, 1180.0); }
 
 // plate/50 in kind: a long plate of low contrast (0.27) in noise on 1024x768, f 1134 px (plate/50 had 0.108,
 // where the edge response does not close the outline either).
 ApproachScene dimPlateInNoise() {
-  ApproachScene a;
-  a.render.background = 0.246;
-  a.render.target_brightness = 0.52;
-  a.render.noise_sigma = 0.08;
-  a.render.blur_sigma_px = 0.4;
-  CameraIntrinsics k = CameraIntrinsics::fromSi(1024, 768, 6e-3, 6e-6, 6e-6, 0.0, 512.0, 384.0);
-  k.fx_px = k.fy_px = 1134.0;
-  a.camera = PinholeCamera(k);
-  a.model = makeRectanglePlate(2.9, 1.2);
+  ApproachScene a = plateScene(2.9, 1.2, 0.52, 0.246, 0.08, 0.4, 1024, 768, 1134.0);
   a.gamma = 1134.0 * std::sqrt(2.9 * 1.2);  // f sqrt(face-on area), as the campaign sets it
   return a;
 }
