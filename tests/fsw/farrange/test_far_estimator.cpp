@@ -11,6 +11,13 @@ namespace {
 
 using test::angleDeg;
 
+// The outline search of an extended target (off by default, fsw/farrange/README.md) at its measured setting.
+FarRangeParams withOutlineSearch() {
+  FarRangeParams p;
+  p.extended_min_half_px = 12.0;
+  return p;
+}
+
 FarRangeParams method(FarRangeMethod m) {
   FarRangeParams p;
   p.method = static_cast<int>(m);
@@ -337,13 +344,12 @@ TEST(FarRangeEstimator, TheFilterSetIsOpen) {
 TEST(FarRangeEstimator, AnExtendedTargetIsTrackedByItsOutlineWhenItsGreyLevelsAreNoLongerRare) {
   // Once the plate's own grey levels fill the histogram, eq. 12 no longer calls them rare and no pixel
   // reaches t_in (below 19 m, 150 px across).
-  FarRangeParams without;
-  without.extended_min_half_px = 0.0;
+  const FarRangeParams without;
   double last_without = 0.0;
   approach(brightPlate(), without, last_without);
   EXPECT_GT(last_without, 17.0) << "eq. 13 alone loses the plate below 19 m";
   double last_with = 0.0;
-  const std::vector<FarRangeResult> with = approach(brightPlate(), FarRangeParams{}, last_with);
+  const std::vector<FarRangeResult> with = approach(brightPlate(), withOutlineSearch(), last_with);
   EXPECT_LT(last_with, 12.2) << "the outline search holds it to the end";
   int extended = 0;
   for (std::size_t i = 0; i < with.size(); ++i) {
@@ -360,12 +366,11 @@ TEST(FarRangeEstimator, AFragmentOfTheTargetGivesWayToTheOutlineEnclosingIt) {
   // gate's size consistency holds on to such a fragment: the fixes stay on the target but read hundreds of
   // metres (none of the 40 frames below 40 m within 25 %). The outline search, also where it encloses the
   // fragment, gives 16 of them.
-  FarRangeParams without;
-  without.extended_min_half_px = 0.0;
+  const FarRangeParams without;
   double last_without = 0.0;
   const std::vector<FarRangeResult> fragments = approach(dimPlateInNoise(), without, last_without);
   double last_with = 0.0;
-  const std::vector<FarRangeResult> with = approach(dimPlateInNoise(), FarRangeParams{}, last_with);
+  const std::vector<FarRangeResult> with = approach(dimPlateInNoise(), withOutlineSearch(), last_with);
   int good_without = 0;
   int good_with = 0;
   for (std::size_t i = 0; i < with.size(); ++i) {

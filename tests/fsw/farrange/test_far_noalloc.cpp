@@ -93,8 +93,10 @@ TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
   for (int i = 0; i < 16; ++i)
     f.push_back(
         test::renderFar(renderer, test::satAt(21.0 * std::pow(0.97, i), 1.0, -0.5, 30.0 + i), 50 + i, i));
+  FarRangeParams p;
+  p.extended_min_half_px = 12.0;  // off by default
   FarRangeEstimator e;
-  ASSERT_TRUE(e.init(camera, FarRangeParams{}).ok);
+  ASSERT_TRUE(e.init(camera, p).ok);
   FarRangeResult r;
   int extended = 0;
   const std::uint64_t before = test::allocationCount();

@@ -40,7 +40,7 @@ struct FarRangeParams {
   bool use_roi = true;
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
-  double extended_min_half_px = 12.0;
+  double extended_min_half_px = 0.0;  // off: see fsw/farrange/README.md (a near-cube box's twin)
   double extended_spawn = 0.99;
   double extended_grow = 0.6;
   double extended_max_growth = 64.0;
@@ -128,7 +128,8 @@ struct FarRangeParams {
     v.real({"farrange", "extended_min_half_px", "px", 0.0, 100000.0,
             "robust: when eq. 13 finds no tracked target, its outline is searched on the edge response alone "
             "inside the gate (eq. 12's rarity fails once the target's own grey levels fill the histogram); "
-            "an outline of at least this half extent is taken; 0 switches this off"},
+            "an outline of at least this half extent is taken (12 was measured); 0, the default, switches "
+            "this off until acquisition tells a near-cube box from its turned twin (fsw/farrange/README.md)"},
            extended_min_half_px);
     v.real({"farrange", "extended_spawn", "-", 0.0, 1.0,
             "robust: that outline search spawns where the edge response of eq. 10 exceeds this"},
