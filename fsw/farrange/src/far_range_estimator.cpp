@@ -166,11 +166,11 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
 
 int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags) {
   // eq. 13 may hold only a fragment of a target that grew (plate/50: n = 1 to 3 at 50 m in noise 0.11, read
-  // as 2000 m), and the gate's size consistency then keeps the fragment. An outline on the edge response
+  // as 1200-2100 m), and the gate's size consistency then keeps the fragment. An outline on the edge response
   // that encloses the fragment and is at least twice its size is the target.
   if (!gate.active || !(m_params.extended_min_half_px > 0.0)) return selected;
   const Cluster fragment = m_finder.clusters()[static_cast<std::size_t>(selected)];
-  const Vec2 at = m_params.fill_holes && fragment.filled_count > 0 ? fragment.filled_com_px : fragment.com_px;
+  const Vec2 at = usedCentre(fragment);
   std::uint32_t outline_flags = 0;
   const int outline = searchExtended(gate, outline_flags);
   if (outline >= 0) {
@@ -215,16 +215,14 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
   for (std::size_t i = 0; i < clusters.size(); ++i) {
     Cluster& c = clusters[i];
     if (c.pixel_count < m_params.min_cluster_px || c.halfExtentPx() < m_params.extended_min_half_px) continue;
-    if (c.x_min == 0 || c.y_min == 0 || c.x_max == m_camera.width() - 1 || c.y_max == m_camera.height() - 1)
-      continue;
+    if (touchesImageBorder(c)) continue;
     // Holes are filled (twice the bounding box's area) only for an outline that can reach the gate: the
     // filled centre lies in the bounding box.
     const double gap_x = std::max({c.x_min - gate.centre_px.x(), gate.centre_px.x() - (c.x_max + 1.0), 0.0});
     const double gap_y = std::max({c.y_min - gate.centre_px.y(), gate.centre_px.y() - (c.y_max + 1.0), 0.0});
     if (std::hypot(gap_x, gap_y) > gate.radius_px) continue;
     if (m_params.fill_holes) m_finder.fillHoles(c);
-    const Vec2 centre = m_params.fill_holes && c.filled_count > 0 ? c.filled_com_px : c.com_px;
-    const double offset = (centre - gate.centre_px).norm();
+    const double offset = (usedCentre(c) - gate.centre_px).norm();
     if (offset > gate.radius_px) continue;
     const double log_ratio = std::log(usedPixels(c) / std::max(gate.size_px, 1.0));
     if (log_ratio < -down_limit || log_ratio > up_limit) continue;
@@ -251,8 +249,7 @@ void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResul
   out.azimuth_rad = std::atan2(d.x(), d.z());
   out.elevation_rad = std::atan2(-d.y(), std::hypot(d.x(), d.z()));
   out.distance_m = m_params.gamma / std::sqrt(static_cast<double>(out.cluster_pixels));  // eq. 16
-  if (c.x_min == 0 || c.y_min == 0 || c.x_max == m_camera.width() - 1 || c.y_max == m_camera.height() - 1)
-    out.flags |= kFlagAtBorder;
+  if (touchesImageBorder(c)) out.flags |= kFlagAtBorder;
   out.valid = true;
   if (!m_robust) {
     out.quality = c.circularity;

@@ -6,13 +6,13 @@
 #include "visnav/farrange/far_range_estimator.hpp"
 
 namespace visnav::far {
-namespace {
-
-Vec2 usedCentre(const Cluster& c, bool filled) {
-  return filled && c.filled_count > 0 ? c.filled_com_px : c.com_px;
+Vec2 FarRangeEstimator::usedCentre(const Cluster& c) const {
+  return m_params.fill_holes && c.filled_count > 0 ? c.filled_com_px : c.com_px;
 }
 
-}  // namespace
+bool FarRangeEstimator::touchesImageBorder(const Cluster& c) const {
+  return c.x_min == 0 || c.y_min == 0 || c.x_max == m_camera.width() - 1 || c.y_max == m_camera.height() - 1;
+}
 
 int FarRangeEstimator::usedPixels(const Cluster& c) const {
   if (!m_robust || !m_params.fill_holes || c.filled_count <= 0) return c.pixel_count;
@@ -64,7 +64,6 @@ FarRangeEstimator::Gate FarRangeEstimator::currentGate() const {
 
 int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
   const auto& clusters = m_finder.clusters();
-  const bool filled = m_params.fill_holes;
   int best = -1;
   int second = -1;
   double best_score = 0.0;
@@ -75,7 +74,7 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
     for (std::size_t i = 0; i < clusters.size(); ++i) {
       const Cluster& c = clusters[i];
       if (c.pixel_count < m_params.min_cluster_px) continue;
-      const double offset = (usedCentre(c, filled) - gate.centre_px).norm();
+      const double offset = (usedCentre(c) - gate.centre_px).norm();
       if (offset > gate.radius_px) continue;
       const double log_ratio = std::abs(std::log(usedPixels(c) / std::max(gate.size_px, 1.0)));
       if (log_ratio > log_ratio_limit) continue;

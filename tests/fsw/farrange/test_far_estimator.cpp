@@ -343,7 +343,7 @@ TEST(FarRangeEstimator, TheFilterSetIsOpen) {
 
 TEST(FarRangeEstimator, AnExtendedTargetIsTrackedByItsOutlineWhenItsGreyLevelsAreNoLongerRare) {
   // Once the plate's own grey levels fill the histogram, eq. 12 no longer calls them rare and no pixel
-  // reaches t_in (below 19 m, 150 px across).
+  // reaches t_in (below 19 m, about 140 px across).
   const FarRangeParams without;
   double last_without = 0.0;
   approach(brightPlate(), without, last_without);

@@ -127,7 +127,9 @@ class FarRangeEstimator {
   int searchExtended(const Gate& gate, std::uint32_t& flags);
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
   Gate currentGate() const;
-  int usedPixels(const Cluster& c) const;  ///< n of eq. 16 for this method
+  int usedPixels(const Cluster& c) const;   ///< n of eq. 16 for this method
+  Vec2 usedCentre(const Cluster& c) const;  ///< its centre: of the filled cluster when holes are filled
+  bool touchesImageBorder(const Cluster& c) const;
   void report(const Cluster& c, const Gate& gate, FarRangeResult& out) const;
   void updateTrack(const FarRangeResult& out);
 
