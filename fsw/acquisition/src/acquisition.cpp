@@ -1,5 +1,7 @@
 #include "visnav/acquisition/acquisition.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -48,6 +50,7 @@ LoadError Acquisition::init(const PinholeCamera& camera, const PolygonModel& mod
   if (e.ok) e = m_rival_confirmer.init(camera, model, nearrange);
   if (!e.ok) return e;
   m_symmetries.find(model);
+  m_symmetries.findNear(model, params.near_twin_max_rel);
   m_candidates.reserve(static_cast<std::size_t>(params.search_candidates));
   m_refined.reserve(static_cast<std::size_t>(params.candidates));
   m_verified.reserve(static_cast<std::size_t>(params.candidates));
@@ -64,6 +67,7 @@ void Acquisition::reset() {
   m_next_hypothesis = 0;
   m_frames = 0;
   m_best_score = 0.0;
+  m_has_near_twin = false;
 }
 
 void Acquisition::fail(AcquisitionFailure failure) {
@@ -112,13 +116,19 @@ void Acquisition::prepareWindow(const MonoImage& image) {
   m_window.prepare(image, m_params.fine_spread_px, m_params.coarse_spread_px, m_params.evidence_cap);
 }
 
-void Acquisition::offer(BoundedBuffer<Candidate>& list, const Candidate& c, double min_angle_rad) {
-  // Distinct attitudes only: one peak of the score fills one slot, not all of them.
+void Acquisition::offer(BoundedBuffer<Candidate>& list, const Candidate& c, double min_angle_rad,
+                        const ModelSymmetries* symmetries) {
+  // Distinct attitudes only: one peak of the score fills one slot, not all of them. With `symmetries`, a
+  // symmetric twin of a listed attitude is that attitude (a box's half turns would fill four slots).
   const double min_cos = std::cos(min_angle_rad);
   std::size_t slot = list.size();
   for (std::size_t i = 0; i < list.size(); ++i) {
-    // cos of the angle between the two attitudes: (trace(R_a^T R_b) - 1) / 2.
-    if (0.5 * ((list[i].attitude.transpose() * c.attitude).trace() - 1.0) > min_cos) {
+    // cos of the angle between the two attitudes: (trace(R_a^T R_b S) - 1) / 2, the closest twin S.
+    const Mat3 relative = list[i].attitude.transpose() * c.attitude;
+    double trace = relative.trace();
+    for (int k = 1; symmetries != nullptr && k < symmetries->size(); ++k)
+      trace = std::max(trace, (relative * (*symmetries)[k]).trace());
+    if (0.5 * (trace - 1.0) > min_cos) {
       if (c.score <= list[i].score) return;
       slot = i;
       break;
@@ -227,7 +237,7 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
     if (!(m_scorer.refine(m_window, refine, r.pose, out.score_evaluations) > 0.0)) continue;
     r.score = m_scorer.agreement(r.pose, m_window, tolerance_px).f1;
     r.attitude = r.pose.R_c_m;
-    offer(m_refined, r, 2.0 * kRadPerDeg);
+    offer(m_refined, r, 2.0 * kRadPerDeg, &m_symmetries);
   }
   m_verified.clear();
   for (const Candidate& c : m_refined) {
@@ -245,6 +255,7 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
   }
   if (m_verified.empty()) return fail(AcquisitionFailure::kNoCandidate);
   m_current = 0;
+  challengeByNearTwin(image, frame_number, out);
   m_pose = m_verified[0].pose;
   m_confirmer.reset();
   m_confirmed = 0;
@@ -263,24 +274,84 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
 }
 
 void Acquisition::chooseRival() {
-  // The best verified pose that is not a symmetric twin of the current one and scores within rival_margin
-  // of it: both are tracked through confirmation, so an equally good alternative is never silently dropped.
+  // The best verified pose that is not a symmetric twin of the current one, or the current one's near twin
+  // when it scores higher, is a rival when it scores within rival_margin: both are tracked through
+  // confirmation, so an equally good alternative is never silently dropped.
   m_rival_alive = false;
   const Verified& best = m_verified[static_cast<std::size_t>(m_current)];
+  // Distinct means beyond what the tracker can resolve (PoseTolerance::widened).
+  const PoseTolerance same =
+      PoseTolerance::widened(m_params.confirm_max_motion_rel * best.pose.t_c_m.z(),
+                             m_params.confirm_max_rotation_deg * kRadPerDeg, best.covariance);
+  const Verified* rival = nullptr;
   for (std::size_t i = static_cast<std::size_t>(m_current) + 1; i < m_verified.size(); ++i) {
-    const Verified& v = m_verified[i];
-    // Distinct means beyond what the tracker can resolve (PoseTolerance::widened).
-    const PoseTolerance same =
-        PoseTolerance::widened(m_params.confirm_max_motion_rel * best.pose.t_c_m.z(),
-                               m_params.confirm_max_rotation_deg * kRadPerDeg, best.covariance);
-    if (m_symmetries.equivalent(v.pose, best.pose, same)) continue;
-    if (v.score >= best.score - m_params.rival_margin) {
-      m_rival_alive = true;
-      m_rival_pose = v.pose;
-      m_rival_confirmer.reset();
-    }
+    if (m_symmetries.equivalent(m_verified[i].pose, best.pose, same)) continue;
+    rival = &m_verified[i];
     break;  // sorted best first: later ones score lower still
   }
+  if (m_has_near_twin && (rival == nullptr || m_near_twin.score > rival->score) &&
+      !m_symmetries.equivalent(m_near_twin.pose, best.pose, same))
+    rival = &m_near_twin;
+  if (rival != nullptr && rival->score >= best.score - m_params.rival_margin) {
+    m_rival_alive = true;
+    m_rival_pose = rival->pose;
+    m_rival_confirmer.reset();
+  }
+}
+
+double Acquisition::evidenceScore(const NearRangeResult& r) {
+  // Two-way agreement at the tracked pose less the residual term (see verify()).
+  return m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1 -
+         m_params.rms_weight * r.rms_px;
+}
+
+bool Acquisition::bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose,
+                               Verified& twin, AcquisitionResult& out) {
+  // The near twins that agree best with the window before tracking (a few agreement evaluations each), then
+  // the tracker on those: the best one it accepts.
+  constexpr int kMaxChecks = 16;  // the parameter's upper bound
+  std::array<int, kMaxChecks> index{};
+  std::array<double, kMaxChecks> prior{};
+  const int checks = std::min(m_params.near_twin_checks, kMaxChecks);
+  const double tolerance_px = m_params.fine_spread_px + 0.5;
+  int kept = 0;
+  for (int i = 0; i < m_symmetries.nearCount(); ++i) {
+    const double f1 = m_scorer.agreement(m_symmetries.nearTwin(pose, i), m_window, tolerance_px).f1;
+    ++out.score_evaluations;
+    int slot = kept < checks ? kept++ : checks;
+    for (; slot > 0 && f1 > prior[static_cast<std::size_t>(slot - 1)]; --slot) {
+      if (slot < checks) {
+        prior[static_cast<std::size_t>(slot)] = prior[static_cast<std::size_t>(slot - 1)];
+        index[static_cast<std::size_t>(slot)] = index[static_cast<std::size_t>(slot - 1)];
+      }
+    }
+    if (slot < checks) {
+      prior[static_cast<std::size_t>(slot)] = f1;
+      index[static_cast<std::size_t>(slot)] = i;
+    }
+  }
+  bool found = false;
+  for (int k = 0; k < kept; ++k) {
+    Pose candidate = m_symmetries.nearTwin(pose, index[static_cast<std::size_t>(k)]);
+    NearRangeResult r;
+    if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, candidate, r, out))
+      continue;
+    const double score = evidenceScore(r);
+    ++out.score_evaluations;
+    if (!found || score > twin.score) twin = Verified{score, r.rms_px, r.quality, r.pose, r.covariance};
+    found = true;
+  }
+  return found;
+}
+
+void Acquisition::challengeByNearTwin(const MonoImage& image, std::uint64_t frame_number,
+                                      AcquisitionResult& out) {
+  // The current candidate's best near twin, for chooseRival(). It may block the candidate, never replace it:
+  // a twin that scored higher was confirmed 75 deg off in campaign box/49 where the candidate was right.
+  m_has_near_twin = false;
+  if (m_symmetries.nearCount() == 0 || m_params.near_twin_checks == 0) return;
+  m_has_near_twin =
+      bestNearTwin(image, frame_number, m_verified[static_cast<std::size_t>(m_current)].pose, m_near_twin, out);
 }
 
 bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
@@ -303,9 +374,14 @@ bool Acquisition::nextCandidate(const MonoImage& image, std::uint64_t frame_numb
   // Lost on the way: the next verified candidate, re-checked on this frame.
   NearRangeResult r;
   for (++m_current; m_current < static_cast<int>(m_verified.size()); ++m_current) {
-    Pose pose = m_verified[static_cast<std::size_t>(m_current)].pose;
+    Verified& current = m_verified[static_cast<std::size_t>(m_current)];
+    Pose pose = current.pose;
     if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, pose, r, out)) continue;
-    m_pose = pose;
+    // Re-scored on this frame, like its near twin is.
+    current = Verified{evidenceScore(r), r.rms_px, r.quality, r.pose, r.covariance};
+    ++out.score_evaluations;
+    challengeByNearTwin(image, frame_number, out);
+    m_pose = current.pose;
     m_confirmed = 0;
     m_confirm_frames_run = 0;
     m_confirmer.reset();

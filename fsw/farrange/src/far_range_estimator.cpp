@@ -167,7 +167,9 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
 int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags) {
   // eq. 13 may hold only a fragment of a target that grew (plate/50: n = 1 to 3 at 50 m in noise 0.11, read
   // as 1200-2100 m), and the gate's size consistency then keeps the fragment. An outline on the edge response
-  // that encloses the fragment and is at least twice its size is the target.
+  // that encloses the fragment and is extended_enclose_ratio times its size is the target; a smaller ratio
+  // is a whole target's own outline with its halo, or with parts eq. 13 rightly leaves out (a satellite's
+  // dark panels), whose n gamma was not calibrated on.
   if (!gate.active || !(m_params.extended_min_half_px > 0.0)) return selected;
   const Cluster fragment = m_finder.clusters()[static_cast<std::size_t>(selected)];
   const Vec2 at = usedCentre(fragment);
@@ -176,7 +178,7 @@ int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, st
   if (outline >= 0) {
     const Cluster& c = m_finder.clusters()[static_cast<std::size_t>(outline)];
     if (at.x() >= c.x_min && at.x() <= c.x_max + 1.0 && at.y() >= c.y_min && at.y() <= c.y_max + 1.0 &&
-        usedPixels(c) >= 2 * usedPixels(fragment)) {
+        usedPixels(c) >= m_params.extended_enclose_ratio * usedPixels(fragment)) {
       flags |= outline_flags;
       return outline;
     }

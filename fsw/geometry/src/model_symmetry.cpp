@@ -15,17 +15,18 @@ bool alreadyListed(const std::array<Mat3, ModelSymmetries::kCapacity>& list, int
 
 }  // namespace
 
-bool ModelSymmetries::isSymmetry(const PolygonModel& model, const Mat3& rotation, double tolerance_m) {
+bool ModelSymmetries::isSymmetry(const PolygonModel& model, const Mat3& rotation, double tolerance_m,
+                                 const Vec3& centre_m) {
   const auto& vertices = model.vertices();
   for (const Vec3& v : vertices) {
-    const Vec3 w = rotation * v;
+    const Vec3 w = rotation * (v - centre_m) + centre_m;
     if (std::none_of(vertices.begin(), vertices.end(),
                      [&](const Vec3& u) { return (u - w).norm() <= tolerance_m; }))
       return false;
   }
   const auto& surfaces = model.surfaces();
   for (const ModelSurface& s : surfaces) {
-    const Vec3 c = rotation * s.centroid_m;
+    const Vec3 c = rotation * (s.centroid_m - centre_m) + centre_m;
     const Vec3 n = rotation * s.normal_m;
     if (std::none_of(surfaces.begin(), surfaces.end(), [&](const ModelSurface& u) {
           return u.vertex_indices.size() == s.vertex_indices.size() &&
@@ -41,15 +42,8 @@ double rotationAngleRad(const Mat3& a, const Mat3& b) {
   return logSo3(a.transpose() * b).norm();
 }
 
-void ModelSymmetries::find(const PolygonModel& model, double tolerance_rel) {
-  m_count = 0;
-  m_rotations[0] = Mat3::Identity();
-  m_count = 1;
-  const double tol_m = tolerance_rel * std::max(1.0, model.boundingRadius());
-  auto offer = [&](const Mat3& s) {
-    if (m_count < kCapacity && !alreadyListed(m_rotations, m_count, s) && isSymmetry(model, s, tol_m))
-      m_rotations[static_cast<std::size_t>(m_count++)] = s;
-  };
+template <typename Offer>
+void ModelSymmetries::forEachCandidate(Offer&& offer) {
   // The cube group: products of quarter turns about x, y and z (4 x 4 x 4 products cover all 24).
   const Mat3 qx = expSo3(Vec3(0.5 * kPi, 0.0, 0.0));
   const Mat3 qy = expSo3(Vec3(0.0, 0.5 * kPi, 0.0));
@@ -75,6 +69,54 @@ void ModelSymmetries::find(const PolygonModel& model, double tolerance_rel) {
       offer(rz * flip);
     }
   }
+}
+
+void ModelSymmetries::find(const PolygonModel& model, double tolerance_rel) {
+  m_rotations[0] = Mat3::Identity();
+  m_count = 1;
+  const double tol_m = tolerance_rel * std::max(1.0, model.boundingRadius());
+  forEachCandidate([&](const Mat3& s) {
+    if (m_count < kCapacity && !alreadyListed(m_rotations, m_count, s) && isSymmetry(model, s, tol_m))
+      m_rotations[static_cast<std::size_t>(m_count++)] = s;
+  });
+}
+
+void ModelSymmetries::findNear(const PolygonModel& model, double max_rel) {
+  m_near_count = 0;
+  m_centre_m = Vec3::Zero();
+  const auto& vertices = model.vertices();
+  if (!(max_rel > 0.0) || vertices.empty()) return;
+  for (const Vec3& v : vertices) m_centre_m += v;
+  m_centre_m /= static_cast<double>(vertices.size());
+  // The symmetries about the centroid (about the origin, find()'s, when the model is centred on it): a turn
+  // that shows the same image is not a rival to test.
+  std::array<Mat3, kCapacity> exact{};
+  int exact_count = 0;
+  const double exact_m = kIndistinguishableRel * std::max(1.0, model.boundingRadius());
+  forEachCandidate([&](const Mat3& s) {
+    if (exact_count < kCapacity && isSymmetry(model, s, exact_m, m_centre_m))
+      exact[static_cast<std::size_t>(exact_count++)] = s;
+  });
+  const double near_m = max_rel * model.boundingRadius();
+  forEachCandidate([&](const Mat3& s) {
+    if (m_near_count >= kCapacity) return;
+    // R S E shows what R S shows for every symmetry E: one entry per class.
+    for (int e = 0; e < exact_count; ++e) {
+      const Mat3& sym = exact[static_cast<std::size_t>(e)];
+      if ((sym - s).cwiseAbs().maxCoeff() < 1e-9) return;
+      for (int n = 0; n < m_near_count; ++n)
+        if ((m_near[static_cast<std::size_t>(n)] * sym - s).cwiseAbs().maxCoeff() < 1e-9) return;
+    }
+    if (isSymmetry(model, s, near_m, m_centre_m)) m_near[static_cast<std::size_t>(m_near_count++)] = s;
+  });
+}
+
+Pose ModelSymmetries::nearTwin(const Pose& pose, int i) const {
+  const Mat3& s = m_near[static_cast<std::size_t>(i)];
+  Pose twin;
+  twin.R_c_m = pose.R_c_m * s;
+  twin.t_c_m = pose.t_c_m + pose.R_c_m * m_centre_m - twin.R_c_m * m_centre_m;
+  return twin;
 }
 
 double ModelSymmetries::attitudeDistanceRad(const Mat3& a_R_c_m, const Mat3& b_R_c_m) const {

@@ -11,10 +11,16 @@ namespace {
 
 using test::angleDeg;
 
-// The outline search of an extended target (off by default, fsw/farrange/README.md) at its measured setting.
+// The outline search of an extended target (fsw/farrange/README.md) at its measured setting, the default,
+// and switched off.
 FarRangeParams withOutlineSearch() {
   FarRangeParams p;
   p.extended_min_half_px = 12.0;
+  return p;
+}
+FarRangeParams withoutOutlineSearch() {
+  FarRangeParams p;
+  p.extended_min_half_px = 0.0;
   return p;
 }
 
@@ -344,7 +350,7 @@ TEST(FarRangeEstimator, TheFilterSetIsOpen) {
 TEST(FarRangeEstimator, AnExtendedTargetIsTrackedByItsOutlineWhenItsGreyLevelsAreNoLongerRare) {
   // Once the plate's own grey levels fill the histogram, eq. 12 no longer calls them rare and no pixel
   // reaches t_in (below 19 m, about 140 px across).
-  const FarRangeParams without;
+  const FarRangeParams without = withoutOutlineSearch();
   double last_without = 0.0;
   approach(brightPlate(), without, last_without);
   EXPECT_GT(last_without, 17.0) << "eq. 13 alone loses the plate below 19 m";
@@ -365,8 +371,9 @@ TEST(FarRangeEstimator, AFragmentOfTheTargetGivesWayToTheOutlineEnclosingIt) {
   // In noise 0.08 on a contrast of 0.27, eq. 13 keeps only a few pixels of the dim plate below 40 m, and the
   // gate's size consistency holds on to such a fragment: the fixes stay on the target but read hundreds of
   // metres (none of the 40 frames below 40 m within 25 %). The outline search, also where it encloses the
-  // fragment, gives 16 of them.
-  const FarRangeParams without;
+  // fragment, gives 8 of them (16 when an outline twice the fragment's size replaced it, but then a
+  // satellite's body gave way to its outline with the panels: extended_enclose_ratio is 4).
+  const FarRangeParams without = withoutOutlineSearch();
   double last_without = 0.0;
   const std::vector<FarRangeResult> fragments = approach(dimPlateInNoise(), without, last_without);
   double last_with = 0.0;
@@ -379,8 +386,8 @@ TEST(FarRangeEstimator, AFragmentOfTheTargetGivesWayToTheOutlineEnclosingIt) {
     good_without += fragments[i].valid && std::abs(fragments[i].distance_m / range - 1.0) < 0.25 ? 1 : 0;
     good_with += with[i].valid && std::abs(with[i].distance_m / range - 1.0) < 0.25 ? 1 : 0;
   }
-  EXPECT_LT(good_without, 5);
-  EXPECT_GE(good_with, 12);
+  EXPECT_LT(good_without, 3);
+  EXPECT_GE(good_with, 6);
 }
 
 }  // namespace

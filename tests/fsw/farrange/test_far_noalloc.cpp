@@ -94,7 +94,7 @@ TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
     f.push_back(
         test::renderFar(renderer, test::satAt(21.0 * std::pow(0.97, i), 1.0, -0.5, 30.0 + i), 50 + i, i));
   FarRangeParams p;
-  p.extended_min_half_px = 12.0;  // off by default
+  p.extended_min_half_px = 12.0;  // the default, stated: this test is about it
   FarRangeEstimator e;
   ASSERT_TRUE(e.init(camera, p).ok);
   FarRangeResult r;

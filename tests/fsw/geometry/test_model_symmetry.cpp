@@ -2,7 +2,9 @@
 // the twin/rival test acquisition and reacquisition use, and PoseTolerance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "visnav/geometry/model_symmetry.hpp"
 
@@ -43,6 +45,57 @@ TEST(ModelSymmetries, AOneSidedPlateTurnedOverIsNotASymmetry) {
   EXPECT_FALSE(ModelSymmetries::isSymmetry(plate, flip, 1e-6));
   EXPECT_TRUE(ModelSymmetries::isSymmetry(plate, expSo3(Vec3::UnitZ() * kPi), 1e-6));
   EXPECT_TRUE(ModelSymmetries::isSymmetry(makeBox(0.8, 0.6, 0.5), flip, 1e-6));  // closed: a face is there
+}
+
+int countNear(const PolygonModel& model, double max_rel) {
+  ModelSymmetries s;
+  s.find(model);
+  s.findNear(model, max_rel);
+  return s.nearCount();
+}
+
+TEST(ModelSymmetries, NearTwinsOfABoxAreItsCubeTurnsOnePerClass) {
+  // Campaign box/187: within 7 % of a cube. The cube group's 24 turns fall into 6 classes of the box's 4
+  // half turns; the 5 besides the identity's are near twins.
+  const PolygonModel near_cube = makeBox(0.615, 0.585, 0.574);
+  EXPECT_EQ(countNear(near_cube, 0.15), 5);
+  EXPECT_EQ(countNear(near_cube, 0.0), 0) << "0 lists none";
+  // Campaign box/39: only the quarter turn about x swaps two faces within 2 % of the radius (0.807 vs 0.786).
+  const PolygonModel box39 = makeBox(0.930, 0.807, 0.786);
+  EXPECT_EQ(countNear(box39, 0.15), 5);
+  EXPECT_EQ(countNear(box39, 0.05), 1);
+  EXPECT_EQ(countNear(makeBox(0.5, 0.5, 0.5), 0.15), 0) << "a cube's turns are symmetries, not near ones";
+  EXPECT_EQ(countNear(makeRectanglePlate(2.3, 1.8), 0.15), 0) << "its quarter turn is 24 % of the radius off";
+  // The one-sided plate turned over matches every vertex but shows its back: never a twin.
+  EXPECT_EQ(countNear(makeRectanglePlate(2.0, 2.0), 0.15), 0);
+}
+
+TEST(ModelSymmetries, ANearTwinKeepsTheCentroidInPlaceAndItsVerticesClose) {
+  // A model whose origin is off its centroid: the twin turns about the centroid, not the origin.
+  PolygonModel box = makeBox(0.615, 0.585, 0.574);
+  std::vector<Vec3> shifted = box.vertices();
+  for (Vec3& v : shifted) v += Vec3(0.3, -0.2, 0.1);
+  PolygonModel offset;
+  ASSERT_TRUE(PolygonModel::build(shifted, box.surfaces(), offset).ok);
+  ModelSymmetries s;
+  s.find(offset);
+  s.findNear(offset, 0.15);
+  ASSERT_EQ(s.nearCount(), 5);
+  Pose pose;
+  pose.R_c_m = expSo3(Vec3(0.3, -0.5, 0.2));
+  pose.t_c_m = Vec3(0.2, -0.1, 12.0);
+  const Vec3 centroid = Vec3(0.3, -0.2, 0.1);
+  for (int i = 0; i < s.nearCount(); ++i) {
+    const Pose twin = s.nearTwin(pose, i);
+    EXPECT_NEAR((twin.transform(centroid) - pose.transform(centroid)).norm(), 0.0, 1e-12);
+    EXPECT_GT(rotationAngleRad(twin.R_c_m, pose.R_c_m), 60.0 * kRadPerDeg) << "a different attitude";
+    for (const Vec3& v : offset.vertices()) {  // each twin vertex lies within 7 % of the radius of one
+      double nearest = 1e9;
+      for (const Vec3& u : offset.vertices())
+        nearest = std::min(nearest, (twin.transform(v) - pose.transform(u)).norm());
+      EXPECT_LT(nearest, 0.07 * offset.boundingRadius());
+    }
+  }
 }
 
 TEST(ModelSymmetries, TwinIsEquivalentRivalIsNot) {

@@ -6,6 +6,8 @@
 //                the near-range tracker on the best `candidates` (tracker_iterations passes), keep those it
 //                tracks with a low residual, ordered by the edge evidence at the tracked pose;
 //   confirming : the best verified candidate must keep tracking for confirm_frames frames (else the next);
+//                its best distinct rival (the next verified pose or a near-symmetric twin of it, whichever
+//                scores higher) is tracked alongside and must fall rival_margin behind or lose track;
 //   succeeded / failed (no target in the window, no candidate verified, none confirmed, invalid cue).
 // All memory is sized in init(); start() and step() allocate nothing and throw nothing.
 #pragma once
@@ -113,7 +115,8 @@ class Acquisition {
   void fail(AcquisitionFailure failure);
   void prepareWindow(const MonoImage& image);
   void search(AcquisitionResult& out);
-  static void offer(BoundedBuffer<Candidate>& list, const Candidate& c, double min_angle_rad);
+  static void offer(BoundedBuffer<Candidate>& list, const Candidate& c, double min_angle_rad,
+                    const ModelSymmetries* symmetries = nullptr);
   void verify(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
   bool trackCandidate(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
                       int passes, Pose& pose, NearRangeResult& result, AcquisitionResult& out) const;
@@ -122,6 +125,10 @@ class Acquisition {
   bool confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number, Pose& pose,
                    NearRangeResult& r, double& agreement);
   void chooseRival();
+  double evidenceScore(const NearRangeResult& r);
+  bool bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose, Verified& twin,
+                    AcquisitionResult& out);
+  void challengeByNearTwin(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
   bool nextCandidate(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
   template <typename T>
   static void sortBestFirst(BoundedBuffer<T>& list, std::size_t from);
@@ -152,6 +159,8 @@ class Acquisition {
   int m_confirm_frames_run = 0;
   bool m_rival_alive = false;
   Pose m_rival_pose;
+  bool m_has_near_twin = false;  ///< m_near_twin is a near-symmetric twin of the current candidate
+  Verified m_near_twin;
   Pose m_pose;
   NearRangeResult m_last;
 };

@@ -41,6 +41,8 @@ struct AcquisitionParams {
   // Never deliver a wrong pose: what confirmation demands.
   double min_confirm_agreement = 0.7;
   double rival_margin = 0.05;
+  double near_twin_max_rel = 0.15;
+  int near_twin_checks = 3;
   int max_confirm_frames = 8;
   double confirm_max_motion_rel = 0.05;
   double confirm_max_rotation_deg = 5.0;
@@ -148,6 +150,16 @@ struct AcquisitionParams {
          "a distinct verified pose (not a symmetric twin) scoring within this of the best is a rival: both "
          "are tracked, and the best is confirmed only once the rival falls this far behind or loses track"},
         rival_margin);
+    v.real({"acquisition", "near_twin_max_rel", "-", 0.0, 1.0,
+            "a turn of the model (cube group, regular polygons) that maps it onto itself within this share "
+            "of its bounding radius is a near twin: the best candidate's near twins are tracked and one "
+            "scoring within rival_margin is a rival (0: none; a box within 7 % of a cube was confirmed 118 "
+            "deg off without this)"},
+           near_twin_max_rel);
+    v.integer({"acquisition", "near_twin_checks", "count", 0, 16,
+               "near twins tracked per candidate: those whose two-way edge agreement is highest before "
+               "tracking"},
+              near_twin_checks);
     v.integer({"acquisition", "max_confirm_frames", "count", 1, 1000,
                "confirmation with a rival alive ends here: still ambiguous means failed (status lost)"},
               max_confirm_frames);

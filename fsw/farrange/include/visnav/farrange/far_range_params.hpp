@@ -40,10 +40,11 @@ struct FarRangeParams {
   bool use_roi = true;
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
-  double extended_min_half_px = 0.0;  // off: see fsw/farrange/README.md (a near-cube box's twin)
+  double extended_min_half_px = 12.0;
   double extended_spawn = 0.99;
   double extended_grow = 0.6;
   double extended_max_growth = 64.0;
+  double extended_enclose_ratio = 4.0;
   // Capacities (memory is sized from these and the image size at init).
   int max_clusters = 256;
   int max_cluster_pixels = 262144;
@@ -128,8 +129,8 @@ struct FarRangeParams {
     v.real({"farrange", "extended_min_half_px", "px", 0.0, 100000.0,
             "robust: when eq. 13 finds no tracked target, its outline is searched on the edge response alone "
             "inside the gate (eq. 12's rarity fails once the target's own grey levels fill the histogram); "
-            "an outline of at least this half extent is taken (12 was measured); 0, the default, switches "
-            "this off until acquisition tells a near-cube box from its turned twin (fsw/farrange/README.md)"},
+            "an outline of at least this half extent is taken (12 was measured on the full campaign); 0 "
+            "switches the search off"},
            extended_min_half_px);
     v.real({"farrange", "extended_spawn", "-", 0.0, 1.0,
             "robust: that outline search spawns where the edge response of eq. 10 exceeds this"},
@@ -141,6 +142,11 @@ struct FarRangeParams {
             "robust: the outline found may be up to this many times the tracked n (a track held on a "
             "fragment of the target: its n is a lower bound)"},
            extended_max_growth);
+    v.real({"farrange", "extended_enclose_ratio", "-", 1.0, 1.0e6,
+            "robust: an outline enclosing eq. 13's gated candidate replaces it only when at least this many "
+            "times its n (a fragment: plate/50 kept 1-3 px of a plate at 50 m); at 2 a satellite's body "
+            "(28 px at 745 m, far_range_ci) gave way to the outline with its panels, read 33 % too near"},
+           extended_enclose_ratio);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
     v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},

@@ -5,6 +5,10 @@
 // to flag) from a real rival (a different pose as good as it). Found at init by testing a fixed candidate set
 // (the 24 rotations of the cube group and the rotations about z by multiples of 45 and 60 deg: plates, boxes,
 // octagons, hexagons); bounded, no allocation after.
+// Near-symmetries are the same candidates turning the model about its vertex centroid onto itself only
+// within a few per cent of its size (a box of 0.615 x 0.585 x 0.574 m and its 120 deg turn about a body
+// diagonal): a far or noisy image may not tell the two poses apart, so acquisition tests such a near twin
+// of its best hypothesis as a rival instead of assuming it away.
 #pragma once
 
 #include <array>
@@ -40,8 +44,10 @@ class ModelSymmetries {
   /// Tests every candidate (tolerance relative to the bounding radius, at least 1e-6 m). The identity is
   /// always the first entry; the order is deterministic.
   void find(const PolygonModel& model, double tolerance_rel = kIndistinguishableRel);
-  /// True when `rotation` maps the model onto itself (vertices, and surfaces with their outward normals).
-  static bool isSymmetry(const PolygonModel& model, const Mat3& rotation, double tolerance_m);
+  /// True when `rotation` about `centre_m` maps the model onto itself (vertices, and surfaces with their
+  /// outward normals) within tolerance_m.
+  static bool isSymmetry(const PolygonModel& model, const Mat3& rotation, double tolerance_m,
+                         const Vec3& centre_m = Vec3::Zero());
   int size() const { return m_count; }
   const Mat3& operator[](int i) const { return m_rotations[static_cast<std::size_t>(i)]; }
 
@@ -51,9 +57,26 @@ class ModelSymmetries {
   /// the symmetries) within the tolerance.
   bool equivalent(const Pose& a, const Pose& b, const PoseTolerance& tolerance) const;
 
+  /// Lists the candidate rotations that are not symmetries about the vertex centroid (nor such a symmetry's
+  /// product with one already listed) but turn the model about it onto itself within max_rel of the
+  /// bounding radius. max_rel <= 0 lists none. find() does not change the list.
+  void findNear(const PolygonModel& model, double max_rel);
+  int nearCount() const { return m_near_count; }
+  const Mat3& near(int i) const { return m_near[static_cast<std::size_t>(i)]; }
+  /// The pose that shows the model turned by near(i) about its centroid in place of `pose`:
+  /// R S and t + R c - R S c, so the centroid stays where it was.
+  Pose nearTwin(const Pose& pose, int i) const;
+
  private:
+  /// Calls offer(S) for every candidate rotation, in a fixed order.
+  template <typename Offer>
+  static void forEachCandidate(Offer&& offer);
+
   std::array<Mat3, kCapacity> m_rotations{};
   int m_count = 0;
+  std::array<Mat3, kCapacity> m_near{};
+  int m_near_count = 0;
+  Vec3 m_centre_m = Vec3::Zero();
 };
 
 /// Angle [rad] of the rotation a^T b.
