@@ -350,8 +350,8 @@ void Acquisition::challengeByNearTwin(const MonoImage& image, std::uint64_t fram
   // a twin that scored higher was confirmed 75 deg off in campaign box/49 where the candidate was right.
   m_has_near_twin = false;
   if (m_symmetries.nearCount() == 0 || m_params.near_twin_checks == 0) return;
-  m_has_near_twin =
-      bestNearTwin(image, frame_number, m_verified[static_cast<std::size_t>(m_current)].pose, m_near_twin, out);
+  m_has_near_twin = bestNearTwin(image, frame_number, m_verified[static_cast<std::size_t>(m_current)].pose,
+                                 m_near_twin, out);
 }
 
 bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
