@@ -1,0 +1,159 @@
+// Acquisition, confirmation (see acquisition.hpp): the candidate under confirmation, its rival (the next
+// distinct verified pose or a near-symmetric twin of it, whichever scores higher) and the per-frame checks
+// both must pass. Never a coin toss: a rival that keeps up means failure `ambiguous`.
+#include <algorithm>
+#include <array>
+
+#include "visnav/acquisition/acquisition.hpp"
+
+namespace visnav::acq {
+
+void Acquisition::chooseRival() {
+  // The best verified pose that is not a symmetric twin of the current one, or the current one's near twin
+  // when it scores higher, is a rival when it scores within rival_margin: both are tracked through
+  // confirmation, so an equally good alternative is never silently dropped.
+  m_rival_alive = false;
+  const Verified& best = m_verified[static_cast<std::size_t>(m_current)];
+  // Distinct means beyond what the tracker can resolve (PoseTolerance::widened).
+  const PoseTolerance same =
+      PoseTolerance::widened(m_params.confirm_max_motion_rel * best.pose.t_c_m.z(),
+                             m_params.confirm_max_rotation_deg * kRadPerDeg, best.covariance);
+  const Verified* rival = nullptr;
+  for (std::size_t i = static_cast<std::size_t>(m_current) + 1; i < m_verified.size(); ++i) {
+    if (m_symmetries.equivalent(m_verified[i].pose, best.pose, same)) continue;
+    rival = &m_verified[i];
+    break;  // sorted best first: later ones score lower still
+  }
+  if (m_has_near_twin && (rival == nullptr || m_near_twin.score > rival->score) &&
+      !m_symmetries.equivalent(m_near_twin.pose, best.pose, same))
+    rival = &m_near_twin;
+  if (rival != nullptr && rival->score >= best.score - m_params.rival_margin) {
+    m_rival_alive = true;
+    m_rival_pose = rival->pose;
+    m_rival_confirmer.reset();
+  }
+}
+
+double Acquisition::evidenceScore(const NearRangeResult& r) {
+  // Two-way agreement at the tracked pose less the residual term (see verify()).
+  return m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1 -
+         m_params.rms_weight * r.rms_px;
+}
+
+bool Acquisition::bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose,
+                               Verified& twin, AcquisitionResult& out) {
+  // The near twins that agree best with the window before tracking (a few agreement evaluations each), then
+  // the tracker on those: the best one it accepts.
+  constexpr int kMaxChecks = 16;  // the parameter's upper bound
+  std::array<int, kMaxChecks> index{};
+  std::array<double, kMaxChecks> prior{};
+  const int checks = std::min(m_params.near_twin_checks, kMaxChecks);
+  const double tolerance_px = m_params.fine_spread_px + 0.5;
+  int kept = 0;
+  for (int i = 0; i < m_symmetries.nearCount(); ++i) {
+    const double f1 = m_scorer.agreement(m_symmetries.nearTwin(pose, i), m_window, tolerance_px).f1;
+    ++out.score_evaluations;
+    int slot = kept < checks ? kept++ : checks;
+    for (; slot > 0 && f1 > prior[static_cast<std::size_t>(slot - 1)]; --slot) {
+      if (slot < checks) {
+        prior[static_cast<std::size_t>(slot)] = prior[static_cast<std::size_t>(slot - 1)];
+        index[static_cast<std::size_t>(slot)] = index[static_cast<std::size_t>(slot - 1)];
+      }
+    }
+    if (slot < checks) {
+      prior[static_cast<std::size_t>(slot)] = f1;
+      index[static_cast<std::size_t>(slot)] = i;
+    }
+  }
+  bool found = false;
+  for (int k = 0; k < kept; ++k) {
+    Pose candidate = m_symmetries.nearTwin(pose, index[static_cast<std::size_t>(k)]);
+    NearRangeResult r;
+    if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, candidate, r, out))
+      continue;
+    const double score = evidenceScore(r);
+    ++out.score_evaluations;
+    if (!found || score > twin.score) twin = Verified{score, r.rms_px, r.quality, r.pose, r.covariance};
+    found = true;
+  }
+  return found;
+}
+
+void Acquisition::challengeByNearTwin(const MonoImage& image, std::uint64_t frame_number,
+                                      AcquisitionResult& out) {
+  // The current candidate's best near twin, for chooseRival(). It may block the candidate, never replace it:
+  // a twin that scored higher was confirmed 75 deg off in campaign box/49 where the candidate was right.
+  m_has_near_twin = false;
+  if (m_symmetries.nearCount() == 0 || m_params.near_twin_checks == 0) return;
+  m_has_near_twin = bestNearTwin(image, frame_number, m_verified[static_cast<std::size_t>(m_current)].pose,
+                                 m_near_twin, out);
+}
+
+bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
+                              Pose& pose, NearRangeResult& r, double& agreement) {
+  // One confirmation frame: the pose keeps tracking with the flight settings, moves as a rigid target can
+  // between two frames, and keeps explaining the window's edges both ways.
+  tracker.track(image, pose, frame_number, r);
+  if (!acceptable(r)) return false;
+  // What a target can move in one frame, plus what the tracker cannot resolve: the first flight-tracker pass
+  // moves a far plate's weakly observed tilt by more than a target can turn.
+  const bool consistent = PoseTolerance::widened(m_params.confirm_max_motion_rel * pose.t_c_m.z(),
+                                                 m_params.confirm_max_rotation_deg * kRadPerDeg, r.covariance)
+                              .holds(r.pose, pose);
+  agreement = m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1;
+  pose = r.pose;
+  return consistent && agreement >= m_params.min_confirm_agreement;
+}
+
+bool Acquisition::nextCandidate(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out) {
+  // Lost on the way: the next verified candidate, re-checked on this frame.
+  NearRangeResult r;
+  for (++m_current; m_current < static_cast<int>(m_verified.size()); ++m_current) {
+    Verified& current = m_verified[static_cast<std::size_t>(m_current)];
+    Pose pose = current.pose;
+    if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, pose, r, out)) continue;
+    // Re-scored on this frame, like its near twin is.
+    current = Verified{evidenceScore(r), r.rms_px, r.quality, r.pose, r.covariance};
+    ++out.score_evaluations;
+    challengeByNearTwin(image, frame_number, out);
+    m_pose = current.pose;
+    m_confirmed = 0;
+    m_confirm_frames_run = 0;
+    m_confirmer.reset();
+    chooseRival();
+    return true;
+  }
+  return false;
+}
+
+void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out) {
+  prepareWindow(image);  // the agreement is judged on this frame's edges
+  ++m_confirm_frames_run;
+  NearRangeResult r;
+  double agreement = 0.0;
+  ++out.tracker_calls;
+  if (!confirmStep(m_confirmer, image, frame_number, m_pose, r, agreement)) {
+    if (!nextCandidate(image, frame_number, out)) fail(AcquisitionFailure::kNotConfirmed);
+    return;
+  }
+  m_last = r;
+  ++m_confirmed;
+  if (m_rival_alive) {
+    NearRangeResult rival;
+    double rival_agreement = 0.0;
+    ++out.tracker_calls;
+    const bool rival_tracks =
+        confirmStep(m_rival_confirmer, image, frame_number, m_rival_pose, rival, rival_agreement);
+    const double rival_score = rival_agreement - m_params.rms_weight * rival.rms_px;
+    const double score = agreement - m_params.rms_weight * r.rms_px;
+    m_rival_alive = rival_tracks && rival_score >= score - m_params.rival_margin;
+  }
+  if (m_confirmed < m_params.confirm_frames) return;
+  if (!m_rival_alive) {
+    m_state = AcquisitionState::kSucceeded;
+  } else if (m_confirm_frames_run >= m_params.max_confirm_frames) {
+    fail(AcquisitionFailure::kAmbiguous);  // never a coin toss between two poses: status lost, retry later
+  }
+}
+
+}  // namespace visnav::acq
