@@ -7,8 +7,8 @@
 // octagons, hexagons); bounded, no allocation after.
 // Near-symmetries are the same candidates turning the model about its vertex centroid onto itself only
 // within a few per cent of its size (a box of half sizes 0.615 x 0.585 x 0.574 m and its 120 deg turn about a
-// body diagonal): a far or noisy image may not tell the two poses apart, so acquisition tests such a near twin
-// of its best hypothesis as a rival instead of assuming it away.
+// body diagonal): a far or noisy image may not tell the two poses apart, so acquisition tests such a near
+// twin of its best hypothesis as a rival instead of assuming it away.
 #pragma once
 
 #include <array>
