@@ -229,12 +229,11 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
       0.5 * (std::pow(1.0 + m_params.range_span_rel, 2.0 / std::max(1, m_params.range_steps - 1)) - 1.0);
   // Refine every survivor on this frame; the distinct results that best agree with the window both ways
   // (the refinement's mean evidence alone favours poses showing only the strongest edges) go to the tracker.
-  const double tolerance_px = m_params.fine_spread_px + 0.5;
   m_refined.clear();
   for (const Candidate& c : m_candidates) {
     Candidate r = c;
     if (!(m_scorer.refine(m_window, refine, r.pose, out.score_evaluations) > 0.0)) continue;
-    r.score = m_scorer.agreement(r.pose, m_window, tolerance_px).f1;
+    r.score = agreementF1(r.pose);
     r.attitude = r.pose.R_c_m;
     offer(m_refined, r, 2.0 * kRadPerDeg, &m_symmetries);
   }
@@ -246,8 +245,7 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
     // Rank by the two-way agreement at the tracked pose (the tracker's residual only covers the lines it
     // kept, and a wrong pose can fit those well), less a residual term: depth-reversed ("Necker") poses
     // explain the same edges, only perspective tells them apart, and that shows in the full-resolution fit.
-    const double f1 = m_scorer.agreement(r.pose, m_window, tolerance_px).f1;
-    Verified v{f1 - m_params.rms_weight * r.rms_px, r.rms_px, r.quality, r.pose, r.covariance};
+    Verified v{evidenceScore(r), r.rms_px, r.quality, r.pose, r.covariance};
     ++out.score_evaluations;
     m_verified.push(v);
     sortBestFirst(m_verified, m_verified.size() - 1);

@@ -3,6 +3,7 @@
 // both must pass. Never a coin toss: a rival that keeps up means failure `ambiguous`.
 #include <algorithm>
 #include <array>
+#include <utility>
 
 #include "visnav/acquisition/acquisition.hpp"
 
@@ -34,40 +35,33 @@ void Acquisition::chooseRival() {
   }
 }
 
+double Acquisition::agreementF1(const Pose& pose) {
+  // Two-way edge agreement on this frame's window, within the fine spread (plus half a pixel of rounding).
+  return m_scorer.agreement(pose, m_window, m_params.fine_spread_px + 0.5).f1;
+}
+
 double Acquisition::evidenceScore(const NearRangeResult& r) {
-  // Two-way agreement at the tracked pose less the residual term (see verify()).
-  return m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1 -
-         m_params.rms_weight * r.rms_px;
+  // How verified candidates are ranked: agreement at the tracked pose less a residual term (see verify()).
+  return agreementF1(r.pose) - m_params.rms_weight * r.rms_px;
 }
 
 bool Acquisition::bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose,
                                Verified& twin, AcquisitionResult& out) {
-  // The near twins that agree best with the window before tracking (a few agreement evaluations each), then
-  // the tracker on those: the best one it accepts.
-  constexpr int kMaxChecks = 16;  // the parameter's upper bound
-  std::array<int, kMaxChecks> index{};
-  std::array<double, kMaxChecks> prior{};
-  const int checks = std::min(m_params.near_twin_checks, kMaxChecks);
-  const double tolerance_px = m_params.fine_spread_px + 0.5;
-  int kept = 0;
-  for (int i = 0; i < m_symmetries.nearCount(); ++i) {
-    const double f1 = m_scorer.agreement(m_symmetries.nearTwin(pose, i), m_window, tolerance_px).f1;
-    ++out.score_evaluations;
-    int slot = kept < checks ? kept++ : checks;
-    for (; slot > 0 && f1 > prior[static_cast<std::size_t>(slot - 1)]; --slot) {
-      if (slot < checks) {
-        prior[static_cast<std::size_t>(slot)] = prior[static_cast<std::size_t>(slot - 1)];
-        index[static_cast<std::size_t>(slot)] = index[static_cast<std::size_t>(slot - 1)];
-      }
-    }
-    if (slot < checks) {
-      prior[static_cast<std::size_t>(slot)] = f1;
-      index[static_cast<std::size_t>(slot)] = i;
-    }
-  }
+  // The near twins that agree best with the window before tracking (one agreement evaluation each; ties go
+  // to the lower index), then the tracker on those: the best one it accepts.
+  std::array<std::pair<double, int>, ModelSymmetries::kCapacity> prior{};
+  const int count = m_symmetries.nearCount();
+  for (int i = 0; i < count; ++i)
+    prior[static_cast<std::size_t>(i)] = {agreementF1(m_symmetries.nearTwin(pose, i)), i};
+  out.score_evaluations += count;
+  const int kept = std::min(m_params.near_twin_checks, count);
+  std::partial_sort(prior.begin(), prior.begin() + kept, prior.begin() + count,
+                    [](const std::pair<double, int>& a, const std::pair<double, int>& b) {
+                      return a.first > b.first || (a.first == b.first && a.second < b.second);
+                    });
   bool found = false;
   for (int k = 0; k < kept; ++k) {
-    Pose candidate = m_symmetries.nearTwin(pose, index[static_cast<std::size_t>(k)]);
+    Pose candidate = m_symmetries.nearTwin(pose, prior[static_cast<std::size_t>(k)].second);
     NearRangeResult r;
     if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, candidate, r, out))
       continue;
@@ -100,7 +94,7 @@ bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image,
   const bool consistent = PoseTolerance::widened(m_params.confirm_max_motion_rel * pose.t_c_m.z(),
                                                  m_params.confirm_max_rotation_deg * kRadPerDeg, r.covariance)
                               .holds(r.pose, pose);
-  agreement = m_scorer.agreement(r.pose, m_window, m_params.fine_spread_px + 0.5).f1;
+  agreement = agreementF1(r.pose);
   pose = r.pose;
   return consistent && agreement >= m_params.min_confirm_agreement;
 }

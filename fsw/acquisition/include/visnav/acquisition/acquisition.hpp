@@ -125,6 +125,7 @@ class Acquisition {
   bool confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number, Pose& pose,
                    NearRangeResult& r, double& agreement);
   void chooseRival();
+  double agreementF1(const Pose& pose);
   double evidenceScore(const NearRangeResult& r);
   bool bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose, Verified& twin,
                     AcquisitionResult& out);
