@@ -13,6 +13,8 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
   m_near_result.status = TrackStatus::kLost;
   m_reacquisition.start();
   m_acquisition.reset();
+  m_far.reset();  // its light track starts with the search (reacquire_far_cue)
+  m_next_attempt_far_cued = false;
   m_fdir.resetPersistence();
   runReacquisition(image, frame_number, out, in);
 }
@@ -82,8 +84,32 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
   const int after = m_params.navigation.reacquire_acquisition_after_frames;
   if (after <= 0 || m_reacquisition.framesSearching() < after) return;
   const acq::AcquisitionState state = m_acquisition.state();
-  if (state == acq::AcquisitionState::kIdle || state == acq::AcquisitionState::kFailed ||
-      state == acq::AcquisitionState::kSucceeded) {
+  const bool restart = state == acq::AcquisitionState::kIdle || state == acq::AcquisitionState::kFailed ||
+                       state == acq::AcquisitionState::kSucceeded;
+  bool cued = false;
+  if (restart) {
+    // Where far range sees the target, its line of sight is a measurement; the prediction's is not, and
+    // while nothing is measured it drifts with the filter's last rates (campaign box/23: after a 46-frame
+    // eclipse it went 10 to 120 deg off). But far range also locks on clutter, where the prediction would
+    // have been right (box/37), so the attempts alternate: every other one is cued by far range when it
+    // finds a target. Its distance is not taken: gamma / sqrt(n) holds for a target a few pixels across,
+    // and an extended one's outline has far fewer response pixels than its area (a plate at 12 m read
+    // 65 m); the prediction's range is, along the fix's line of sight. Far range's own light track is kept
+    // over the search's frames.
+    const double predicted_range_m = predictedPose().t_c_m.norm();
+    const bool far_turn = m_next_attempt_far_cued;
+    m_next_attempt_far_cued = !m_next_attempt_far_cued;
+    if (m_params.navigation.reacquire_far_cue && far_turn && predicted_range_m > 0.0) {
+      m_far.estimate(image, m_far_result);
+      step.far_cue = m_far_result.valid;
+      if (m_far_result.valid) {
+        const Vec3 direction = m_far_result.direction_c.normalized();
+        m_acquisition.start(direction, predicted_range_m * direction.z());
+        cued = m_acquisition.state() == acq::AcquisitionState::kSearching;
+      }
+    }
+  }
+  if (restart && !cued) {
     const Pose predicted = predictedPose();
     const double range_m = predicted.t_c_m.norm();
     if (!(range_m > 0.0) || !(predicted.t_c_m.z() > 0.0)) return;

@@ -37,20 +37,24 @@ class PipelineTest : public ::testing::Test {
   /// Tracked at 15 m for 3 frames, then hidden for 10 frames (an eclipse: background and noise only) while
   /// the plate comes 3 m closer and turns 20 deg; visible again from frame kHiddenUntil on (30 frames).
   static constexpr int kHiddenUntil = 13;
-  std::vector<test::RenderedFrame> hiddenApproach() {
+  /// Three frames of the plate at `before`, ten frames with nothing drawn (an eclipse), then the plate at
+  /// `reappears` until frame 30.
+  std::vector<test::RenderedFrame> hiddenApproach(const Pose& reappears = test::plateAt(12.0, 0.3, 25.0,
+                                                                                        -15.0),
+                                                  const Pose& before = test::plateAt(15.0, 0.3, 1.0, -1.0)) {
     std::vector<test::RenderedFrame> seq;
     synthetic::Renderer empty;
     EXPECT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
     for (int i = 0; i < 30; ++i) {
       if (i < 3) {
-        seq.push_back(test::renderFrame(renderer, test::plateAt(15.0, 0.3, 1.0, -1.0), 400U + i));
+        seq.push_back(test::renderFrame(renderer, before, 400U + i));
       } else if (i < kHiddenUntil) {
-        Pose behind = test::plateAt(15.0, 0.3, 1.0, -1.0);
+        Pose behind = before;
         behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
         seq.push_back(test::renderFrame(empty, behind, 400U + i));
-        seq.back().truth = test::plateAt(15.0, 0.3, 1.0, -1.0);
+        seq.back().truth = before;
       } else {
-        seq.push_back(test::renderFrame(renderer, test::plateAt(12.0, 0.3, 25.0, -15.0), 400U + i));
+        seq.push_back(test::renderFrame(renderer, reappears, 400U + i));
       }
     }
     return seq;
@@ -345,6 +349,49 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
     } else {
       EXPECT_LT(run.found_at, 0) << "the local search alone took a candidate 20 % off the predicted range";
       EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
+TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRangeSeesIt) {
+  // As above, but the plate also moved sideways while hidden, from 1.5 m right of the line of sight to 2.4 m
+  // left of it: it reappears 17 deg (about 2.5 target radii) from the prediction's line of sight and 20 %
+  // closer. The acquisition cued by the
+  // prediction searches around a line of sight it is not on; cued by far range's fix on the frame
+  // (reacquire_far_cue) it searches where the target is.
+  const std::vector<test::RenderedFrame> seq =
+      hiddenApproach(test::plateAt(12.0, -2.4, 25.0, -15.0), test::plateAt(15.0, 1.5, 1.0, -1.0));
+  int found_with_cue = -1;
+  for (const bool far_cue : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.reacquire_far_cue = far_cue;
+    NavigationPipeline pipeline;
+    HiddenRun run;
+    runHidden(seq, p, pipeline, run);
+    if (far_cue) {
+      EXPECT_EQ(run.allocations, 0U) << "far range ran in near range after init";
+    }
+    int valid_after = 0;
+    for (int i = kHiddenUntil; i < 30; ++i) {
+      const NavSolution& out = run.out[static_cast<std::size_t>(i)];
+      if (!out.pose_valid) continue;
+      ++valid_after;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
+      EXPECT_LT(
+          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
+          2.0)
+          << "frame " << i;
+    }
+    if (far_cue) {
+      ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
+      EXPECT_TRUE(run.found_by_acquisition);
+      EXPECT_LE(run.found_at, kHiddenUntil + 8);
+      EXPECT_GE(valid_after, 30 - run.found_at - 1);
+      found_with_cue = run.found_at;
+    } else {
+      EXPECT_TRUE(run.found_at < 0 || run.found_at > found_with_cue)
+          << "the prediction's cue found it as soon (at " << run.found_at << "): the test tests nothing";
     }
   }
 }

@@ -8,6 +8,7 @@
 
 #include "visnav/core/frame.hpp"
 #include "visnav/executive/clock.hpp"
+#include "visnav/navigation/fdir_monitor.hpp"
 #include "visnav/synthetic/renderer.hpp"
 
 namespace visnav::campaign {
@@ -68,7 +69,7 @@ void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& r) {
 }
 
 std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const nav::FilterUpdate& update) {
-  char buf[320];
+  char buf[340];
   const int n = std::snprintf(
       buf, sizeof buf,
       "%4d r=%7.2f %-11s near=%d flags=%04x lines=%d/%d sil=%d scan=%d in=%d tex=%d weak=%d vtx=%d rms=%.3f "
@@ -130,6 +131,13 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     return res;
   }
   if (timing) pipeline->setClock(&exec::monotonicNowNs);
+  // --trace: on every visible frame without a valid pose, a tracker started at the truth says whether the
+  // image supports the pose at all (the frame is then a search's or a gate's loss, not the image's).
+  std::unique_ptr<NearRangeTracker> oracle;
+  if (trace) {
+    oracle = std::make_unique<NearRangeTracker>();
+    if (!oracle->init(camera, scene.model, params.nearrange).ok) oracle.reset();
+  }
   if (!scene.approach) pipeline->startNearRange(scene.truth(0), 0);
   const std::uint64_t transitions_start = pipeline->modes().transitionCount();
 
@@ -193,6 +201,24 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     classifyFrame(f, th);
     if (trace) {
       res.trace += traceLine(f, pipeline->lastNearRange(), u);
+      if (oracle && f.visible && !f.pose_valid) {
+        NearRangeResult o;
+        oracle->reset();
+        oracle->track(frame.image, truth, static_cast<std::uint64_t>(i), o);
+        const nav::PoseSigmas sigma = nav::poseSigmas(o.pose, o.covariance);
+        char buf[260];
+        std::snprintf(
+            buf, sizeof buf,
+            "       oracle: near=%d good=%d lines=%d/%d rms=%.3f sa=%.2f dp=%.3f da=%.2f flags=%04x "
+            "in=%d pts=%d scan=%d\n",
+            static_cast<int>(o.status),
+            o.status != TrackStatus::kLost && nav::imageEvidenceGood(o, params.navigation) ? 1 : 0,
+            o.lines_used, o.lines_total, o.rms_px, sigma.attitude_deg,
+            (o.pose.t_c_m - truth.t_c_m).norm() / f.range_m,
+            attitudeErrorModuloDeg(o.pose.R_c_m, truth.R_c_m, scene.symmetries), o.flags, o.inlier_points,
+            o.edge_points, o.scanlines);
+        res.trace += buf;
+      }
       if (pipeline->lastNearRange().lines_total > 0) res.trace += traceEdges(pipeline->nearRange(), truth);
       if (pipeline->filter().initialised()) {
         char buf[160];
@@ -222,13 +248,13 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         // The search is centred on the prediction: how far it is from the truth says whether the grid can
         // reach the target at all.
         const Pose predicted = pipeline->predictedPose();
-        char buf[320];
+        char buf[340];
         std::snprintf(
             buf, sizeof buf,
             "       reacq: starts=%d cue=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
             "candidate=%d found=%d best_q=%.2f pred_dp=%.3f pred_da=%.2f pred_lat=%.1fdeg pred_rng=%.3f "
             "last_dp=%.3f "
-            "last_da=%.2f acq=%d%s\n",
+            "last_da=%.2f acq=%d fcue=%d%s\n",
             rs.hypotheses, rs.cue_starts, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
             rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
             rs.best_quality, (predicted.t_c_m - truth.t_c_m).norm(),
@@ -238,7 +264,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             predicted.t_c_m.norm() / truth.t_c_m.norm() - 1.0,
             (pipeline->lastTrustedPose().t_c_m - truth.t_c_m).norm(),
             attitudeErrorModuloDeg(pipeline->lastTrustedPose().R_c_m, truth.R_c_m, scene.symmetries),
-            rs.acquisition_state, rs.by_acquisition ? " (found by acquisition)" : "");
+            rs.acquisition_state, rs.far_cue ? 1 : 0, rs.by_acquisition ? " (found by acquisition)" : "");
         res.trace += buf;
       }
     }

@@ -43,6 +43,7 @@ struct ReacquisitionStep {
   /// (navigation_pipeline.cpp), not by the local grid.
   bool by_acquisition = false;
   int acquisition_state = -1;  ///< that acquisition's AcquisitionState this frame (-1: not run)
+  bool far_cue = false;        ///< that acquisition was cued by far range this frame (reacquire_far_cue)
   int hypotheses = 0;          ///< tracker starts tried this frame
   int cue_starts = 0;          ///< of them, at the outline's best shifts (reacquire_cue_starts)
   int search_radius_px = 0;

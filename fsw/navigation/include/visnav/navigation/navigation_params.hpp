@@ -58,7 +58,8 @@ struct NavigationParams {
   double reacquire_max_rotation_deg = 5.0;     ///< confirmation: attitude change per frame
   int reacquire_timeout_frames = 300;          ///< searching longer: hand over to far range
   int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches (0: never)
-  int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
+  bool reacquire_far_cue = true;  ///< that acquisition looks where far range finds the target, if it does
+  int reacquire_cue_starts = 3;   ///< starts per frame at the best shifts of the predicted outline (0: none)
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -242,6 +243,15 @@ struct NavigationParams {
          "recoveries that never came 544 -> 451, "
          "confidently wrong frames 165 -> 193; 0: never"},
         reacquire_acquisition_after_frames);
+    v.boolean({"navigation", "reacquire_far_cue", "-", 0, 1,
+               "close-range reacquisition: every other attempt of the acquisition that searches alongside "
+               "(reacquire_acquisition_after_frames) first runs far range on the frame (its outline search "
+               "finds an extended target) and, when it finds one, searches around that line of sight at the "
+               "prediction's range instead of around the prediction's line of sight, which drifts while "
+               "nothing is measured (campaign box/23: after a 46-frame eclipse 10 to 120 deg off); the "
+               "other attempts keep the prediction, right where far range locks on clutter (box/37). The "
+               "find is judged as before; false: the prediction only"},
+              reacquire_far_cue);
     v.integer(
         {"navigation", "reacquire_cue_starts", "count", 0, LocalSearchLimits::kMaxCueStarts,
          "close-range reacquisition: of the starts of a frame, this many go where the predicted outline, "

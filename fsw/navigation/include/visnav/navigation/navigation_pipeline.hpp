@@ -109,7 +109,8 @@ class NavigationPipeline {
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
   Pose m_last_pose;                 ///< last trusted 6-DOF pose
   bool m_have_pose = false;
-  int m_coasted = 0;  ///< consecutive near-range frames the prediction filled in
+  int m_coasted = 0;                     ///< consecutive near-range frames the prediction filled in
+  bool m_next_attempt_far_cued = false;  ///< the close-range acquisition's cues alternate (reacquire_far_cue)
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
