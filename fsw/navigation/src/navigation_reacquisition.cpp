@@ -86,39 +86,42 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
   const acq::AcquisitionState state = m_acquisition.state();
   const bool restart = state == acq::AcquisitionState::kIdle || state == acq::AcquisitionState::kFailed ||
                        state == acq::AcquisitionState::kSucceeded;
-  bool cued = false;
   if (restart) {
-    // Where far range sees the target, its line of sight is a measurement; the prediction's is not, and
-    // while nothing is measured it drifts with the filter's last rates (campaign box/23: after a 46-frame
-    // eclipse it went 10 to 120 deg off). But far range also locks on clutter, where the prediction would
-    // have been right (box/37), so the attempts alternate: every other one is cued by far range when it
-    // finds a target. Its distance is not taken: gamma / sqrt(n) holds for a target a few pixels across,
-    // and an extended one's outline has far fewer response pixels than its area (a plate at 12 m read
-    // 65 m); the prediction's range is, along the fix's line of sight. Far range's own light track is kept
-    // over the search's frames.
-    const double predicted_range_m = predictedPose().t_c_m.norm();
-    const bool far_turn = m_next_attempt_far_cued;
-    m_next_attempt_far_cued = !m_next_attempt_far_cued;
-    if (m_params.navigation.reacquire_far_cue && far_turn && predicted_range_m > 0.0) {
-      m_far.estimate(image, m_far_result);
-      step.far_cue = m_far_result.valid;
-      if (m_far_result.valid) {
-        const Vec3 direction = m_far_result.direction_c.normalized();
-        m_acquisition.start(direction, predicted_range_m * direction.z());
-        cued = m_acquisition.state() == acq::AcquisitionState::kSearching;
-      }
-    }
-  }
-  if (restart && !cued) {
     const Pose predicted = predictedPose();
     const double range_m = predicted.t_c_m.norm();
     if (!(range_m > 0.0) || !(predicted.t_c_m.z() > 0.0)) return;
+    const Vec3 predicted_direction = predicted.t_c_m / range_m;
     const double focal_px = m_camera.intrinsics().fx_px;
     const double target_radius_px = focal_px * m_near.model().boundingRadius() / range_m;
     const double margin_px = std::min(static_cast<double>(step.search_radius_px), target_radius_px);
-    m_acquisition.start(
-        predicted.t_c_m / range_m, predicted.t_c_m.z(),
-        m_params.acquisition.direction_margin_deg + std::atan(margin_px / focal_px) * kDegPerRad);
+    const double margin_deg =
+        m_params.acquisition.direction_margin_deg + std::atan(margin_px / focal_px) * kDegPerRad;
+    // Where far range sees the target, its line of sight is a measurement; the prediction's is not, and
+    // while nothing is measured it drifts with the filter's last rates (campaign box/23: after a 46-frame
+    // eclipse it went 10 to 120 deg off). Far range's line of sight is taken only where the prediction's
+    // window does not hold it, and on every other attempt: far range also locks on clutter where the
+    // prediction was right (box/37), and an attempt cued 1.9 deg from a right prediction confirmed a pose
+    // 5.6 % off in range (box/191). Its distance is not taken: gamma / sqrt(n) holds for a target a few
+    // pixels across, and an extended one's outline has far fewer response pixels than its area (a plate at
+    // 12 m read 65 m); the prediction's range is, along the fix's line of sight. Far range's own light
+    // track is kept over the search's frames.
+    const bool far_turn = m_next_attempt_far_cued;
+    m_next_attempt_far_cued = !m_next_attempt_far_cued;
+    bool cued = false;
+    if (m_params.navigation.reacquire_far_cue && far_turn) {
+      m_far.estimate(image, m_far_result);
+      if (m_far_result.valid) {
+        const Vec3 direction = m_far_result.direction_c.normalized();
+        const double off_deg =
+            std::acos(std::clamp(direction.dot(predicted_direction), -1.0, 1.0)) * kDegPerRad;
+        if (off_deg > margin_deg) {
+          m_acquisition.start(direction, range_m * direction.z());
+          cued = m_acquisition.state() == acq::AcquisitionState::kSearching;
+        }
+      }
+    }
+    step.far_cue = cued;
+    if (!cued) m_acquisition.start(predicted_direction, predicted.t_c_m.z(), margin_deg);
   }
   acq::AcquisitionResult result;
   if (m_acquisition.step(image, frame_number, result) != Status::kOk) return;
