@@ -66,6 +66,7 @@ class PipelineTest : public ::testing::Test {
     std::vector<bool> tracked;
     int found_at = -1;
     bool found_by_acquisition = false;
+    bool far_cued = false;          ///< an acquisition attempt was cued by far range (reacquire_far_cue)
     std::uint64_t allocations = 0;  ///< over the frames, after init
   };
   void runHidden(const std::vector<test::RenderedFrame>& seq, const PipelineParams& p,
@@ -81,6 +82,7 @@ class PipelineTest : public ::testing::Test {
       ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
       run.out.push_back(out);
       run.tracked.push_back(pipeline.lastNearRange().status != TrackStatus::kLost);
+      run.far_cued = run.far_cued || pipeline.lastReacquisition().far_cue;
       if (run.found_at < 0 && i >= kHiddenUntil && pipeline.lastReacquisition().found) {
         run.found_at = i;
         run.found_by_acquisition = pipeline.lastReacquisition().by_acquisition;
@@ -341,6 +343,8 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
           2.0)
           << "frame " << i;
     }
+    // Far range finds the plate inside the window the prediction's attempt covers: the prediction cues.
+    EXPECT_FALSE(run.far_cued);
     if (after > 0) {
       ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
       EXPECT_TRUE(run.found_by_acquisition);
@@ -383,6 +387,7 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRang
           2.0)
           << "frame " << i;
     }
+    EXPECT_EQ(run.far_cued, far_cue);
     if (far_cue) {
       ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
       EXPECT_TRUE(run.found_by_acquisition);
