@@ -90,6 +90,24 @@ class PipelineTest : public ::testing::Test {
     }
     run.allocations = test::allocationCount() - before;
   }
+  /// Every valid pose once the target reappears is within 2 % of 12 m and 2 deg of the truth (modulo the
+  /// plate's half-turn symmetry about its normal); returns how many there were.
+  int checkValidAfterHidden(const std::vector<test::RenderedFrame>& seq, const NavigationPipeline& pipeline,
+                            const HiddenRun& run) {
+    int valid_after = 0;
+    for (int i = kHiddenUntil; i < 30; ++i) {
+      const NavSolution& out = run.out[static_cast<std::size_t>(i)];
+      if (!out.pose_valid) continue;
+      ++valid_after;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
+      EXPECT_LT(
+          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
+          2.0)
+          << "frame " << i;
+    }
+    return valid_after;
+  }
   /// Ten frames of the steady approach from the start pose, then frame 10 with the plate 0.15 m (6 px)
   /// sideways of where the motion says: within the tracker's reach, far outside the filter's prediction.
   /// `steady` is the last steady frame's solution, `out` the jumped frame's.
@@ -328,21 +346,9 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
     NavigationPipeline pipeline;
     HiddenRun run;
     runHidden(seq, p, pipeline, run);
-    int valid_after = 0;
     for (int i = 4; i < kHiddenUntil; ++i)
       EXPECT_FALSE(run.out[static_cast<std::size_t>(i)].pose_valid) << "frame " << i << ": nothing to see";
-    for (int i = kHiddenUntil; i < 30; ++i) {
-      const NavSolution& out = run.out[static_cast<std::size_t>(i)];
-      if (!out.pose_valid) continue;
-      ++valid_after;
-      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
-      // Modulo the plate's half-turn symmetry about its normal.
-      EXPECT_LT(
-          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
-          2.0)
-          << "frame " << i;
-    }
+    const int valid_after = checkValidAfterHidden(seq, pipeline, run);
     // Far range finds the plate inside the window the prediction's attempt covers: the prediction cues.
     EXPECT_FALSE(run.far_cued);
     if (after > 0) {
@@ -360,9 +366,8 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
 TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRangeSeesIt) {
   // As above, but the plate also moved sideways while hidden, from 1.5 m right of the line of sight to 2.4 m
   // left of it: it reappears 17 deg (about 2.5 target radii) from the prediction's line of sight and 20 %
-  // closer. The acquisition cued by the
-  // prediction searches around a line of sight it is not on; cued by far range's fix on the frame
-  // (reacquire_far_cue) it searches where the target is.
+  // closer. The acquisition cued by the prediction searches around a line of sight it is not on; cued by
+  // far range's fix on the frame (reacquire_far_cue) it searches where the target is.
   const std::vector<test::RenderedFrame> seq =
       hiddenApproach(test::plateAt(12.0, -2.4, 25.0, -15.0), test::plateAt(15.0, 1.5, 1.0, -1.0));
   int found_with_cue = -1;
@@ -375,18 +380,7 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRang
     if (far_cue) {
       EXPECT_EQ(run.allocations, 0U) << "far range ran in near range after init";
     }
-    int valid_after = 0;
-    for (int i = kHiddenUntil; i < 30; ++i) {
-      const NavSolution& out = run.out[static_cast<std::size_t>(i)];
-      if (!out.pose_valid) continue;
-      ++valid_after;
-      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
-      EXPECT_LT(
-          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
-          2.0)
-          << "frame " << i;
-    }
+    const int valid_after = checkValidAfterHidden(seq, pipeline, run);
     EXPECT_EQ(run.far_cued, far_cue);
     if (far_cue) {
       ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
