@@ -1,0 +1,138 @@
+// The fixture of the navigation pipeline's end-to-end tests (test_pipeline.cpp,
+// test_pipeline_reacquisition.cpp): the paper's plate rendered at 5 Hz, and a plate hidden for ten frames (an
+// eclipse).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+#include "../../support/alloc_counter.hpp"
+#include "../nearrange/tracker_fixture.hpp"
+#include "visnav/navigation/navigation_pipeline.hpp"
+
+namespace visnav::nav::test_support {
+
+/// The paper's plate approaching from 26 m to 20 m (frames at 5 Hz), rendered with the paper's recipe.
+class PipelineTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    model = makeRectanglePlate(2.3, 1.8);
+    ASSERT_TRUE(renderer.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    for (int i = 0; i < kFrames; ++i) {
+      const double d = 26.0 - 0.1 * i;
+      frames.push_back(test::renderFrame(renderer, test::plateAt(d, 0.1, 1.0, -1.0), 100U + i));
+    }
+    // gamma for this plate (visnav-calibrate-gamma on approach_ci prints 2011): far range then reads ~26 m.
+    params.farrange.gamma = 2011.0;
+  }
+  /// Frame i of a rendered sequence at 5 Hz (exposure 200 ms apart, sequence number i).
+  static Frame frameOf(const std::vector<test::RenderedFrame>& sequence, int i) {
+    Frame f;
+    f.image = sequence[static_cast<std::size_t>(i)].image();
+    f.exposure_time_ns = 200000000LL * i;
+    f.sequence = static_cast<std::uint64_t>(i);
+    return f;
+  }
+  Frame frameAt(int i) const { return frameOf(frames, i); }
+  /// Tracked at 15 m for 3 frames, then hidden for 10 frames (an eclipse: background and noise only) while
+  /// the plate comes 3 m closer and turns 20 deg; visible again from frame kHiddenUntil on (30 frames).
+  static constexpr int kHiddenUntil = 13;
+  /// Three frames of the plate at `before`, ten frames with nothing drawn (an eclipse), then the plate at
+  /// `reappears` until frame 30.
+  std::vector<test::RenderedFrame> hiddenApproach(const Pose& reappears = test::plateAt(12.0, 0.3, 25.0,
+                                                                                        -15.0),
+                                                  const Pose& before = test::plateAt(15.0, 0.3, 1.0, -1.0)) {
+    std::vector<test::RenderedFrame> seq;
+    synthetic::Renderer empty;
+    EXPECT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    for (int i = 0; i < 30; ++i) {
+      if (i < 3) {
+        seq.push_back(test::renderFrame(renderer, before, 400U + i));
+      } else if (i < kHiddenUntil) {
+        Pose behind = before;
+        behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+        seq.push_back(test::renderFrame(empty, behind, 400U + i));
+        seq.back().truth = before;
+      } else {
+        seq.push_back(test::renderFrame(renderer, reappears, 400U + i));
+      }
+    }
+    return seq;
+  }
+  /// One run over hiddenApproach() from the true start pose: each frame's solution, whether the near-range
+  /// tracker held, and the first visible frame on which a reacquisition found the target (-1: never).
+  struct HiddenRun {
+    std::vector<NavSolution> out;
+    std::vector<bool> tracked;
+    int found_at = -1;
+    bool found_by_acquisition = false;
+    bool far_cued = false;          ///< an acquisition attempt was cued by far range (reacquire_far_cue)
+    std::uint64_t allocations = 0;  ///< over the frames, after init
+  };
+  void runHidden(const std::vector<test::RenderedFrame>& seq, const PipelineParams& p,
+                 NavigationPipeline& pipeline, HiddenRun& run) {
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    run.out.reserve(seq.size());
+    run.tracked.reserve(seq.size());
+    const std::uint64_t before = test::allocationCount();
+    for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      run.out.push_back(out);
+      run.tracked.push_back(pipeline.lastNearRange().status != TrackStatus::kLost);
+      run.far_cued = run.far_cued || pipeline.lastReacquisition().far_cue;
+      if (run.found_at < 0 && i >= kHiddenUntil && pipeline.lastReacquisition().found) {
+        run.found_at = i;
+        run.found_by_acquisition = pipeline.lastReacquisition().by_acquisition;
+      }
+    }
+    run.allocations = test::allocationCount() - before;
+  }
+  /// Every valid pose once the target reappears is within 2 % of 12 m and 2 deg of the truth (modulo the
+  /// plate's half-turn symmetry about its normal); returns how many there were.
+  int checkValidAfterHidden(const std::vector<test::RenderedFrame>& seq, const NavigationPipeline& pipeline,
+                            const HiddenRun& run) {
+    int valid_after = 0;
+    for (int i = kHiddenUntil; i < 30; ++i) {
+      const NavSolution& out = run.out[static_cast<std::size_t>(i)];
+      if (!out.pose_valid) continue;
+      ++valid_after;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
+      EXPECT_LT(
+          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
+          2.0)
+          << "frame " << i;
+    }
+    return valid_after;
+  }
+  /// Ten frames of the steady approach from the start pose, then frame 10 with the plate 0.15 m (6 px)
+  /// sideways of where the motion says: within the tracker's reach, far outside the filter's prediction.
+  /// `steady` is the last steady frame's solution, `out` the jumped frame's.
+  void runToJump(NavigationPipeline& pipeline, const PipelineParams& p, NavSolution& steady,
+                 NavSolution& out) {
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameAt(i);
+      pipeline.process(&f, f.exposure_time_ns, steady);
+    }
+    Frame f = frameAt(10);
+    const test::RenderedFrame jumped =
+        test::renderFrame(renderer, test::plateAt(25.0, 0.25, 1.0, -1.0), 777U);
+    f.image = jumped.image();
+    pipeline.process(&f, f.exposure_time_ns, out);
+  }
+  static constexpr int kFrames = 60;
+  PolygonModel model;
+  synthetic::Renderer renderer;
+  std::vector<test::RenderedFrame> frames;
+  PipelineParams params;
+};
+
+}  // namespace visnav::nav::test_support
