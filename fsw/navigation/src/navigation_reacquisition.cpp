@@ -100,11 +100,11 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
     // while nothing is measured it drifts with the filter's last rates (campaign box/23: after a 46-frame
     // eclipse it went 10 to 120 deg off). Far range's line of sight is taken only where the prediction's
     // window does not hold it, and on every other attempt: far range also locks on clutter where the
-    // prediction was right (box/37), and an attempt cued 1.9 deg from a right prediction confirmed a pose
-    // 5.6 % off in range (box/191). Its distance is not taken: gamma / sqrt(n) holds for a target a few
-    // pixels across, and an extended one's outline has far fewer response pixels than its area (a plate at
-    // 12 m read 65 m); the prediction's range is, along the fix's line of sight. Far range's own light
-    // track is kept over the search's frames.
+    // prediction was right (box/37), and an attempt cued by far range while the prediction was 1.9 deg off
+    // the target's line of sight and right in range confirmed a pose 5.6 % off in range (box/191). Its
+    // distance is not taken: gamma / sqrt(n) holds for a target a few pixels across, and an extended one's
+    // outline has far fewer response pixels than its area (a plate at 12 m read 65 m); the prediction's range
+    // is, along the fix's line of sight. Far range's own light track is kept over the search's frames.
     const bool far_turn = m_next_attempt_far_cued;
     m_next_attempt_far_cued = !m_next_attempt_far_cued;
     bool cued = false;

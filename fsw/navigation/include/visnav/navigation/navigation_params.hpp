@@ -250,8 +250,9 @@ struct NavigationParams {
                "attempt covers, searches around that line of sight at the prediction's range: the "
                "prediction's line of sight drifts while nothing is measured (campaign box/23: after a "
                "46-frame eclipse 10 to 120 deg off). The other attempts, and a fix the prediction's window "
-               "holds, keep the prediction (far range locks on clutter, box/37; a cue 1.9 deg from a right "
-               "prediction confirmed a pose 5.6 % off in range, box/191). The find is judged as before; "
+               "holds, keep the prediction (far range locks on clutter, box/37; cued by far range while the "
+               "prediction was 1.9 deg off the line of sight and right in range, an attempt confirmed a pose "
+               "5.6 % off in range, box/191). The find is judged as before; "
                "false: the prediction only"},
               reacquire_far_cue);
     v.integer(
