@@ -251,6 +251,7 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
     sortBestFirst(m_verified, m_verified.size() - 1);
   }
   if (m_verified.empty()) return fail(AcquisitionFailure::kNoCandidate);
+  if (unresolvedNearTwin(m_verified[0].pose)) return fail(AcquisitionFailure::kAmbiguous);
   m_current = 0;
   challengeByNearTwin(image, frame_number, out);
   m_pose = m_verified[0].pose;

@@ -9,6 +9,17 @@
 
 namespace visnav::acq {
 
+bool Acquisition::unresolvedNearTwin(const Pose& pose) const {
+  // The tracker may lose the true twin of a wrong candidate (box/187 at 26 m: from the truth its fit lacked
+  // corners and was not accepted), so a twin too close to resolve must block without being tracked.
+  const double depth_m = pose.t_c_m.z();
+  if (!(m_params.near_twin_min_separation_px > 0.0) || !(depth_m > 0.0)) return false;
+  const double px_per_m = m_camera.intrinsics().fx_px / depth_m;
+  for (int i = 0; i < m_symmetries.nearCount(); ++i)
+    if (m_symmetries.nearSeparationM(i) * px_per_m < m_params.near_twin_min_separation_px) return true;
+  return false;
+}
+
 void Acquisition::chooseRival() {
   // The best verified pose that is not a symmetric twin of the current one, or the current one's near twin
   // when it scores higher, is a rival when it scores within rival_margin: both are tracked through

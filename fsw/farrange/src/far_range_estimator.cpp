@@ -250,7 +250,21 @@ void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResul
   const Vec3& d = out.direction_c;
   out.azimuth_rad = std::atan2(d.x(), d.z());
   out.elevation_rad = std::atan2(-d.y(), std::hypot(d.x(), d.z()));
-  out.distance_m = m_params.gamma / std::sqrt(static_cast<double>(out.cluster_pixels));  // eq. 16
+  out.eq16_distance_m = m_params.gamma / std::sqrt(static_cast<double>(out.cluster_pixels));
+  out.distance_m = out.eq16_distance_m;
+  // The target's bounding sphere seen at the cluster's extent. eq. 16's n counts response pixels, and an
+  // extended target's outline has far fewer than its area (a plate at 12 m read 65 m). Both read too far
+  // on a fragment of the target (the extent on a satellite whose panels are dark), and too far is a dead
+  // end (never handed over) where too near costs one failed acquisition: the nearer of the two is taken.
+  out.extent_px = c.max_radius_px;
+  if (m_target_radius_m > 0.0 && c.max_radius_px > 0.0) {
+    out.extent_distance_m = m_camera.intrinsics().fx_px * m_target_radius_m / c.max_radius_px;
+    if (m_params.extent_distance_min_px > 0.0 && c.max_radius_px >= m_params.extent_distance_min_px &&
+        out.extent_distance_m < out.distance_m) {
+      out.distance_m = out.extent_distance_m;
+      out.flags |= kFlagExtentDistance;
+    }
+  }
   if (touchesImageBorder(c)) out.flags |= kFlagAtBorder;
   out.valid = true;
   if (!m_robust) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace visnav {
 
@@ -11,6 +12,19 @@ bool alreadyListed(const std::array<Mat3, ModelSymmetries::kCapacity>& list, int
   for (int i = 0; i < count; ++i)
     if ((list[static_cast<std::size_t>(i)] - s).cwiseAbs().maxCoeff() < 1e-9) return true;
   return false;
+}
+
+/// Largest distance [m] of a vertex turned by `rotation` about `centre_m` from the nearest model vertex.
+double vertexSeparationM(const PolygonModel& model, const Mat3& rotation, const Vec3& centre_m) {
+  const auto& vertices = model.vertices();
+  double worst = 0.0;
+  for (const Vec3& v : vertices) {
+    const Vec3 w = rotation * (v - centre_m) + centre_m;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec3& u : vertices) nearest = std::min(nearest, (u - w).norm());
+    worst = std::max(worst, nearest);
+  }
+  return worst;
 }
 
 }  // namespace
@@ -107,7 +121,9 @@ void ModelSymmetries::findNear(const PolygonModel& model, double max_rel) {
       for (int n = 0; n < m_near_count; ++n)
         if ((m_near[static_cast<std::size_t>(n)] * sym - s).cwiseAbs().maxCoeff() < 1e-9) return;
     }
-    if (isSymmetry(model, s, near_m, m_centre_m)) m_near[static_cast<std::size_t>(m_near_count++)] = s;
+    if (!isSymmetry(model, s, near_m, m_centre_m)) return;
+    m_near_separation_m[static_cast<std::size_t>(m_near_count)] = vertexSeparationM(model, s, m_centre_m);
+    m_near[static_cast<std::size_t>(m_near_count++)] = s;
   });
 }
 

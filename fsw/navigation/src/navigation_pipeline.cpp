@@ -22,6 +22,7 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (e.ok) e = m_filter.init(params.filter);
   if (e.ok) e = m_near.init(camera, model, params.nearrange);
   if (e.ok) e = m_far.init(camera, params.farrange);
+  m_far.setTargetRadius(model.boundingRadius());
   if (e.ok) e = m_acquisition.init(camera, model, params.acquisition, params.nearrange);
   if (e.ok)
     e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange, params.acquisition);
@@ -117,7 +118,7 @@ void NavigationPipeline::runFarRange(const MonoImage& image, NavSolution& out, M
 
 void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                                         ModeInputs& in) {
-  acq::AcquisitionResult result;
+  acq::AcquisitionResult& result = m_acquisition_result;
   m_acquisition.step(image, frame_number, result);
   if (result.state == acq::AcquisitionState::kFailed) {
     in.acquisition_failed = true;
@@ -283,6 +284,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   out = NavSolution{};
   m_last_pose_update = FilterUpdate{};
   m_reacquisition_step = ReacquisitionStep{};
+  m_acquisition_result = acq::AcquisitionResult{};
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;
   out.frame_number = m_last_frame_number;

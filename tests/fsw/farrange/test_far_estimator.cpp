@@ -92,7 +92,9 @@ ApproachScene dimPlateInNoise() {
   return a;
 }
 
-std::vector<FarRangeResult> approach(const ApproachScene& a, const FarRangeParams& p, double& last_good_m) {
+// `target_radius_m` > 0: the estimator knows the target's radius (extent distance, as in the pipeline).
+std::vector<FarRangeResult> approach(const ApproachScene& a, const FarRangeParams& p, double& last_good_m,
+                                     double target_radius_m = 0.0) {
   Scene s(a.render, a.camera, a.model);
   FarRangeParams q = p;
   q.gamma = a.gamma;
@@ -104,6 +106,7 @@ std::vector<FarRangeResult> approach(const ApproachScene& a, const FarRangeParam
   }
   FarRangeEstimator e;
   EXPECT_TRUE(e.init(s.camera, q).ok);
+  e.setTargetRadius(target_radius_m);
   std::vector<FarRangeResult> results;
   last_good_m = 1e9;
   for (int i = 0; i < 93; ++i) {
@@ -388,6 +391,62 @@ TEST(FarRangeEstimator, AFragmentOfTheTargetGivesWayToTheOutlineEnclosingIt) {
   }
   EXPECT_LT(good_without, 3);
   EXPECT_GE(good_with, 6);
+}
+
+TEST(FarRangeEstimator, AnExtendedTargetIsPutAtItsDistanceByItsExtentWhenItsRadiusIsKnown) {
+  // The dim plate of the test above: where eq. 16 counts the response pixels of an outline that does not
+  // close, far fewer than the plate's area, it reads too far (168 m at 26.8 m); the outline's extent and the
+  // plate's bounding radius read 26.1 m. The nearer of the two is taken: on the fragments both read too far,
+  // the extent less so.
+  const ApproachScene scene = dimPlateInNoise();
+  double last_gamma = 0.0;
+  const std::vector<FarRangeResult> gamma = approach(scene, withOutlineSearch(), last_gamma);
+  double last_extent = 0.0;
+  const std::vector<FarRangeResult> extent =
+      approach(scene, withOutlineSearch(), last_extent, scene.model.boundingRadius());
+  int good_gamma = 0;
+  int good_extent = 0;
+  int rescued = 0;
+  int fixes = 0;
+  for (std::size_t i = 0; i < extent.size(); ++i) {
+    const double range = 200.0 * std::pow(0.97, static_cast<double>(i));
+    const FarRangeResult& r = extent[i];
+    if (range > 40.0 || !r.valid) continue;
+    ++fixes;
+    // The same cluster either way: only the distance differs.
+    EXPECT_EQ(r.centroid_px, gamma[i].centroid_px) << "frame " << i;
+    EXPECT_NEAR(r.extent_distance_m,
+                scene.camera.intrinsics().fx_px * scene.model.boundingRadius() / r.extent_px, 1e-9);
+    // The nearer of eq. 16 and the extent (a tiny cluster: eq. 16).
+    const double eq16_m = gamma[i].distance_m;
+    const bool by_extent =
+        r.extent_px >= FarRangeParams{}.extent_distance_min_px && r.extent_distance_m < eq16_m;
+    EXPECT_EQ((r.flags & kFlagExtentDistance) != 0U, by_extent) << "frame " << i;
+    EXPECT_EQ(r.distance_m, by_extent ? r.extent_distance_m : eq16_m) << "frame " << i;
+    const bool good = std::abs(r.distance_m / range - 1.0) < 0.25;
+    good_gamma += std::abs(eq16_m / range - 1.0) < 0.25 ? 1 : 0;
+    good_extent += good ? 1 : 0;
+    rescued += good && eq16_m > 2.0 * range ? 1 : 0;
+  }
+  EXPECT_GE(fixes, 15);
+  EXPECT_GE(good_extent, good_gamma) << "of " << fixes << " fixes below 40 m";
+  EXPECT_GE(rescued, 1) << "eq. 16 read more than twice the range where the extent read it within 25 %";
+  EXPECT_LE(last_extent, last_gamma);
+}
+
+TEST(FarRangeEstimator, ATinyClusterKeepsEq16) {
+  // Below extent_distance_min_px the cluster is a few pixels of blur: its extent says little, eq. 16 holds.
+  Scene s;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(s.camera, FarRangeParams{}).ok);
+  e.setTargetRadius(s.model.boundingRadius());
+  FarRangeResult r;
+  ASSERT_EQ(e.estimate(s.frame(test::satAt(2500.0, 1.0, 1.0, 15.0), 3).image(), r), Status::kOk);
+  ASSERT_TRUE(r.valid);
+  EXPECT_LT(r.extent_px, FarRangeParams{}.extent_distance_min_px);
+  EXPECT_EQ(r.flags & kFlagExtentDistance, 0U);
+  EXPECT_NEAR(r.distance_m, FarRangeParams{}.gamma / std::sqrt(static_cast<double>(r.cluster_pixels)), 1e-9);
+  EXPECT_GT(r.extent_distance_m, 0.0);
 }
 
 }  // namespace

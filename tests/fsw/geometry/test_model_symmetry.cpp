@@ -70,6 +70,26 @@ TEST(ModelSymmetries, NearTwinsOfABoxAreItsCubeTurnsOnePerClass) {
   EXPECT_EQ(countNear(makeRectanglePlate(2.0, 2.0), 0.15), 0);
 }
 
+TEST(ModelSymmetries, ANearTwinsSeparationIsHowFarItMovesTheVertices) {
+  // box/187's near cube: the quarter turn about x swaps its two closest half sizes (0.585 and 0.574 m), each
+  // vertex lands sqrt(2) x 0.011 m from one of the model's; at 26 m and f 1215 px that is 0.7 px.
+  const PolygonModel near_cube = makeBox(0.615, 0.585, 0.574);
+  ModelSymmetries s;
+  s.find(near_cube);
+  s.findNear(near_cube, 0.15);
+  ASSERT_EQ(s.nearCount(), 5);
+  double smallest = 1e9;
+  for (int i = 0; i < s.nearCount(); ++i) {
+    const double separation = s.nearSeparationM(i);
+    smallest = std::min(smallest, separation);
+    EXPECT_LE(separation, 0.15 * near_cube.boundingRadius()) << "twin " << i;
+    // Exactly the tolerance at which the turn starts to count as mapping the vertices onto themselves.
+    EXPECT_TRUE(ModelSymmetries::isSymmetry(near_cube, s.near(i), separation + 1e-9)) << "twin " << i;
+    EXPECT_FALSE(ModelSymmetries::isSymmetry(near_cube, s.near(i), separation - 1e-6)) << "twin " << i;
+  }
+  EXPECT_NEAR(smallest, std::sqrt(2.0) * 0.011, 1e-9);
+}
+
 TEST(ModelSymmetries, ANearTwinKeepsTheCentroidInPlaceAndItsVerticesClose) {
   // A model whose origin is off its centroid: the twin turns about the centroid, not the origin.
   PolygonModel box = makeBox(0.615, 0.585, 0.574);

@@ -112,6 +112,62 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRang
   }
 }
 
+TEST_F(PipelineTest, AFallBackToFarRangeAtCloseRangeIsHandedBackByTheTargetsExtent) {
+  // The plate at 12 m, 106 px in radius: a ground command forces far range (as a persistent fault or a
+  // timed-out reacquisition would). eq. 16 counts the response pixels of the plate's outline, far fewer than
+  // its area, and reads it beyond the hand-over distance, so far range never hands it back (issue case 2:
+  // "the near -> far fall-back is a dead end"). Its extent and the plate's bounding radius read 12 m.
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < 30; ++i)
+    seq.push_back(
+        test::renderFrame(renderer, test::plateAt(12.0 - 0.02 * i, -2.4, 25.0 + 0.3 * i, -15.0), 500U + i));
+  constexpr int kForcedAt = 2;
+  for (const double extent_min_px : {far::FarRangeParams{}.extent_distance_min_px, 0.0}) {
+    PipelineParams p = params;
+    p.farrange.extent_distance_min_px = extent_min_px;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int far_fixes = 0;
+    double far_worst_rel = 0.0;
+    int back_at = -1;
+    int valid_after = 0;
+    for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
+      if (i == kForcedAt) {
+        CommandAck ack;
+        ASSERT_TRUE(
+            pipeline.command(ModeCommandKind::kForceFarRange, 1U, static_cast<std::uint64_t>(i), ack));
+      }
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      if (out.mode == NavMode::kFarRange && out.far.valid) {
+        ++far_fixes;
+        far_worst_rel = std::max(far_worst_rel, std::abs(out.far.distance_m / truth.t_c_m.norm() - 1.0));
+      }
+      if (i < kForcedAt || !out.pose_valid) continue;
+      if (back_at < 0) back_at = i;
+      ++valid_after;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * 12.0) << "frame " << i;
+      EXPECT_LT(
+          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
+          2.0)
+          << "frame " << i;
+    }
+    ASSERT_GE(far_fixes, 3) << "far range never saw the plate";
+    if (extent_min_px > 0.0) {
+      EXPECT_LT(far_worst_rel, 0.2);
+      ASSERT_GE(back_at, 0) << "never handed back";
+      EXPECT_LE(back_at, kForcedAt + 10);
+      EXPECT_EQ(valid_after, static_cast<int>(seq.size()) - back_at);
+    } else {
+      EXPECT_GT(far_worst_rel, 1.0) << "eq. 16 read the plate right: the test tests nothing";
+      EXPECT_LT(back_at, 0);
+    }
+  }
+}
+
 TEST_F(PipelineTest, AReacquiredTrackIsDoubtedUntilOneOfItsPosesMeetsTheDoubtedLimit) {
   // A find has no track behind it yet: its pose, and the track continued from it, are doubted until one of
   // them has an attitude 1-sigma within doubted_max_attitude_sigma_deg. The plate re-found at 12 m meets the

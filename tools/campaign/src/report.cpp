@@ -328,7 +328,8 @@ void writeCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
 void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
   o << "scene,family,seed,frame,range_m,visible,expected,eclipsed,slew,mode,pose_valid,fault_bits,position_"
        "error_m,"
-       "attitude_error_deg,wrong,tracked,accurate,nis,far_valid,far_distance_m,candidate,candidate_position_"
+       "attitude_error_deg,wrong,tracked,accurate,nis,far_valid,far_distance_m,far_eq16_distance_m,far_"
+       "extent_px,far_extent_distance_m,candidate,candidate_position_"
        "error_m,candidate_attitude_error_deg,attitude_sigma_deg,position_sigma_rel,near_flags,lines_used,"
        "lines_"
        "total,reacquired,time_process_us\n";
@@ -340,7 +341,9 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << f.fault_bits << "," << (f.pose_valid ? num(f.position_error_m) : "") << ","
         << (f.pose_valid ? num(f.attitude_error_deg) : "") << "," << f.wrong << "," << f.tracked << ","
         << f.accurate << "," << (f.has_nis ? num(f.nis) : "") << "," << f.far_valid << ","
-        << (f.far_valid ? num(f.far_distance_m) : "") << "," << f.has_candidate << ","
+        << (f.far_valid ? num(f.far_distance_m) : "") << ","
+        << (f.far_valid ? num(f.far_eq16_distance_m) : "") << "," << (f.far_valid ? num(f.far_extent_px) : "")
+        << "," << (f.far_valid ? num(f.far_extent_distance_m) : "") << "," << f.has_candidate << ","
         << (f.has_candidate ? num(f.candidate_position_error_m) : "") << ","
         << (f.has_candidate ? num(f.candidate_attitude_error_deg) : "") << ","
         << (f.has_candidate ? num(f.attitude_sigma_deg) : "") << ","

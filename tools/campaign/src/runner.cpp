@@ -198,6 +198,11 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.process_us = sol.timing.process_us;
     f.far_valid = sol.far.valid;
     f.far_distance_m = sol.far.distance_m;
+    if (f.far_valid) {
+      f.far_eq16_distance_m = pipeline->lastFarRange().eq16_distance_m;
+      f.far_extent_px = pipeline->lastFarRange().extent_px;
+      f.far_extent_distance_m = pipeline->lastFarRange().extent_distance_m;
+    }
     classifyFrame(f, th);
     if (trace) {
       res.trace += traceLine(f, pipeline->lastNearRange(), u);
@@ -225,6 +230,15 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         std::snprintf(
             buf, sizeof buf, "       filter: v=%.3f m/s w=%.2f deg/s, prediction for the next frame\n",
             pipeline->filter().velocity().norm(), pipeline->filter().angularVelocity().norm() * kDegPerRad);
+        res.trace += buf;
+      }
+      if (f.mode == nav::NavMode::kAcquisition) {
+        const acq::AcquisitionResult& a = pipeline->lastAcquisition();
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "       acquisition: state=%d failure=%s hyp=%d/%d verified=%d best=%.3f snr=%.1f\n",
+                      static_cast<int>(a.state), acq::toString(a.failure), a.hypotheses_done,
+                      a.hypotheses_total, a.candidates_verified, a.best_score, a.edge_snr);
         res.trace += buf;
       }
       if (f.mode == nav::NavMode::kFarRange) {

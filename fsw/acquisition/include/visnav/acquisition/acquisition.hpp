@@ -125,6 +125,8 @@ class Acquisition {
   bool confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number, Pose& pose,
                    NearRangeResult& r, double& agreement);
   void chooseRival();
+  /// True when a near twin of `pose` moves the model's vertices less than near_twin_min_separation_px.
+  bool unresolvedNearTwin(const Pose& pose) const;
   double agreementF1(const Pose& pose);
   double evidenceScore(const NearRangeResult& r);
   bool bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose, Verified& twin,

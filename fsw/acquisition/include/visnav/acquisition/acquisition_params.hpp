@@ -43,6 +43,7 @@ struct AcquisitionParams {
   double rival_margin = 0.05;
   double near_twin_max_rel = 0.15;
   int near_twin_checks = 3;
+  double near_twin_min_separation_px = 2.0;
   int max_confirm_frames = 8;
   double confirm_max_motion_rel = 0.05;
   double confirm_max_rotation_deg = 5.0;
@@ -160,6 +161,13 @@ struct AcquisitionParams {
                "near twins tracked per candidate: those whose two-way edge agreement is highest before "
                "tracking"},
               near_twin_checks);
+    v.real({"acquisition", "near_twin_min_separation_px", "px", 0.0, 1000.0,
+            "a near twin that moves the model's vertices less than this in the image is a rival whatever "
+            "the tracker makes of it: no edge tells the two poses apart (blur, shading and a step's polarity "
+            "move an edge by about a pixel), so the acquisition fails `ambiguous` and is retried closer (a "
+            "box within 7 % of a cube was confirmed 89 deg off at 26 m, box/187, once far range read its "
+            "distance right); 0: off"},
+           near_twin_min_separation_px);
     v.integer({"acquisition", "max_confirm_frames", "count", 1, 1000,
                "confirmation with a rival alive ends here: still ambiguous means failed (status lost)"},
               max_confirm_frames);

@@ -30,7 +30,7 @@ struct FarRangeSolution {
   Vec3 direction_c = Vec3::UnitZ();  ///< unit line of sight in the camera frame (CONVENTIONS.md)
   double azimuth_rad = 0.0;          ///< atan2(x, z)
   double elevation_rad = 0.0;        ///< atan2(-y, hypot(x, z)): up in the image is positive
-  double distance_m = 0.0;           ///< eq. 16, gamma / sqrt(n)
+  double distance_m = 0.0;           ///< eq. 16, gamma / sqrt(n), or from the target's extent if nearer
   int cluster_pixels = 0;            ///< n of eq. 16
   double circularity = 0.0;          ///< eq. 15
   int cluster_count = 0;

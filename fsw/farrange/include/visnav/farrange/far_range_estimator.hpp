@@ -1,6 +1,7 @@
 // The far-range direction/distance estimator (paper sec. III): low-level filters (edge, histogram), their
 // weighted sum (eq. 13/14), cluster analysis (eq. 15), selection of the target cluster, direction through
-// the camera model (distortion removed) and distance d = gamma / sqrt(n) (eq. 16). It needs no
+// the camera model (distortion removed) and distance d = gamma / sqrt(n) (eq. 16), or f R / extent when the
+// target's radius R is known and that is nearer (far_range_params.hpp, extent_distance_min_px). It needs no
 // initialisation like a tracker; the robust method keeps a light track (last position, velocity, size) to
 // gate the next selection and to restrict the search to a region of interest (sec. V).
 // All memory is sized in init(); estimate() allocates nothing, throws nothing, and every loop is bounded by
@@ -36,6 +37,7 @@ enum FarRangeFlag : std::uint32_t {
   kFlagAmbiguous = 1U << 9,        ///< a second acceptable cluster came close in score
   kFlagUnconfirmed = 1U << 10,     ///< picked without a track (largest plausible cluster)
   kFlagExtended = 1U << 11,        ///< found by its outline on the edge response alone (extended target)
+  kFlagExtentDistance = 1U << 12,  ///< distance_m from the cluster's extent and the target's radius
 };
 
 /// Execution time of one estimate() per stage [us] (zeros when no clock is set).
@@ -54,17 +56,21 @@ struct FarRangeResult {
   Vec3 direction_c = Vec3::UnitZ();  ///< unit line of sight, camera frame
   double azimuth_rad = 0.0;          ///< atan2(x, z)
   double elevation_rad = 0.0;        ///< atan2(-y, hypot(x, z)): up in the image is positive
-  double distance_m = 0.0;           ///< eq. 16
-  Vec2 centroid_px = Vec2::Zero();   ///< raw pixels
-  int cluster_pixels = 0;            ///< n used in eq. 16 (filled n for the robust method)
-  int raw_pixels = 0;                ///< n of eq. 15 (responses above t_out)
-  int boundary_pixels = 0;           ///< outline pixels of the filled cluster (robust)
-  double circularity = 0.0;          ///< eq. 15 of the selected cluster
-  int cluster_count = 0;             ///< clusters found in the searched region
-  int selected = -1;                 ///< index in clusters()
-  double quality = 0.0;              ///< [0, 1], 0 when not valid
-  std::uint32_t flags = 0;           ///< FarRangeFlag
-  Roi roi;                           ///< region searched last
+  double distance_m = 0.0;           ///< eq16_distance_m, or extent_distance_m (kFlagExtentDistance)
+  double eq16_distance_m = 0.0;      ///< eq. 16, gamma / sqrt(n)
+  double extent_px = 0.0;            ///< largest distance of a cluster pixel from its centre of mass
+  /// f x target radius / extent_px: the distance from the cluster's extent (0 without setTargetRadius())
+  double extent_distance_m = 0.0;
+  Vec2 centroid_px = Vec2::Zero();  ///< raw pixels
+  int cluster_pixels = 0;           ///< n used in eq. 16 (filled n for the robust method)
+  int raw_pixels = 0;               ///< n of eq. 15 (responses above t_out)
+  int boundary_pixels = 0;          ///< outline pixels of the filled cluster (robust)
+  double circularity = 0.0;         ///< eq. 15 of the selected cluster
+  int cluster_count = 0;            ///< clusters found in the searched region
+  int selected = -1;                ///< index in clusters()
+  double quality = 0.0;             ///< [0, 1], 0 when not valid
+  std::uint32_t flags = 0;          ///< FarRangeFlag
+  Roi roi;                          ///< region searched last
   FarRangeTiming timing;
 };
 
@@ -80,6 +86,8 @@ class FarRangeEstimator {
   /// sum to 1 (eq. 14); they replace edge_weight / histogram_weight. The filters are not owned and must live
   /// as long as the estimator. count 0 keeps the two filters with the two weights given.
   LoadError setExtraFilters(ResponseFilter* const* filters, int count, const double* weights);
+  /// Init-time: the target's bounding radius [m] (the model's), for extent_distance_m. 0: unknown.
+  void setTargetRadius(double radius_m) { m_target_radius_m = radius_m > 0.0 ? radius_m : 0.0; }
   /// Forget the track (after a mode change or a ground command).
   void reset();
   /// Optional prediction for the next frame from a navigation filter: gates the robust selection like a
@@ -136,6 +144,7 @@ class FarRangeEstimator {
   PinholeCamera m_camera;
   FarRangeParams m_params;
   bool m_robust = true;
+  double m_target_radius_m = 0.0;
   MonotonicClockNs m_clock = nullptr;
   EdgeFilter m_edge;
   HistogramFilter m_histogram;

@@ -63,6 +63,9 @@ class ModelSymmetries {
   void findNear(const PolygonModel& model, double max_rel);
   int nearCount() const { return m_near_count; }
   const Mat3& near(int i) const { return m_near[static_cast<std::size_t>(i)]; }
+  /// How far near(i) moves the model's vertices [m]: the largest distance of a turned vertex from the
+  /// nearest vertex of the model (what an image has to tell the two poses apart by).
+  double nearSeparationM(int i) const { return m_near_separation_m[static_cast<std::size_t>(i)]; }
   /// The pose that shows the model turned by near(i) about its centroid in place of `pose`:
   /// R S and t + R c - R S c, so the centroid stays where it was.
   Pose nearTwin(const Pose& pose, int i) const;
@@ -75,6 +78,7 @@ class ModelSymmetries {
   std::array<Mat3, kCapacity> m_rotations{};
   int m_count = 0;
   std::array<Mat3, kCapacity> m_near{};
+  std::array<double, kCapacity> m_near_separation_m{};
   int m_near_count = 0;
   Vec3 m_centre_m = Vec3::Zero();
 };

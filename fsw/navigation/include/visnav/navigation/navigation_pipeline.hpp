@@ -67,6 +67,8 @@ class NavigationPipeline {
   const LocalReacquisition& reacquisition() const { return m_reacquisition; }
   /// This frame's reacquisition step (`hypotheses` 0 when none ran).
   const ReacquisitionStep& lastReacquisition() const { return m_reacquisition_step; }
+  /// The acquisition mode's step of the last frame (state kIdle when the frame was not in that mode).
+  const acq::AcquisitionResult& lastAcquisition() const { return m_acquisition_result; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -104,6 +106,7 @@ class NavigationPipeline {
 
   NearRangeResult m_near_result;
   ReacquisitionStep m_reacquisition_step;
+  acq::AcquisitionResult m_acquisition_result;
   FilterUpdate m_last_pose_update;
   far::FarRangeResult m_far_result;
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)

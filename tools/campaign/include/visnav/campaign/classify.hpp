@@ -47,6 +47,9 @@ struct FrameOutcome {
   double process_us = 0.0;
   bool far_valid = false;  ///< far range's fix this frame (direction/distance)
   double far_distance_m = 0.0;
+  double far_eq16_distance_m = 0.0;    ///< the far fix's eq. 16 distance (far_distance_m may be the extent's)
+  double far_extent_px = 0.0;          ///< the far fix's cluster extent (FarRangeResult::extent_px)
+  double far_extent_distance_m = 0.0;  ///< its distance from that extent and the model's radius
   // The 6-DOF measurement the pipeline produced this frame, delivered or withheld (diagnostics: --frames).
   // A coasted prediction is not one. Lets an output gate be judged offline over a whole campaign.
   bool has_candidate = false;
