@@ -3,125 +3,13 @@
 // of interest, coasting, the filter prediction and the NavSolution conversion.
 #include <gtest/gtest.h>
 
-#include "far_fixture.hpp"
+#include "far_approach.hpp"
 #include "visnav/farrange/nav_conversion.hpp"
 
 namespace visnav::far {
 namespace {
 
-using test::angleDeg;
-
-// The outline search of an extended target (fsw/farrange/README.md) at its measured setting, the default,
-// and switched off.
-FarRangeParams withOutlineSearch() {
-  FarRangeParams p;
-  p.extended_min_half_px = 12.0;
-  return p;
-}
-FarRangeParams withoutOutlineSearch() {
-  FarRangeParams p;
-  p.extended_min_half_px = 0.0;
-  return p;
-}
-
-FarRangeParams method(FarRangeMethod m) {
-  FarRangeParams p;
-  p.method = static_cast<int>(m);
-  return p;
-}
-
-struct Scene {
-  PinholeCamera camera = test::farCamera();
-  PolygonModel model = test::smallsat();
-  synthetic::Renderer renderer;
-  explicit Scene(const synthetic::RenderOptions& options = test::farRender()) {
-    EXPECT_TRUE(renderer.init(camera, model, options).ok);
-  }
-  Scene(const synthetic::RenderOptions& options, const PinholeCamera& c, const PolygonModel& m)
-      : camera(c), model(m) {
-    EXPECT_TRUE(renderer.init(camera, model, options).ok);
-  }
-  test::FarFrame frame(const Pose& pose, std::uint64_t seed = 1, std::int64_t index = 0) {
-    return test::renderFar(renderer, pose, seed, index);
-  }
-};
-
-FarRangeResult estimateOnce(const PinholeCamera& camera, const FarRangeParams& params,
-                            const test::FarFrame& f) {
-  FarRangeEstimator e;
-  EXPECT_TRUE(e.init(camera, params).ok);
-  FarRangeResult r;
-  EXPECT_EQ(e.estimate(f.image(), r), Status::kOk);
-  return r;
-}
-
-// A plate approaching from 200 m to 12 m at 3 % a frame, gamma calibrated at 200 m. `last_good_m` is the
-// closest range with a fix on the target (direction inside its bounding sphere, distance within 25 %).
-struct ApproachScene {
-  synthetic::RenderOptions render;
-  PinholeCamera camera;
-  PolygonModel model;
-  double gamma = 0.0;  ///< 0: calibrated on a frame at 200 m
-};
-
-// A flat plate of `width_m` x `height_m` (brightness on background level, noise, blur) seen by a
-// width_px x height_px camera of focal length f_px.
-ApproachScene plateScene(double width_m, double height_m, double brightness, double background, double noise,
-                         double blur_px, int width_px, int height_px, double f_px) {
-  ApproachScene a;
-  a.render.background = background;
-  a.render.target_brightness = brightness;
-  a.render.noise_sigma = noise;
-  a.render.blur_sigma_px = blur_px;
-  CameraIntrinsics k =
-      CameraIntrinsics::fromSi(width_px, height_px, 6e-3, 6e-6, 6e-6, 0.0, 0.5 * width_px, 0.5 * height_px);
-  k.fx_px = k.fy_px = f_px;
-  a.camera = PinholeCamera(k);
-  a.model = makeRectanglePlate(width_m, height_m);
-  return a;
-}
-
-// octagon/26 in kind: a bright flat plate on 640x480, f 1180 px, noise 0.063.
-ApproachScene brightPlate() { return plateScene(2.0, 2.2, 0.87, 0.28, 0.063, 0.33, 640, 480, 1180.0); }
-
-// plate/50 in kind: a long plate of low contrast (0.27) in noise on 1024x768, f 1134 px (plate/50 had 0.108,
-// where the edge response does not close the outline either).
-ApproachScene dimPlateInNoise() {
-  ApproachScene a = plateScene(2.9, 1.2, 0.52, 0.246, 0.08, 0.4, 1024, 768, 1134.0);
-  a.gamma = 1134.0 * std::sqrt(2.9 * 1.2);  // f sqrt(face-on area), as the campaign sets it
-  return a;
-}
-
-// `target_radius_m` > 0: the estimator knows the target's radius (extent distance, as in the pipeline).
-std::vector<FarRangeResult> approach(const ApproachScene& a, const FarRangeParams& p, double& last_good_m,
-                                     double target_radius_m = 0.0) {
-  Scene s(a.render, a.camera, a.model);
-  FarRangeParams q = p;
-  q.gamma = a.gamma;
-  if (!(q.gamma > 0.0)) {
-    // gamma calibrated at the start distance (eq. 16), as visnav-calibrate-gamma would.
-    const FarRangeResult cal = estimateOnce(s.camera, p, s.frame(test::satAt(200.0, 1.0, -0.5, 10.0), 99));
-    EXPECT_TRUE(cal.valid);
-    q.gamma = 200.0 * std::sqrt(static_cast<double>(cal.cluster_pixels));
-  }
-  FarRangeEstimator e;
-  EXPECT_TRUE(e.init(s.camera, q).ok);
-  e.setTargetRadius(target_radius_m);
-  std::vector<FarRangeResult> results;
-  last_good_m = 1e9;
-  for (int i = 0; i < 93; ++i) {
-    const double range = 200.0 * std::pow(0.97, i);
-    const test::FarFrame f = s.frame(test::satAt(range, 1.0 + 0.02 * i, -0.5, 10.0 + 0.3 * i), 100 + i, i);
-    FarRangeResult r;
-    e.estimate(f.image(), r);
-    const double radius_deg = std::atan(s.model.boundingRadius() / range) * kDegPerRad;
-    if (r.valid && angleDeg(r.direction_c, f.truth.t_c_m.normalized()) < radius_deg &&
-        std::abs(r.distance_m / range - 1.0) < 0.25)
-      last_good_m = range;
-    results.push_back(r);
-  }
-  return results;
-}
+using namespace approach_support;
 
 TEST(FarRangeEstimator, DirectionGoesThroughTheDistortedCameraModel) {
   Scene s;
@@ -309,6 +197,8 @@ TEST(FarRangeEstimator, FillsTheNavigationSolution) {
 namespace visnav::far {
 namespace {
 
+using namespace approach_support;
+
 // A third filter (sec. III-B: "it is always possible to add or modify the filters"): brightness itself.
 class BrightnessFilter final : public ResponseFilter {
  public:
@@ -348,105 +238,6 @@ TEST(FarRangeEstimator, TheFilterSetIsOpen) {
     }
   }
   EXPECT_GT(checked, 10);  // the window holds non-trivial responses
-}
-
-TEST(FarRangeEstimator, AnExtendedTargetIsTrackedByItsOutlineWhenItsGreyLevelsAreNoLongerRare) {
-  // Once the plate's own grey levels fill the histogram, eq. 12 no longer calls them rare and no pixel
-  // reaches t_in (below 19 m, about 140 px across).
-  const FarRangeParams without = withoutOutlineSearch();
-  double last_without = 0.0;
-  approach(brightPlate(), without, last_without);
-  EXPECT_GT(last_without, 17.0) << "eq. 13 alone loses the plate below 19 m";
-  double last_with = 0.0;
-  const std::vector<FarRangeResult> with = approach(brightPlate(), withOutlineSearch(), last_with);
-  EXPECT_LT(last_with, 12.2) << "the outline search holds it to the end";
-  int extended = 0;
-  for (std::size_t i = 0; i < with.size(); ++i) {
-    if ((with[i].flags & kFlagExtended) == 0U) continue;
-    ++extended;
-    const double range = 200.0 * std::pow(0.97, static_cast<double>(i));
-    EXPECT_NEAR(with[i].distance_m / range, 1.0, 0.25) << "frame " << i << " at " << range << " m";
-  }
-  EXPECT_GE(extended, 10);
-}
-
-TEST(FarRangeEstimator, AFragmentOfTheTargetGivesWayToTheOutlineEnclosingIt) {
-  // In noise 0.08 on a contrast of 0.27, eq. 13 keeps only a few pixels of the dim plate below 40 m, and the
-  // gate's size consistency holds on to such a fragment: the fixes stay on the target but read hundreds of
-  // metres (none of the 40 frames below 40 m within 25 %). The outline search, also where it encloses the
-  // fragment, gives 8 of them (16 when an outline twice the fragment's size replaced it, but then a
-  // satellite's body gave way to its outline with the panels: extended_enclose_ratio is 4).
-  const FarRangeParams without = withoutOutlineSearch();
-  double last_without = 0.0;
-  const std::vector<FarRangeResult> fragments = approach(dimPlateInNoise(), without, last_without);
-  double last_with = 0.0;
-  const std::vector<FarRangeResult> with = approach(dimPlateInNoise(), withOutlineSearch(), last_with);
-  int good_without = 0;
-  int good_with = 0;
-  for (std::size_t i = 0; i < with.size(); ++i) {
-    const double range = 200.0 * std::pow(0.97, static_cast<double>(i));
-    if (range > 40.0) continue;
-    good_without += fragments[i].valid && std::abs(fragments[i].distance_m / range - 1.0) < 0.25 ? 1 : 0;
-    good_with += with[i].valid && std::abs(with[i].distance_m / range - 1.0) < 0.25 ? 1 : 0;
-  }
-  EXPECT_LT(good_without, 3);
-  EXPECT_GE(good_with, 6);
-}
-
-TEST(FarRangeEstimator, AnExtendedTargetIsPutAtItsDistanceByItsExtentWhenItsRadiusIsKnown) {
-  // The dim plate of the test above: where eq. 16 counts the response pixels of an outline that does not
-  // close, far fewer than the plate's area, it reads too far (168 m at 26.8 m); the outline's extent and the
-  // plate's bounding radius read 26.1 m. The nearer of the two is taken: on the fragments both read too far,
-  // the extent less so.
-  const ApproachScene scene = dimPlateInNoise();
-  double last_gamma = 0.0;
-  const std::vector<FarRangeResult> gamma = approach(scene, withOutlineSearch(), last_gamma);
-  double last_extent = 0.0;
-  const std::vector<FarRangeResult> extent =
-      approach(scene, withOutlineSearch(), last_extent, scene.model.boundingRadius());
-  int good_gamma = 0;
-  int good_extent = 0;
-  int rescued = 0;
-  int fixes = 0;
-  for (std::size_t i = 0; i < extent.size(); ++i) {
-    const double range = 200.0 * std::pow(0.97, static_cast<double>(i));
-    const FarRangeResult& r = extent[i];
-    if (range > 40.0 || !r.valid) continue;
-    ++fixes;
-    // The same cluster either way: only the distance differs.
-    EXPECT_EQ(r.centroid_px, gamma[i].centroid_px) << "frame " << i;
-    EXPECT_NEAR(r.extent_distance_m,
-                scene.camera.intrinsics().fx_px * scene.model.boundingRadius() / r.extent_px, 1e-9);
-    // The nearer of eq. 16 and the extent (a tiny cluster: eq. 16).
-    const double eq16_m = gamma[i].distance_m;
-    const bool by_extent =
-        r.extent_px >= FarRangeParams{}.extent_distance_min_px && r.extent_distance_m < eq16_m;
-    EXPECT_EQ((r.flags & kFlagExtentDistance) != 0U, by_extent) << "frame " << i;
-    EXPECT_EQ(r.distance_m, by_extent ? r.extent_distance_m : eq16_m) << "frame " << i;
-    const bool good = std::abs(r.distance_m / range - 1.0) < 0.25;
-    good_gamma += std::abs(eq16_m / range - 1.0) < 0.25 ? 1 : 0;
-    good_extent += good ? 1 : 0;
-    rescued += good && eq16_m > 2.0 * range ? 1 : 0;
-  }
-  EXPECT_GE(fixes, 15);
-  EXPECT_GE(good_extent, good_gamma) << "of " << fixes << " fixes below 40 m";
-  EXPECT_GE(rescued, 1) << "eq. 16 read more than twice the range where the extent read it within 25 %";
-  EXPECT_LE(last_extent, last_gamma);
-}
-
-TEST(FarRangeEstimator, ATinyClusterKeepsEq16) {
-  // Below extent_distance_min_px the cluster is a few pixels of blur: its extent says little, eq. 16 holds.
-  Scene s;
-  FarRangeEstimator e;
-  ASSERT_TRUE(e.init(s.camera, FarRangeParams{}).ok);
-  e.setTargetRadius(s.model.boundingRadius());
-  FarRangeResult r;
-  ASSERT_EQ(e.estimate(s.frame(test::satAt(2500.0, 1.0, 1.0, 15.0), 3).image(), r), Status::kOk);
-  ASSERT_TRUE(r.valid);
-  EXPECT_LT(r.extent_px, FarRangeParams{}.extent_distance_min_px);
-  EXPECT_EQ(r.flags & kFlagExtentDistance, 0U);
-  EXPECT_NEAR(r.distance_m, FarRangeParams{}.gamma / std::sqrt(static_cast<double>(r.cluster_pixels)), 1e-9);
-  EXPECT_GT(r.extent_distance_m, 0.0);
 }
 
 }  // namespace
