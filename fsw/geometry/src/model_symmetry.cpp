@@ -31,13 +31,7 @@ double vertexSeparationM(const PolygonModel& model, const Mat3& rotation, const 
 
 bool ModelSymmetries::isSymmetry(const PolygonModel& model, const Mat3& rotation, double tolerance_m,
                                  const Vec3& centre_m) {
-  const auto& vertices = model.vertices();
-  for (const Vec3& v : vertices) {
-    const Vec3 w = rotation * (v - centre_m) + centre_m;
-    if (std::none_of(vertices.begin(), vertices.end(),
-                     [&](const Vec3& u) { return (u - w).norm() <= tolerance_m; }))
-      return false;
-  }
+  if (vertexSeparationM(model, rotation, centre_m) > tolerance_m) return false;
   const auto& surfaces = model.surfaces();
   for (const ModelSurface& s : surfaces) {
     const Vec3 c = rotation * (s.centroid_m - centre_m) + centre_m;
