@@ -67,6 +67,14 @@ void Acquisition::reset() {
   m_frames = 0;
   m_best_score = 0.0;
   m_has_near_twin = false;
+  m_has_look_reference = false;
+  m_twin_by_continuity = false;
+}
+
+void Acquisition::setLookReference(const Pose& reference, double tolerance_rad) {
+  m_has_look_reference = reference.t_c_m.allFinite() && reference.R_c_m.allFinite() && tolerance_rad >= 0.0;
+  m_look_reference = reference;
+  m_look_tolerance_rad = tolerance_rad;
 }
 
 void Acquisition::fail(AcquisitionFailure failure) {
@@ -298,6 +306,7 @@ Status Acquisition::step(const MonoImage& image, std::uint64_t frame_number, Acq
   out.hypotheses_done = m_next_hypothesis;
   out.hypotheses_total = hypothesisCount();
   out.candidates_verified = static_cast<int>(m_verified.size());
+  out.twin_resolved_by_continuity = m_twin_by_continuity;
   out.best_score = m_best_score;
   out.pose = m_pose;
   if (m_state == AcquisitionState::kSucceeded) {

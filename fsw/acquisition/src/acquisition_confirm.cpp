@@ -9,15 +9,40 @@
 
 namespace visnav::acq {
 
-bool Acquisition::unresolvedNearTwin(const Pose& pose) const {
+bool Acquisition::looksContinuous(const Pose& pose) const {
+  return m_has_look_reference && m_symmetries.lookDistanceRad(m_look_reference, pose) <= m_look_tolerance_rad;
+}
+
+bool Acquisition::unresolvedNearTwin(Pose& pose) {
   // The tracker may lose the true twin of a wrong candidate (box/187 at 26 m: from the truth its fit lacked
-  // corners and was not accepted), so a twin too close to resolve must block without being tracked.
+  // corners and was not accepted), so a twin too close to resolve must block without being tracked, unless
+  // a track lost a few frames ago tells the two apart: its look keeps one and not the other (a quarter-turn
+  // twin is 90 deg away; campaign box/44, 1.2 px apart at 14 m, was never reacquired). The image cannot
+  // choose between them, so the one continuous with the track is taken, whichever was found.
+  m_twin_by_continuity = false;
   const double depth_m = pose.t_c_m.z();
   if (!(m_params.near_twin_min_separation_px > 0.0) || !(depth_m > 0.0)) return false;
   const double px_per_m = m_camera.intrinsics().fx_px / depth_m;
-  for (int i = 0; i < m_symmetries.nearCount(); ++i)
-    if (m_symmetries.nearSeparationM(i) * px_per_m < m_params.near_twin_min_separation_px) return true;
-  return false;
+  for (int pass = 0; pass < 2; ++pass) {  // a second pass only after swapping to the continuous twin
+    const bool candidate_continuous = looksContinuous(pose);
+    bool swapped = false;
+    for (int i = 0; i < m_symmetries.nearCount() && !swapped; ++i) {
+      if (!(m_symmetries.nearSeparationM(i) * px_per_m < m_params.near_twin_min_separation_px)) continue;
+      const Pose twin = m_symmetries.nearTwin(pose, i);
+      const bool twin_continuous = looksContinuous(twin);
+      if (candidate_continuous && !twin_continuous) {
+        m_twin_by_continuity = true;
+      } else if (pass == 0 && !candidate_continuous && twin_continuous) {
+        pose = twin;
+        m_twin_by_continuity = true;
+        swapped = true;
+      } else {
+        return true;
+      }
+    }
+    if (!swapped) return false;
+  }
+  return true;
 }
 
 void Acquisition::chooseRival() {
@@ -30,13 +55,19 @@ void Acquisition::chooseRival() {
   const PoseTolerance same =
       PoseTolerance::widened(m_params.confirm_max_motion_rel * best.pose.t_c_m.z(),
                              m_params.confirm_max_rotation_deg * kRadPerDeg, best.covariance);
+  // With a look reference (setLookReference: a track lost a few frames ago) that keeps the candidate, a pose
+  // whose look it refuses is no rival: the pipeline would refuse that find anyway, and where the image
+  // cannot choose (an unresolvable near twin, found as a candidate of its own) continuity does.
+  const bool best_continuous = looksContinuous(best.pose);
   const Verified* rival = nullptr;
   for (std::size_t i = static_cast<std::size_t>(m_current) + 1; i < m_verified.size(); ++i) {
     if (m_symmetries.equivalent(m_verified[i].pose, best.pose, same)) continue;
+    if (best_continuous && !looksContinuous(m_verified[i].pose)) continue;
     rival = &m_verified[i];
     break;  // sorted best first: later ones score lower still
   }
-  if (m_has_near_twin && (rival == nullptr || m_near_twin.score > rival->score) &&
+  const bool twin_refused = best_continuous && !looksContinuous(m_near_twin.pose);
+  if (m_has_near_twin && !twin_refused && (rival == nullptr || m_near_twin.score > rival->score) &&
       !m_symmetries.equivalent(m_near_twin.pose, best.pose, same))
     rival = &m_near_twin;
   if (rival != nullptr && rival->score >= best.score - m_params.rival_margin) {
@@ -117,6 +148,7 @@ bool Acquisition::nextCandidate(const MonoImage& image, std::uint64_t frame_numb
     Verified& current = m_verified[static_cast<std::size_t>(m_current)];
     Pose pose = current.pose;
     if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, pose, r, out)) continue;
+    if (unresolvedNearTwin(r.pose)) continue;  // what verify() refuses for the first candidate
     // Re-scored on this frame, like its near twin is.
     current = Verified{evidenceScore(r), r.rms_px, r.quality, r.pose, r.covariance};
     ++out.score_evaluations;

@@ -67,6 +67,34 @@ void FarRangeEstimator::reset() {
   m_has_prediction = false;
 }
 
+bool FarRangeEstimator::refuteLastFix() {
+  if (m_params.refuted_fix_frames <= 0 || !m_has_last_fix) return false;
+  // The slot that expires first (a free one has 0 frames left).
+  Refuted* slot = &m_refuted[0];
+  for (Refuted& r : m_refuted)
+    if (r.frames_left < slot->frames_left) slot = &r;
+  // Twice the extent: a clutter region's centre of mass wanders with the threshold from frame to frame.
+  slot->centre_px = m_last_fix_px;
+  slot->radius_px = std::max(2.0 * m_last_fix_extent_px, m_params.gate_radius_px);
+  slot->frames_left = m_params.refuted_fix_frames;
+  m_has_last_fix = false;
+  return true;
+}
+
+void FarRangeEstimator::clearRefuted() { m_refuted = {}; }
+
+int FarRangeEstimator::refutedCount() const {
+  int n = 0;
+  for (const Refuted& r : m_refuted) n += r.frames_left > 0 ? 1 : 0;
+  return n;
+}
+
+bool FarRangeEstimator::refuted(const Vec2& centre_px) const {
+  for (const Refuted& r : m_refuted)
+    if (r.frames_left > 0 && (centre_px - r.centre_px).norm() <= r.radius_px) return true;
+  return false;
+}
+
 void FarRangeEstimator::setPrediction(const Vec3& direction_c, double distance_m) {
   Vec2 px;
   if (!(distance_m > 0.0) || !m_camera.project(direction_c, px)) return;
@@ -118,6 +146,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     return Status::kInvalidArgument;
   }
   std::int64_t start = m_clock != nullptr ? m_clock() : 0;
+  for (Refuted& r : m_refuted) r.frames_left = r.frames_left > 0 ? r.frames_left - 1 : 0;
   const Roi full = Roi::full(m_camera.width(), m_camera.height());
   const Gate gate = m_robust ? currentGate() : Gate{};
   int selected = -1;
@@ -159,6 +188,11 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   }
   if (m_robust) updateTrack(out);
   if (!out.valid && m_track.active) out.flags |= kFlagCoasting;
+  if (out.valid) {
+    m_has_last_fix = true;
+    m_last_fix_px = out.centroid_px;
+    m_last_fix_extent_px = out.extent_px;
+  }
   m_has_prediction = false;  // a filter prediction holds for one frame
   out.timing.total_us = elapsedUs(start);
   return Status::kOk;
@@ -226,6 +260,10 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
     if (m_params.fill_holes) m_finder.fillHoles(c);
     const double offset = (usedCentre(c) - gate.centre_px).norm();
     if (offset > gate.radius_px) continue;
+    if (refuted(usedCentre(c))) {
+      flags |= kFlagRefutedSkipped;
+      continue;
+    }
     const double log_ratio = std::log(usedPixels(c) / std::max(gate.size_px, 1.0));
     if (log_ratio < -down_limit || log_ratio > up_limit) continue;
     const double score = offset / gate.radius_px + std::abs(log_ratio) / up_limit;  // lower is better

@@ -74,6 +74,10 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
     for (std::size_t i = 0; i < clusters.size(); ++i) {
       const Cluster& c = clusters[i];
       if (c.pixel_count < m_params.min_cluster_px) continue;
+      if (refuted(usedCentre(c))) {
+        flags |= kFlagRefutedSkipped;
+        continue;
+      }
       const double offset = (usedCentre(c) - gate.centre_px).norm();
       if (offset > gate.radius_px) continue;
       const double log_ratio = std::abs(std::log(usedPixels(c) / std::max(gate.size_px, 1.0)));
@@ -97,6 +101,10 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
   for (std::size_t i = 0; i < clusters.size(); ++i) {
     const Cluster& c = clusters[i];
     if (c.pixel_count < m_params.min_cluster_px || c.axis_ratio > m_params.max_axis_ratio) continue;
+    if (refuted(usedCentre(c))) {
+      flags |= kFlagRefutedSkipped;
+      continue;
+    }
     const double size = usedPixels(c);
     if (best < 0 || size > best_score) {
       second = best;

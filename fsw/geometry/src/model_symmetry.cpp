@@ -136,6 +136,21 @@ double ModelSymmetries::attitudeDistanceRad(const Mat3& a_R_c_m, const Mat3& b_R
   return best;
 }
 
+Pose ModelSymmetries::turnedOntoLineOfSight(const Pose& reference, const Pose& candidate) {
+  const double range = reference.t_c_m.norm();
+  const double candidate_range = candidate.t_c_m.norm();
+  if (!(range > 0.0) || !(candidate_range > 0.0)) return reference;
+  const Mat3 r = rotationBetween(reference.t_c_m / range, candidate.t_c_m / candidate_range);
+  Pose turned;
+  turned.R_c_m = r * reference.R_c_m;
+  turned.t_c_m = r * reference.t_c_m;
+  return turned;
+}
+
+double ModelSymmetries::lookDistanceRad(const Pose& reference, const Pose& candidate) const {
+  return attitudeDistanceRad(candidate.R_c_m, turnedOntoLineOfSight(reference, candidate).R_c_m);
+}
+
 bool ModelSymmetries::equivalent(const Pose& a, const Pose& b, const PoseTolerance& tolerance) const {
   return (a.t_c_m - b.t_c_m).norm() <= tolerance.position_m &&
          attitudeDistanceRad(a.R_c_m, b.R_c_m) <= tolerance.attitude_rad;

@@ -44,6 +44,13 @@ Mat3 expSo3(const Vec3& omega) {
   return Mat3::Identity() + (std::sin(theta) / theta) * w + ((1.0 - std::cos(theta)) / theta2) * w * w;
 }
 
+Mat3 rotationBetween(const Vec3& a, const Vec3& b) {
+  const Vec3 axis = a.cross(b);
+  const double s = axis.norm();
+  if (s < 1e-15) return Mat3::Identity();
+  return expSo3(axis / s * std::atan2(s, a.dot(b)));
+}
+
 Vec3 logSo3(const Mat3& r) {
   // Via the quaternion: well conditioned for every angle including pi.
   Eigen::Quaterniond q(r);

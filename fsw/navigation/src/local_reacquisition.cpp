@@ -9,14 +9,6 @@ namespace visnav::nav {
 
 namespace {
 
-/// The rotation taking unit vector a onto unit vector b (about their common normal).
-Mat3 rotationBetween(const Vec3& a, const Vec3& b) {
-  const Vec3 axis = a.cross(b);
-  const double s = axis.norm();
-  if (s < 1e-15) return Mat3::Identity();
-  return expSo3(axis / s * std::atan2(s, a.dot(b)));
-}
-
 /// Tracker passes per start: the first pulls the pose in from the wide capture range, the second refines.
 constexpr int kPassesPerStart = 2;
 /// A rival must track at least this share of the best start's quality to make the frame ambiguous.
@@ -120,19 +112,20 @@ bool LocalReacquisition::agrees(const Pose& reference, const Pose& candidate, st
   const double range = reference.t_c_m.norm();
   if (!(range > 0.0) || !(candidate.t_c_m.norm() > 0.0)) return false;
   // The reference turned about the camera centre onto the candidate's line of sight: what a slew does.
-  const Mat3 r = rotationBetween(reference.t_c_m / range, candidate.t_c_m.normalized());
-  Pose aligned;
-  aligned.R_c_m = r * reference.R_c_m;
-  aligned.t_c_m = r * reference.t_c_m;
+  const Pose aligned = ModelSymmetries::turnedOntoLineOfSight(reference, candidate);
   PoseTolerance tol;
   // Turned onto the candidate's line of sight, the reference differs from it in position by the range
   // difference alone: a tolerance beyond both ranges leaves the look as the only test.
   tol.position_m =
       check_range ? m_params.reacquire_range_tolerance_rel * range : 2.0 * (range + candidate.t_c_m.norm());
-  tol.attitude_rad = (m_params.reacquire_attitude_tolerance_deg +
-                      m_params.reacquire_tolerance_growth_deg_per_frame * static_cast<double>(frames)) *
-                     kRadPerDeg;
+  tol.attitude_rad = lookToleranceRad(frames);
   return m_symmetries.equivalent(candidate, aligned, tol);
+}
+
+double LocalReacquisition::lookToleranceRad(std::uint64_t frames) const {
+  return (m_params.reacquire_attitude_tolerance_deg +
+          m_params.reacquire_tolerance_growth_deg_per_frame * static_cast<double>(frames)) *
+         kRadPerDeg;
 }
 
 bool LocalReacquisition::trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,

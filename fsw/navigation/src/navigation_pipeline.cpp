@@ -123,6 +123,9 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
   if (result.state == acq::AcquisitionState::kFailed) {
     in.acquisition_failed = true;
     m_fdir.raise(kFaultAcquisitionFailed);
+    // Nothing with edges where far range pointed: that fix was clutter, and far range, restarted, would
+    // pick the same region first again (campaign approaches: 12 mode changes on one clutter region).
+    if (result.failure == acq::AcquisitionFailure::kNoTarget) m_far.refuteLastFix();
     return;
   }
   if (result.state != acq::AcquisitionState::kSucceeded) return;
@@ -347,6 +350,7 @@ bool NavigationPipeline::command(ModeCommandKind kind, std::uint32_t command_id,
                                  CommandAck& ack) {
   const NavMode before = m_modes.mode();
   const bool accepted = m_modes.command(kind, command_id, m_last_far_fix.valid, frame_number, ack);
+  if (accepted && kind == ModeCommandKind::kReacquire) m_far.clearRefuted();  // the operator overrides
   if (accepted && m_modes.mode() != before) enterMode(m_modes.mode());
   m_last_command = ack;
   return accepted;

@@ -123,6 +123,10 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
     step.far_cue = cued;
     if (!cued) m_acquisition.start(predicted_direction, predicted.t_c_m.z(), margin_deg);
   }
+  // The track lost a few frames ago tells a near twin the image cannot resolve from the true pose: the
+  // same look test, with this frame's tolerance, that the find must pass below.
+  if (m_params.navigation.reacquire_twin_continuity && m_frames_since_valid != ~0ULL)
+    m_acquisition.setLookReference(m_last_valid_pose, m_reacquisition.lookToleranceRad(m_frames_since_valid));
   acq::AcquisitionResult result;
   if (m_acquisition.step(image, frame_number, result) != Status::kOk) return;
   step.acquisition_state = static_cast<int>(result.state);
@@ -146,6 +150,7 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
   }
   step.found = true;
   step.by_acquisition = true;
+  step.twin_by_continuity = result.twin_resolved_by_continuity;
   step.has_previous = false;
   step.status =
       result.rms_px > m_params.nearrange.degraded_rms_px ? TrackStatus::kDegraded : TrackStatus::kTracking;

@@ -91,6 +91,8 @@ TEST_F(ConfigFiles, BadValuesNameTheKey) {
       {"[filter]\npose_gate_chi2 = -1.0\n", ":2: [filter] pose_gate_chi2 = -1 is outside"},
       {"[telemetry]\npartition = \"a b\"\n", "[telemetry] partition 'a b' may hold only"},
       {"[navigation]\nacquire_below_m = 50.0\nfar_range_above_m = 40.0\n", "far_range_above_m must exceed"},
+      {"[navigation]\nhandover_radius_px = 30.0\nnear_range_min_radius_px = 30.0\n",
+       "near_range_min_radius_px must be below handover_radius_px"},
       {"[camera]\ndriver = \"v4l2\"\n", "[camera] device must name the V4L2 node"},
   };
   for (const Case& c : cases) {

@@ -118,6 +118,35 @@ TEST(ModelSymmetries, ANearTwinKeepsTheCentroidInPlaceAndItsVerticesClose) {
   }
 }
 
+TEST(ModelSymmetries, TheLookDistanceIgnoresASlewAndSeesATurnOrANearTwin) {
+  // What continuity with a lost track compares: a slew (the camera turning) moves the target across the image
+  // without changing its look; the target turning does, and so does its quarter-turn near twin.
+  const PolygonModel near_cube = makeBox(0.615, 0.585, 0.574);
+  ModelSymmetries s;
+  s.find(near_cube);
+  s.findNear(near_cube, 0.15);
+  ASSERT_GT(s.nearCount(), 0);
+  Pose reference;
+  reference.R_c_m = expSo3(Vec3(0.3, -0.5, 0.2));
+  reference.t_c_m = Vec3(0.2, -0.1, 14.0);
+  const Mat3 slew = expSo3(Vec3(0.0, 8.0 * kRadPerDeg, 0.0));
+  Pose slewed;
+  slewed.R_c_m = slew * reference.R_c_m;
+  slewed.t_c_m = slew * reference.t_c_m * 0.9;  // and 10 % closer: the look ignores range
+  // Off the optical axis (0.9 deg here) the shortest turn onto the new line of sight differs from the slew
+  // by a small roll about it.
+  EXPECT_LT(s.lookDistanceRad(reference, slewed) * kDegPerRad, 0.1);
+  Pose turned = slewed;
+  turned.R_c_m = slewed.R_c_m * expSo3(Vec3::UnitZ() * (20.0 * kRadPerDeg));
+  EXPECT_NEAR(s.lookDistanceRad(reference, turned) * kDegPerRad, 20.0, 0.1);
+  for (int i = 0; i < s.nearCount(); ++i)
+    EXPECT_GT(s.lookDistanceRad(reference, s.nearTwin(reference, i)) * kDegPerRad, 60.0) << "twin " << i;
+  // The turn onto the line of sight keeps the reference's range and look.
+  const Pose onto = ModelSymmetries::turnedOntoLineOfSight(reference, slewed);
+  EXPECT_NEAR(onto.t_c_m.norm(), reference.t_c_m.norm(), 1e-12);
+  EXPECT_NEAR((onto.t_c_m.normalized() - slewed.t_c_m.normalized()).norm(), 0.0, 1e-12);
+}
+
 TEST(ModelSymmetries, TwinIsEquivalentRivalIsNot) {
   ModelSymmetries s;
   s.find(makeRectanglePlate(2.3, 1.8));

@@ -29,6 +29,7 @@ ModeInputs nearAt(double d) {
 NavigationParams plateHandover() {
   NavigationParams p;
   p.handover_radius_px = 50.0;
+  p.near_range_min_radius_px = 37.5;
   return p.withDerivedHandover(1.5, 1000.0);
 }
 
@@ -39,7 +40,16 @@ TEST(ModeManager, HandOverDistancesAreDerivedFromTheTargetsApparentSize) {
   // The default 35 px: 42.9 m / 57.1 m for the plate, 168 m for the 5.87 m satellite with panels.
   const NavigationParams plate_default = NavigationParams{}.withDerivedHandover(1.5, 1000.0);
   EXPECT_NEAR(plate_default.acquire_below_m, 1500.0 / 35.0, 1e-9);
-  EXPECT_NEAR(plate_default.far_range_above_m, 4.0 / 3.0 * 1500.0 / 35.0, 1e-6);
+  EXPECT_NEAR(plate_default.far_range_above_m, 1500.0 / 26.25, 1e-9);
+  // The hand-over to acquisition and near range's give-up are independent sizes: an earlier hand-over
+  // does not make near range give up earlier.
+  NavigationParams early;
+  early.handover_radius_px = 50.0;
+  const NavigationParams plate_early = early.withDerivedHandover(1.5, 1000.0);
+  EXPECT_DOUBLE_EQ(plate_early.acquire_below_m, 30.0);
+  EXPECT_NEAR(plate_early.far_range_above_m, plate_default.far_range_above_m, 1e-12);
+  early.near_range_min_radius_px = 50.0;
+  EXPECT_NE(early.crossCheck(), nullptr) << "no hysteresis gap must be refused";
   const NavigationParams sat = NavigationParams{}.withDerivedHandover(5.87, 1000.0);
   EXPECT_NEAR(sat.acquire_below_m, 5870.0 / 35.0, 1e-9);
   NavigationParams fixed;

@@ -61,6 +61,9 @@ struct AcquisitionResult {
   int tracker_calls = 0;      ///< this step
   double best_score = 0.0;    ///< best coarse score [brightness / working px]
   double edge_snr = 0.0;      ///< of this frame's window
+  /// The candidate has a near twin too close to resolve in the image that only continuity with the look
+  /// reference (setLookReference) told apart: the ambiguity is real, the choice is the track's.
+  bool twin_resolved_by_continuity = false;
 };
 
 /// A coarse-search survivor (debug view): grid attitude with its distance and lateral alignment.
@@ -92,6 +95,12 @@ class Acquisition {
   void start(const Vec3& direction_c, double distance_m, double direction_margin_deg);
   void start(const FarRangeSolution& cue);
   void reset();
+  /// After start(): the last valid pose of a track lost a few frames ago, and how far [rad] the target's
+  /// look (attitude along its line of sight, modulo symmetries) may have moved since. A candidate whose near
+  /// twin the image cannot resolve (near_twin_min_separation_px) is then not refused when its look is within
+  /// that tolerance and the twin's is not: continuity chooses, and the result says so. start() and reset()
+  /// clear it.
+  void setLookReference(const Pose& reference, double tolerance_rad);
 
   /// One frame. kInvalidArgument for an image of the wrong size (the step is skipped, nothing changes).
   Status step(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
@@ -125,8 +134,12 @@ class Acquisition {
   bool confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number, Pose& pose,
                    NearRangeResult& r, double& agreement);
   void chooseRival();
-  /// True when a near twin of `pose` moves the model's vertices less than near_twin_min_separation_px.
-  bool unresolvedNearTwin(const Pose& pose) const;
+  /// True when a near twin of `pose` moves the model's vertices less than near_twin_min_separation_px and
+  /// the look reference does not tell the two apart; where it keeps the twin and not `pose`, `pose` becomes
+  /// the twin.
+  bool unresolvedNearTwin(Pose& pose);
+  /// `pose`'s look is within the tolerance of the look reference (false without one).
+  bool looksContinuous(const Pose& pose) const;
   double agreementF1(const Pose& pose);
   double evidenceScore(const NearRangeResult& r);
   bool bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose, Verified& twin,
@@ -164,6 +177,10 @@ class Acquisition {
   Pose m_rival_pose;
   bool m_has_near_twin = false;  ///< m_near_twin is a near-symmetric twin of the current candidate
   Verified m_near_twin;
+  bool m_has_look_reference = false;  ///< setLookReference since start()
+  Pose m_look_reference;
+  double m_look_tolerance_rad = 0.0;
+  bool m_twin_by_continuity = false;  ///< the current candidate's unresolvable twin was refused by continuity
   Pose m_pose;
   NearRangeResult m_last;
 };

@@ -38,6 +38,7 @@ enum FarRangeFlag : std::uint32_t {
   kFlagUnconfirmed = 1U << 10,     ///< picked without a track (largest plausible cluster)
   kFlagExtended = 1U << 11,        ///< found by its outline on the edge response alone (extended target)
   kFlagExtentDistance = 1U << 12,  ///< distance_m from the cluster's extent and the target's radius
+  kFlagRefutedSkipped = 1U << 13,  ///< a cluster inside a refuted region was passed over (refuteLastFix)
 };
 
 /// Execution time of one estimate() per stage [us] (zeros when no clock is set).
@@ -88,8 +89,16 @@ class FarRangeEstimator {
   LoadError setExtraFilters(ResponseFilter* const* filters, int count, const double* weights);
   /// Init-time: the target's bounding radius [m] (the model's), for extent_distance_m. 0: unknown.
   void setTargetRadius(double radius_m) { m_target_radius_m = radius_m > 0.0 ? radius_m : 0.0; }
-  /// Forget the track (after a mode change or a ground command).
+  /// Forget the track (after a mode change or a ground command). Refuted regions stay.
   void reset();
+  /// The last valid fix was looked at and holds no target (acquisition found no edge structure at its cue):
+  /// its region is passed over for refuted_fix_frames frames (see FarRangeParams). Returns false when there
+  /// is no fix to refute or the feature is off. At most kMaxRefuted regions; a new one replaces the oldest.
+  bool refuteLastFix();
+  /// Forget every refuted region (a ground command to re-acquire).
+  void clearRefuted();
+  int refutedCount() const;
+  static constexpr int kMaxRefuted = 4;
   /// Optional prediction for the next frame from a navigation filter: gates the robust selection like a
   /// track would (direction in the camera frame, distance for the expected size).
   void setPrediction(const Vec3& direction_c, double distance_m);
@@ -164,6 +173,16 @@ class FarRangeEstimator {
   std::uint8_t m_ext_spawn_q = 252;
   std::uint8_t m_ext_grow_q = 153;
   Track m_track;
+  struct Refuted {
+    Vec2 centre_px = Vec2::Zero();
+    double radius_px = 0.0;
+    int frames_left = 0;  ///< 0: unused
+  };
+  std::array<Refuted, kMaxRefuted> m_refuted{};
+  bool refuted(const Vec2& centre_px) const;
+  bool m_has_last_fix = false;  ///< m_last_fix_* hold the last valid fix (reset() keeps them)
+  Vec2 m_last_fix_px = Vec2::Zero();
+  double m_last_fix_extent_px = 0.0;
   bool m_has_prediction = false;
   Vec2 m_prediction_px = Vec2::Zero();
   double m_prediction_size_px = 0.0;

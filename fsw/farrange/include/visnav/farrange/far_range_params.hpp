@@ -46,6 +46,7 @@ struct FarRangeParams {
   double extended_max_growth = 64.0;
   double extended_enclose_ratio = 4.0;
   double extent_distance_min_px = 4.0;
+  int refuted_fix_frames = 60;
   // Capacities (memory is sized from these and the image size at init).
   int max_clusters = 256;
   int max_cluster_pixels = 262144;
@@ -158,6 +159,13 @@ struct FarRangeParams {
          "abs(log error) of 0.09-0.17 against eq. 16's 0.12-0.27 for targets 4 to 64 px in radius; 0: "
          "eq. 16 always (the model's radius is the pipeline's)"},
         extent_distance_min_px);
+    v.integer({"farrange", "refuted_fix_frames", "frames", 0, 100000,
+               "robust: after a fix was refuted (acquisition looked at its cue and found no edge structure "
+               "there, failure no_target), clusters centred within twice its extent (at least "
+               "gate_radius_px) are not selected for this many frames, so the next best is; up to 4 such "
+               "regions are kept. Campaign approaches handed over a stationary clutter region 10-40 deg "
+               "off the target again and again (12 mode changes, never acquired); 0: never"},
+              refuted_fix_frames);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
     v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},

@@ -56,6 +56,11 @@ class ModelSymmetries {
   /// True when the two poses show the same target pose up to a symmetry: positions and attitudes (modulo
   /// the symmetries) within the tolerance.
   bool equivalent(const Pose& a, const Pose& b, const PoseTolerance& tolerance) const;
+  /// `reference` turned about the camera centre onto `candidate`'s line of sight (what a slew does to it).
+  static Pose turnedOntoLineOfSight(const Pose& reference, const Pose& candidate);
+  /// The look difference [rad]: attitudeDistanceRad between `candidate` and turnedOntoLineOfSight of
+  /// `reference`, which a slew does not change and a lost target cannot change much in a few frames.
+  double lookDistanceRad(const Pose& reference, const Pose& candidate) const;
 
   /// Lists the candidate rotations that are not symmetries about the vertex centroid (nor such a symmetry's
   /// product with one already listed) but turn the model about it onto itself within max_rel of the

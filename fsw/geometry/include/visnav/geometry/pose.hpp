@@ -24,6 +24,8 @@ YawPitchRoll yprFromRotation(const Mat3& rotation);
 Mat3 expSo3(const Vec3& omega);
 Vec3 logSo3(const Mat3& rotation);
 Mat3 skew(const Vec3& v);
+/// The rotation taking unit vector a onto unit vector b (about their common normal; identity if parallel).
+Mat3 rotationBetween(const Vec3& a, const Vec3& b);
 
 struct Pose {
   Mat3 R_c_m = Mat3::Identity();  ///< rotates model-frame vectors into the camera frame

@@ -44,8 +44,11 @@ struct ReacquisitionStep {
   bool by_acquisition = false;
   int acquisition_state = -1;  ///< that acquisition's AcquisitionState this frame (-1: not run)
   bool far_cue = false;        ///< that acquisition was cued by far range this frame (reacquire_far_cue)
-  int hypotheses = 0;          ///< tracker starts tried this frame
-  int cue_starts = 0;          ///< of them, at the outline's best shifts (reacquire_cue_starts)
+  /// found by that acquisition with a near twin the image cannot resolve, told apart by the look of the
+  /// last valid pose (acq::AcquisitionResult::twin_resolved_by_continuity)
+  bool twin_by_continuity = false;
+  int hypotheses = 0;  ///< tracker starts tried this frame
+  int cue_starts = 0;  ///< of them, at the outline's best shifts (reacquire_cue_starts)
   int search_radius_px = 0;
   // Why the starts of this frame were not taken (diagnostics: the campaign's --trace).
   int starts_lost = 0;          ///< the wide tracker lost the target from the start
@@ -77,6 +80,8 @@ class LocalReacquisition {
   bool lookConsistentWith(const Pose& reference, std::uint64_t frames, const Pose& candidate) const {
     return agrees(reference, candidate, frames, false);
   }
+  /// The attitude tolerance of those tests after `frames` frames [rad].
+  double lookToleranceRad(std::uint64_t frames) const;
 
   /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
   void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,

@@ -17,8 +17,8 @@ struct NavigationParams {
   double acquire_below_m = 0.0;      ///< far range -> acquisition below this distance (0: derived, see below)
   double far_range_above_m = 0.0;    ///< near range -> far range above this distance (0: derived)
   double handover_radius_px = 35.0;  ///< derived hand-over: where the target's bounding radius spans this
-  double handover_hysteresis = 4.0 / 3.0;  ///< derived: far_range_above_m = this x acquire_below_m
-  int enter_frames = 3;                    ///< consecutive frames a distance condition must hold
+  double near_range_min_radius_px = 26.25;  ///< derived give-up: where the bounding radius spans this
+  int enter_frames = 3;                     ///< consecutive frames a distance condition must hold
   int acquisition_timeout_frames = 25;   ///< acquisition gives up (back to far range) after this many frames
   int acquire_retry_holdoff_frames = 5;  ///< far range waits this long after a failed acquisition...
   int acquire_retry_holdoff_max_frames = 80;  ///< ... doubling per consecutive failure up to this
@@ -59,7 +59,8 @@ struct NavigationParams {
   int reacquire_timeout_frames = 300;          ///< searching longer: hand over to far range
   int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches (0: never)
   bool reacquire_far_cue = true;  ///< that acquisition looks where far range finds the target, if it does
-  int reacquire_cue_starts = 3;   ///< starts per frame at the best shifts of the predicted outline (0: none)
+  bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
+  int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -72,9 +73,12 @@ struct NavigationParams {
             "against 50 on two 100-scene campaign subsets: tracked 0.497 -> 0.521 and 0.615 -> 0.638, "
             "confidently wrong frames 27 -> 23 and 20 -> 23)"},
            handover_radius_px);
-    v.real({"navigation", "handover_hysteresis", "-", 1.01, 100.0,
-            "where far_range_above_m is 0 it is derived as this x acquire_below_m"},
-           handover_hysteresis);
+    v.real({"navigation", "near_range_min_radius_px", "px", 1.0, 10000.0,
+            "where far_range_above_m is 0 it is derived as f x bounding radius / this: near range gives "
+            "the target up to far range when it shrinks below this apparent radius (must be below "
+            "handover_radius_px: the gap is the hysteresis; 26.25 = 35 x 3/4, the 4/3 distance ratio it "
+            "was derived with before it became its own parameter)"},
+           near_range_min_radius_px);
     v.real({"navigation", "acquire_below_m", "m", 0.0, 10000.0,
             "far range hands over to acquisition when its distance stays below this for enter_frames"},
            acquire_below_m);
@@ -255,6 +259,13 @@ struct NavigationParams {
                "5.6 % off in range, box/191). The find is judged as before; "
                "false: the prediction only"},
               reacquire_far_cue);
+    v.boolean({"navigation", "reacquire_twin_continuity", "-", 0, 1,
+               "close-range reacquisition: that acquisition does not refuse a candidate whose near twin "
+               "the image cannot resolve ([acquisition] near_twin_min_separation_px) when the last valid "
+               "pose's look (reacquire_attitude_tolerance_deg widening per frame) keeps the candidate "
+               "and not the twin; the find is flagged (campaign --trace). Campaign box/44 (quarter-turn "
+               "twin 1.2 px apart at 14 m): tracked 0.05 -> 0.81; false: the twin always refuses"},
+              reacquire_twin_continuity);
     v.integer(
         {"navigation", "reacquire_cue_starts", "count", 0, LocalSearchLimits::kMaxCueStarts,
          "close-range reacquisition: of the starts of a frame, this many go where the predicted outline, "
@@ -269,11 +280,14 @@ struct NavigationParams {
   NavigationParams withDerivedHandover(double bounding_radius_m, double focal_px) const {
     NavigationParams p = *this;
     if (!(p.acquire_below_m > 0.0)) p.acquire_below_m = focal_px * bounding_radius_m / handover_radius_px;
-    if (!(p.far_range_above_m > 0.0)) p.far_range_above_m = handover_hysteresis * p.acquire_below_m;
+    if (!(p.far_range_above_m > 0.0))
+      p.far_range_above_m = focal_px * bounding_radius_m / near_range_min_radius_px;
     return p;
   }
 
   const char* crossCheck() const {
+    if (!(near_range_min_radius_px < handover_radius_px))
+      return "near_range_min_radius_px must be below handover_radius_px (hysteresis)";
     if (acquire_below_m > 0.0 && far_range_above_m > 0.0 && !(far_range_above_m > acquire_below_m))
       return "far_range_above_m must exceed acquire_below_m (hysteresis)";
     if (max_depth_m > 0.0 && !(max_depth_m > min_depth_m)) return "max_depth_m must exceed min_depth_m";

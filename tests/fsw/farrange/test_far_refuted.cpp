@@ -1,0 +1,126 @@
+// A refuted fix (FarRangeEstimator::refuteLastFix): acquisition looked where far range pointed and found no
+// edge structure, so that region is passed over for refuted_fix_frames frames and the next best cluster is
+// the fix. REQUIREMENT (issue 10): a far-range cue that keeps fooling acquisition must not flip the mode
+// forever; always a way back to the target.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "far_approach.hpp"
+
+namespace visnav::far {
+namespace {
+
+using approach_support::Scene;
+
+/// A broad glow (a Gaussian blob of sigma 8 px) larger in the response than the far satellite at 300 m.
+synthetic::Glint glowAt(const Vec2& at_px) {
+  synthetic::Glint g;
+  g.first_frame = 0;
+  g.last_frame = 1000;
+  g.start_px = g.end_px = at_px;
+  g.sigma_px = 8.0;
+  g.peak = 1.0;
+  return g;
+}
+
+const Pose kSatellite = test::satAt(300.0, 5.0, -3.0, 20.0);
+
+FarRangeResult estimate(FarRangeEstimator& e, const test::FarFrame& f) {
+  FarRangeResult r;
+  EXPECT_EQ(e.estimate(f.image(), r), Status::kOk);
+  return r;
+}
+
+TEST(RefutedFix, TheRefutedRegionIsPassedOverUntilItExpires) {
+  synthetic::RenderOptions o = test::farRender();
+  const Vec2 glow_px(150.0, 360.0);
+  o.glints.push_back(glowAt(glow_px));
+  Scene s(o);
+  const test::FarFrame f = s.frame(kSatellite, 3);
+  const Vec3 truth = f.truth.t_c_m.normalized();
+  FarRangeParams params;
+  params.refuted_fix_frames = 10;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(s.camera, params).ok);
+  EXPECT_FALSE(e.refuteLastFix()) << "no fix yet";
+  const FarRangeResult first = estimate(e, f);
+  ASSERT_TRUE(first.valid);
+  ASSERT_LT((first.centroid_px - glow_px).norm(), 3.0) << "without a track the largest cluster is taken";
+  ASSERT_TRUE(e.refuteLastFix());
+  EXPECT_FALSE(e.refuteLastFix()) << "a fix is refuted once";
+  EXPECT_EQ(e.refutedCount(), 1);
+  e.reset();  // the pipeline restarts far range after the failed acquisition; the refutation stays
+  for (int frame = 1; frame < 10; ++frame) {
+    const FarRangeResult r = estimate(e, f);
+    ASSERT_TRUE(r.valid) << frame;
+    EXPECT_LT(test::angleDeg(r.direction_c, truth), 0.1) << frame;
+    // Passed over on the first frame; from the second the track's region of interest holds the target only.
+    if (frame == 1) {
+      EXPECT_NE(r.flags & kFlagRefutedSkipped, 0U);
+    }
+  }
+  e.reset();
+  const FarRangeResult expired = estimate(e, f);  // the 11th frame since the refutation
+  EXPECT_EQ(e.refutedCount(), 0);
+  ASSERT_TRUE(expired.valid);
+  EXPECT_LT((expired.centroid_px - glow_px).norm(), 3.0) << "refutations expire";
+  EXPECT_EQ(expired.flags & kFlagRefutedSkipped, 0U);
+}
+
+TEST(RefutedFix, OffItRefutesNothingAndAClearForgetsEverything) {
+  synthetic::RenderOptions o = test::farRender();
+  o.glints.push_back(glowAt(Vec2(150.0, 360.0)));
+  Scene s(o);
+  const test::FarFrame f = s.frame(kSatellite, 3);
+  FarRangeParams off;
+  off.refuted_fix_frames = 0;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(s.camera, off).ok);
+  ASSERT_TRUE(estimate(e, f).valid);
+  EXPECT_FALSE(e.refuteLastFix());
+  EXPECT_EQ(e.refutedCount(), 0);
+
+  FarRangeEstimator on;
+  ASSERT_TRUE(on.init(s.camera, FarRangeParams{}).ok);
+  for (int i = 0; i < 2; ++i) {  // the glow, then the satellite
+    ASSERT_TRUE(estimate(on, f).valid) << i;
+    ASSERT_TRUE(on.refuteLastFix());
+    on.reset();
+  }
+  EXPECT_EQ(on.refutedCount(), 2);
+  EXPECT_FALSE(estimate(on, f).valid) << "both refuted: no fix rather than one of them";
+  on.clearRefuted();
+  EXPECT_EQ(on.refutedCount(), 0);
+  EXPECT_TRUE(estimate(on, f).valid);
+}
+
+TEST(RefutedFix, AtMostFourRegionsTheOldestGoesFirst) {
+  // Five frames without the satellite (far outside the view), each with the glow somewhere else.
+  const Vec2 places[] = {{100.0, 100.0}, {320.0, 100.0}, {540.0, 100.0}, {100.0, 380.0}, {320.0, 380.0}};
+  std::vector<test::FarFrame> frames;
+  for (const Vec2& at : places) {
+    synthetic::RenderOptions o = test::farRender();
+    o.glints.push_back(glowAt(at));
+    Scene s(o);
+    frames.push_back(s.frame(test::satAt(300.0, 0.0, 80.0, 0.0), 5));
+  }
+  FarRangeParams params;
+  params.refuted_fix_frames = 1000;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(test::farCamera(), params).ok);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const FarRangeResult r = estimate(e, frames[i]);
+    ASSERT_TRUE(r.valid) << i;
+    EXPECT_LT((r.centroid_px - places[i]).norm(), 3.0) << i;
+    ASSERT_TRUE(e.refuteLastFix());
+    e.reset();
+  }
+  EXPECT_EQ(e.refutedCount(), FarRangeEstimator::kMaxRefuted);
+  EXPECT_TRUE(estimate(e, frames[0]).valid) << "the oldest was replaced by the fifth: its region is free";
+  e.reset();
+  EXPECT_FALSE(estimate(e, frames[1]).valid) << "the second is still refuted";
+}
+
+}  // namespace
+}  // namespace visnav::far
