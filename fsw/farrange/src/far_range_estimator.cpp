@@ -73,9 +73,9 @@ bool FarRangeEstimator::refuteLastFix() {
   Refuted* slot = &m_refuted[0];
   for (Refuted& r : m_refuted)
     if (r.frames_left < slot->frames_left) slot = &r;
-  // Twice the extent: a clutter region's centre of mass wanders with the threshold from frame to frame.
   slot->centre_px = m_last_fix_px;
-  slot->radius_px = std::max(2.0 * m_last_fix_extent_px, m_params.gate_radius_px);
+  slot->radius_px = std::max(m_last_fix_extent_px, m_params.gate_radius_px);
+  slot->pixels = m_last_fix_pixels;
   slot->frames_left = m_params.refuted_fix_frames;
   m_has_last_fix = false;
   return true;
@@ -89,9 +89,15 @@ int FarRangeEstimator::refutedCount() const {
   return n;
 }
 
-bool FarRangeEstimator::refuted(const Vec2& centre_px) const {
+bool FarRangeEstimator::refuted(const Vec2& centre_px, double pixels) const {
+  // The same cluster again: centred within the refuted one's extent (its centre of mass wanders with the
+  // threshold from frame to frame) and of a like size. A much smaller cluster beside a large clutter region
+  // is something else: campaign plate/35's plate lay inside the extent of the glow refuted next to it.
+  const double log_ratio_limit = std::log(kRefutedSizeRatio);
   for (const Refuted& r : m_refuted)
-    if (r.frames_left > 0 && (centre_px - r.centre_px).norm() <= r.radius_px) return true;
+    if (r.frames_left > 0 && (centre_px - r.centre_px).norm() <= r.radius_px &&
+        std::abs(std::log(std::max(pixels, 1.0) / std::max(r.pixels, 1.0))) <= log_ratio_limit)
+      return true;
   return false;
 }
 
@@ -192,6 +198,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     m_has_last_fix = true;
     m_last_fix_px = out.centroid_px;
     m_last_fix_extent_px = out.extent_px;
+    m_last_fix_pixels = out.cluster_pixels;
   }
   m_has_prediction = false;  // a filter prediction holds for one frame
   out.timing.total_us = elapsedUs(start);
@@ -260,7 +267,7 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
     if (m_params.fill_holes) m_finder.fillHoles(c);
     const double offset = (usedCentre(c) - gate.centre_px).norm();
     if (offset > gate.radius_px) continue;
-    if (refuted(usedCentre(c))) {
+    if (refuted(usedCentre(c), usedPixels(c))) {
       flags |= kFlagRefutedSkipped;
       continue;
     }

@@ -74,7 +74,7 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
     for (std::size_t i = 0; i < clusters.size(); ++i) {
       const Cluster& c = clusters[i];
       if (c.pixel_count < m_params.min_cluster_px) continue;
-      if (refuted(usedCentre(c))) {
+      if (refuted(usedCentre(c), usedPixels(c))) {
         flags |= kFlagRefutedSkipped;
         continue;
       }
@@ -101,7 +101,7 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
   for (std::size_t i = 0; i < clusters.size(); ++i) {
     const Cluster& c = clusters[i];
     if (c.pixel_count < m_params.min_cluster_px || c.axis_ratio > m_params.max_axis_ratio) continue;
-    if (refuted(usedCentre(c))) {
+    if (refuted(usedCentre(c), usedPixels(c))) {
       flags |= kFlagRefutedSkipped;
       continue;
     }

@@ -99,6 +99,8 @@ class FarRangeEstimator {
   void clearRefuted();
   int refutedCount() const;
   static constexpr int kMaxRefuted = 4;
+  /// A cluster within this factor of a refuted fix's n (either way), where it was, is that fix again.
+  static constexpr double kRefutedSizeRatio = 4.0;
   /// Optional prediction for the next frame from a navigation filter: gates the robust selection like a
   /// track would (direction in the camera frame, distance for the expected size).
   void setPrediction(const Vec3& direction_c, double distance_m);
@@ -176,13 +178,16 @@ class FarRangeEstimator {
   struct Refuted {
     Vec2 centre_px = Vec2::Zero();
     double radius_px = 0.0;
+    double pixels = 0.0;  ///< n of the refuted fix
     int frames_left = 0;  ///< 0: unused
   };
   std::array<Refuted, kMaxRefuted> m_refuted{};
-  bool refuted(const Vec2& centre_px) const;
+  /// A cluster of `pixels` (n) centred at centre_px is a refuted fix seen again.
+  bool refuted(const Vec2& centre_px, double pixels) const;
   bool m_has_last_fix = false;  ///< m_last_fix_* hold the last valid fix (reset() keeps them)
   Vec2 m_last_fix_px = Vec2::Zero();
   double m_last_fix_extent_px = 0.0;
+  double m_last_fix_pixels = 0.0;
   bool m_has_prediction = false;
   Vec2 m_prediction_px = Vec2::Zero();
   double m_prediction_size_px = 0.0;

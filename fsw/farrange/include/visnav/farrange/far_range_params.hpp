@@ -161,8 +161,9 @@ struct FarRangeParams {
         extent_distance_min_px);
     v.integer({"farrange", "refuted_fix_frames", "frames", 0, 100000,
                "robust: after a fix was refuted (acquisition looked at its cue and found no edge structure "
-               "there, failure no_target), clusters centred within twice its extent (at least "
-               "gate_radius_px) are not selected for this many frames, so the next best is; up to 4 such "
+               "there, failure no_target), clusters centred within its extent (at least gate_radius_px) "
+               "and within 4x of its n are not selected for this many frames, so the next best is; up to 4 "
+               "such "
                "regions are kept. Campaign approaches handed over a stationary clutter region 10-40 deg "
                "off the target again and again (12 mode changes, never acquired); 0: never"},
               refuted_fix_frames);

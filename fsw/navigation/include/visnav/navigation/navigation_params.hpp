@@ -40,6 +40,7 @@ struct NavigationParams {
   double max_valid_position_sigma_rel = 0.025;
   double doubted_max_attitude_sigma_deg = 1.0;  ///< the same for a near-range pose that is doubted (below)
   double doubt_min_line_fraction = 0.75;        ///< fewer used lines / selected lines: the pose is doubted
+  double disputed_max_look_change_deg = 5.0;    ///< a disputed pose turned more than this is not valid
   double start_pose_sigma_deg = 2.5;    ///< 1-sigma (sqrt of trace) of a given start pose's attitude; 0: none
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
   int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
@@ -164,6 +165,14 @@ struct NavigationParams {
             "a near-range pose is doubted when fewer than this share of its selected lines were used (the "
             "others were not found or rejected): it rests on part of the outline"},
            doubt_min_line_fraction);
+    v.real({"navigation", "disputed_max_look_change_deg", "deg", 0.0, 180.0,
+            "a near-range pose the innovation gate rejects but the image supports (the measurement wins "
+            "and the filter restarts from it) is not valid on that frame when its look (attitude along its "
+            "line of sight, modulo symmetries: a slew does not change it) is more than this from the "
+            "prediction's: no target tumbles that fast between two frames, a fit jumping to the wrong "
+            "faces of a box does (campaign box/58: 10.7 deg in one frame, NIS 777, 0.4 deg 1-sigma). The "
+            "track goes on from it; 0 switches the check off"},
+           disputed_max_look_change_deg);
     v.real({"navigation", "start_pose_sigma_deg", "deg", 0.0, 180.0,
             "a start pose given by the operator (startNearRange, visnav-replay --initial-pose) starts the "
             "filter with this 1-sigma attitude uncertainty (square root of the trace), so the first "
