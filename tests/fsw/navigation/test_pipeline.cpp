@@ -173,6 +173,36 @@ TEST_F(PipelineTest, AGivenStartPoseStartsTheFilterSoTheFirstFitIsChecked) {
   }
 }
 
+TEST_F(PipelineTest, ADisputedPoseThatTurnedFasterThanATargetTurnsIsTrackedButNotValid) {
+  // The plate at 20 m, still for 10 frames, then turned 9 deg about the boresight from one frame to the
+  // next (what a fit that jumped onto other edges looks like): the filter disputes it (innovation fault),
+  // the image supports it, so the track goes on from it, but not as a valid pose on that frame.
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < 20; ++i)
+    seq.push_back(test::renderFrame(renderer, test::plateAt(20.0, 0.1, i < 10 ? 1.0 : 10.0, -1.0), 900U + i));
+  for (const double limit_deg : {5.0, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.disputed_max_look_change_deg = limit_deg;
+    p.navigation.doubted_max_attitude_sigma_deg =
+        0.0;  // at 20 m the plate's 1-sigma is above it: this rule alone
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    std::vector<NavSolution> out(seq.size());
+    for (std::size_t i = 0; i < seq.size(); ++i) {
+      const Frame f = frameOf(seq, static_cast<int>(i));
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out[i]), Status::kOk);
+    }
+    for (int i = 1; i < 10; ++i) EXPECT_TRUE(out[static_cast<std::size_t>(i)].pose_valid) << i;
+    ASSERT_NE(out[10].fault_bits & kFaultInnovation, 0U) << "the scene must reach the case";
+    EXPECT_EQ(out[10].mode, NavMode::kNearRange);
+    EXPECT_EQ(out[10].pose_valid, limit_deg == 0.0) << "limit " << limit_deg;
+    // Tracked on from the jump: the pose followed it, and validity returns once the track confirms.
+    EXPECT_LT(rotationAngleRad(out[10].pose.R_c_m, seq[10].truth.R_c_m) * kDegPerRad, 2.0);
+    EXPECT_TRUE(out.back().pose_valid) << "limit " << limit_deg;
+  }
+}
+
 TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   // The same ten near-range frames under three limits on the pose's own 1-sigma attitude: one no fit
   // exceeds (this plate at 26 m is known to about 2.2 deg, near the 2.5 deg default), a limit below what any
