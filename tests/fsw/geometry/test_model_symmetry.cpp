@@ -70,13 +70,19 @@ TEST(ModelSymmetries, NearTwinsOfABoxAreItsCubeTurnsOnePerClass) {
   EXPECT_EQ(countNear(makeRectanglePlate(2.0, 2.0), 0.15), 0);
 }
 
+/// Campaign box/187's near cube with its symmetries and near twins (within 15 % of the radius) found.
+ModelSymmetries nearCubeSymmetries(const PolygonModel& near_cube) {
+  ModelSymmetries s;
+  s.find(near_cube);
+  s.findNear(near_cube, 0.15);
+  return s;
+}
+
 TEST(ModelSymmetries, ANearTwinsSeparationIsHowFarItMovesTheVertices) {
   // box/187's near cube: the quarter turn about x swaps its two closest half sizes (0.585 and 0.574 m), each
   // vertex lands sqrt(2) x 0.011 m from one of the model's; at 26 m and f 1215 px that is 0.7 px.
   const PolygonModel near_cube = makeBox(0.615, 0.585, 0.574);
-  ModelSymmetries s;
-  s.find(near_cube);
-  s.findNear(near_cube, 0.15);
+  const ModelSymmetries s = nearCubeSymmetries(near_cube);
   ASSERT_EQ(s.nearCount(), 5);
   double smallest = 1e9;
   for (int i = 0; i < s.nearCount(); ++i) {
@@ -121,10 +127,7 @@ TEST(ModelSymmetries, ANearTwinKeepsTheCentroidInPlaceAndItsVerticesClose) {
 TEST(ModelSymmetries, TheLookDistanceIgnoresASlewAndSeesATurnOrANearTwin) {
   // What continuity with a lost track compares: a slew (the camera turning) moves the target across the image
   // without changing its look; the target turning does, and so does its quarter-turn near twin.
-  const PolygonModel near_cube = makeBox(0.615, 0.585, 0.574);
-  ModelSymmetries s;
-  s.find(near_cube);
-  s.findNear(near_cube, 0.15);
+  const ModelSymmetries s = nearCubeSymmetries(makeBox(0.615, 0.585, 0.574));
   ASSERT_GT(s.nearCount(), 0);
   Pose reference;
   reference.R_c_m = expSo3(Vec3(0.3, -0.5, 0.2));
