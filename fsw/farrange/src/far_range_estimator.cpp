@@ -267,10 +267,7 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
     if (m_params.fill_holes) m_finder.fillHoles(c);
     const double offset = (usedCentre(c) - gate.centre_px).norm();
     if (offset > gate.radius_px) continue;
-    if (refuted(usedCentre(c), usedPixels(c))) {
-      flags |= kFlagRefutedSkipped;
-      continue;
-    }
+    if (passedOver(c, flags)) continue;
     const double log_ratio = std::log(usedPixels(c) / std::max(gate.size_px, 1.0));
     if (log_ratio < -down_limit || log_ratio > up_limit) continue;
     const double score = offset / gate.radius_px + std::abs(log_ratio) / up_limit;  // lower is better

@@ -20,6 +20,12 @@ int FarRangeEstimator::usedPixels(const Cluster& c) const {
   return std::max(1, static_cast<int>(std::lround(n)));
 }
 
+bool FarRangeEstimator::passedOver(const Cluster& c, std::uint32_t& flags) const {
+  if (!refuted(usedCentre(c), usedPixels(c))) return false;
+  flags |= kFlagRefutedSkipped;
+  return true;
+}
+
 int FarRangeEstimator::selectPaper() const {
   // Sec. III-B: "we pick the cluster with the highest circularity measure".
   int best = -1;
@@ -74,10 +80,7 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
     for (std::size_t i = 0; i < clusters.size(); ++i) {
       const Cluster& c = clusters[i];
       if (c.pixel_count < m_params.min_cluster_px) continue;
-      if (refuted(usedCentre(c), usedPixels(c))) {
-        flags |= kFlagRefutedSkipped;
-        continue;
-      }
+      if (passedOver(c, flags)) continue;
       const double offset = (usedCentre(c) - gate.centre_px).norm();
       if (offset > gate.radius_px) continue;
       const double log_ratio = std::abs(std::log(usedPixels(c) / std::max(gate.size_px, 1.0)));
@@ -101,10 +104,7 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
   for (std::size_t i = 0; i < clusters.size(); ++i) {
     const Cluster& c = clusters[i];
     if (c.pixel_count < m_params.min_cluster_px || c.axis_ratio > m_params.max_axis_ratio) continue;
-    if (refuted(usedCentre(c), usedPixels(c))) {
-      flags |= kFlagRefutedSkipped;
-      continue;
-    }
+    if (passedOver(c, flags)) continue;
     const double size = usedPixels(c);
     if (best < 0 || size > best_score) {
       second = best;

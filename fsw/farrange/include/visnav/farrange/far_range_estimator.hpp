@@ -184,6 +184,8 @@ class FarRangeEstimator {
   std::array<Refuted, kMaxRefuted> m_refuted{};
   /// A cluster of `pixels` (n) centred at centre_px is a refuted fix seen again.
   bool refuted(const Vec2& centre_px, double pixels) const;
+  /// refuted() for a candidate cluster; sets kFlagRefutedSkipped when it is.
+  bool passedOver(const Cluster& c, std::uint32_t& flags) const;
   bool m_has_last_fix = false;  ///< m_last_fix_* hold the last valid fix (reset() keeps them)
   Vec2 m_last_fix_px = Vec2::Zero();
   double m_last_fix_extent_px = 0.0;

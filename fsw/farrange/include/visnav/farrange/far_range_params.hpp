@@ -159,14 +159,14 @@ struct FarRangeParams {
          "abs(log error) of 0.09-0.17 against eq. 16's 0.12-0.27 for targets 4 to 64 px in radius; 0: "
          "eq. 16 always (the model's radius is the pipeline's)"},
         extent_distance_min_px);
-    v.integer({"farrange", "refuted_fix_frames", "frames", 0, 100000,
-               "robust: after a fix was refuted (acquisition looked at its cue and found no edge structure "
-               "there, failure no_target), clusters centred within its extent (at least gate_radius_px) "
-               "and within 4x of its n are not selected for this many frames, so the next best is; up to 4 "
-               "such "
-               "regions are kept. Campaign approaches handed over a stationary clutter region 10-40 deg "
-               "off the target again and again (12 mode changes, never acquired); 0: never"},
-              refuted_fix_frames);
+    v.integer(
+        {"farrange", "refuted_fix_frames", "frames", 0, 100000,
+         "robust: after a fix was refuted (acquisition looked at its cue and found no edge structure "
+         "there, failure no_target), clusters centred within its extent (at least gate_radius_px) "
+         "and within 4x of its n are not selected for this many frames, so the next best is; up to "
+         "4 such regions are kept. Campaign approaches handed over a stationary clutter region 10-40 deg "
+         "off the target again and again (12 mode changes, never acquired); 0: never"},
+        refuted_fix_frames);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
     v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},
