@@ -232,9 +232,6 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     in.depth_m = m_last_pose.t_c_m.z();
     return;
   }
-  // The pose delivered on the frame before, if one was (deliver() zeroes m_coasted).
-  const bool previous_delivered = m_have_pose && m_coasted == 0;
-  const Pose previous = m_last_pose;
   m_near.track(image, predictedPose(), frame_number, m_near_result);
   const NearRangeResult& r = m_near_result;
   out.tracked_surfaces = r.tracked_surfaces;
@@ -260,11 +257,12 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
                              m_params.navigation.doubt_min_line_fraction * static_cast<double>(r.lines_total);
     // Disputed by the filter and turned further since the frame before than a target turns in one frame:
     // tracked, not valid. Against the last pose, not the prediction: a filter restarted from two alternating
-    // fits predicts a rate they do not have (slew_box: 13.6 deg/s).
+    // fits predicts a rate they do not have (slew_box: 13.6 deg/s). Until deliver() below, m_last_pose is the
+    // frame before's pose, and m_coasted 0 says it was delivered then.
     const double max_look_change_deg = m_params.navigation.disputed_max_look_change_deg;
     const bool jumped =
-        (faults & kFaultInnovation) != 0U && max_look_change_deg > 0.0 && previous_delivered &&
-        m_reacquisition.symmetries().lookDistanceRad(previous, r.pose) * kDegPerRad > max_look_change_deg;
+        (faults & kFaultInnovation) != 0U && max_look_change_deg > 0.0 && m_have_pose && m_coasted == 0 &&
+        m_reacquisition.symmetries().lookDistanceRad(m_last_pose, r.pose) * kDegPerRad > max_look_change_deg;
     deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out,
             doubted || m_track_doubted);
     if (jumped) out.pose_valid = false;
