@@ -21,12 +21,25 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params)
   return lines && inliers && residual && support;
 }
 
-void FdirMonitor::init(const NavigationParams& params, double bounding_radius_m, double focal_px) {
+void FdirMonitor::init(const NavigationParams& params, const PolygonModel& model, double focal_px) {
   m_params = params;
-  // The camera cannot be inside the target's bounding sphere; beyond the depth where the target spans 4 px
-  // no 6-DOF fit is possible. Both scale with the model and the camera, so no default fits one scene only.
-  m_min_depth_m = params.min_depth_m > 0.0 ? params.min_depth_m : bounding_radius_m;
-  m_max_depth_m = params.max_depth_m > 0.0 ? params.max_depth_m : focal_px * 2.0 * bounding_radius_m / 4.0;
+  // The camera cannot be inside the target; beyond the depth where the target spans 4 px no 6-DOF fit is
+  // possible. Both scale with the model and the camera, so no default fits one scene only. The lower limit
+  // is the model's box, not its bounding sphere: a satellite's panels make the sphere 5.8 m across a body
+  // the camera comes within 5 m of (case approach_smallsat lost its last 7 frames to the sphere).
+  m_min_depth_m = params.min_depth_m;
+  m_max_depth_m =
+      params.max_depth_m > 0.0 ? params.max_depth_m : focal_px * 2.0 * model.boundingRadius() / 4.0;
+  m_box_min_m = Vec3::Zero();
+  m_box_max_m = Vec3::Zero();
+  if (!model.vertices().empty()) {
+    m_box_min_m = model.vertices().front();
+    m_box_max_m = model.vertices().front();
+    for (const Vec3& v : model.vertices()) {
+      m_box_min_m = m_box_min_m.cwiseMin(v);
+      m_box_max_m = m_box_max_m.cwiseMax(v);
+    }
+  }
   m_pending = 0;
   m_active = 0;
   m_consecutive = 0;
@@ -49,13 +62,20 @@ std::uint32_t FdirMonitor::checkNearRange(const NearRangeCheck& check) {
   if (check.innovation_checked && !check.innovation_accepted) bits |= kFaultInnovation;
   if (r.status != TrackStatus::kLost) {
     const double z = r.pose.t_c_m.z();
-    if (!(z >= m_min_depth_m && z <= m_max_depth_m) || !check.centre_in_image) bits |= kFaultImplausible;
+    const bool in_band = m_min_depth_m > 0.0 ? z >= m_min_depth_m : (z > 0.0 && !cameraInsideTarget(r.pose));
+    if (!in_band || !(z <= m_max_depth_m) || !check.centre_in_image) bits |= kFaultImplausible;
   }
   if ((r.flags & kFlagOutOfImage) != 0U) bits |= kFaultImplausible;
   raise(bits);
   const std::uint32_t persisting = check.evidence_good ? (bits & ~kFaultInnovation) : bits;
   m_consecutive = persisting != 0U ? m_consecutive + 1 : 0;
   return bits;
+}
+
+bool FdirMonitor::cameraInsideTarget(const Pose& pose) const {
+  // Camera centre in the model frame: x_c = R x_m + t = 0.
+  const Vec3 camera_m = -(pose.R_c_m.transpose() * pose.t_c_m);
+  return (camera_m.array() > m_box_min_m.array()).all() && (camera_m.array() < m_box_max_m.array()).all();
 }
 
 std::uint32_t FdirMonitor::checkFrameAge(double age_ms, double frame_period_ms) {

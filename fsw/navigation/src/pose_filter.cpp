@@ -105,6 +105,43 @@ Status PoseFilter::initialise(const Pose& pose, const Mat6& pose_covariance) {
   return Status::kOk;
 }
 
+Status PoseFilter::initialiseFromTwo(const Pose& previous, const Mat6& previous_covariance, const Pose& current,
+                                     const Mat6& current_covariance, double dt_s) {
+  const Mat6 p_prev = symmetricPart<6>(previous_covariance);
+  const Mat6 p_cur = symmetricPart<6>(current_covariance);
+  Eigen::LDLT<Mat6> ldlt;
+  if (!previous.R_c_m.allFinite() || !allFinite(previous.t_c_m) || !factorPositive<6>(p_prev, ldlt) ||
+      !(dt_s > 0.0) || !(dt_s <= m_params.max_prediction_s))
+    return Status::kInvalidArgument;
+  const Status started = initialise(current, p_cur);
+  if (started != Status::kOk) return started;
+  // Rates = (current [-] previous) / dt with the two fits' errors independent: the rates (w, v) share the
+  // pose's (omega, dt) layout, so cov(pose, rates) = P_cur / dt and cov(rates) = (P_prev + P_cur) / dt^2.
+  const Vec6 step = previous.boxMinus(current);
+  const Vec6 rates = step / dt_s;
+  Mat12 p = Mat12::Zero();
+  p.topLeftCorner<6, 6>() = p_cur;
+  p.topRightCorner<6, 6>() = p_cur / dt_s;
+  p.bottomLeftCorner<6, 6>() = p_cur / dt_s;
+  p.bottomRightCorner<6, 6>() = (p_prev + p_cur) / (dt_s * dt_s);
+  for (int block = 0; block < 2; ++block) {
+    const int rate_index = kAngularVelocity + 3 * block;
+    const Vec3 rate = rates.segment<3>(3 * block);
+    const Mat3 cov = p.block<3, 3>(rate_index, rate_index);
+    Eigen::LDLT<Mat3> cov_factor;
+    const bool significant = factorPositive<3>(cov, cov_factor) && rate.dot(cov_factor.solve(rate)) > m_params.restart_rate_chi2;
+    const bool plausible = block != 0 || rates.head<3>().norm() <= m_params.restart_max_rate_deg_s * kRadPerDeg;
+    if (significant && plausible) {
+      (block == 0 ? m_angular_velocity : m_velocity) = rate;
+    } else {  // as initialise(): zero with the configured prior
+      setUncorrelatedBlock(p, rate_index,
+                           block == 0 ? angularVelocityPrior(m_params) : isotropic(m_params.initial_velocity_sigma_m_s));
+    }
+  }
+  m_covariance = p;
+  return Status::kOk;
+}
+
 Status PoseFilter::initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance) {
   const Mat3 p = symmetricPart<3>(position_covariance);
   Eigen::LDLT<Mat3> ldlt;

@@ -208,9 +208,15 @@ NearRangeResult goodNear() {
   return r;
 }
 
+/// A cube whose bounding sphere has `radius_m`.
+PolygonModel cubeOfRadius(double radius_m) {
+  const double half = radius_m / std::sqrt(3.0);
+  return makeBox(half, half, half);
+}
+
 TEST(Fdir, EachCheckRaisesItsBit) {
   FdirMonitor f;
-  f.init(NavigationParams{}, 1.5, 1000.0);  // depth band derived: 1.5 m .. 750 m
+  f.init(NavigationParams{}, cubeOfRadius(1.5), 1000.0);  // derived: outside the cube, up to 750 m
   NearRangeResult r = goodNear();
   NearRangeCheck c;
   c.near = &r;
@@ -250,7 +256,7 @@ TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
   FdirMonitor f;
   NavigationParams p;
   p.fault_persistence_frames = 3;
-  f.init(p, 1.5, 1000.0);
+  f.init(p, cubeOfRadius(1.5), 1000.0);
   NearRangeResult bad = goodNear();
   bad.lines_used = 0;
   NearRangeResult good = goodNear();
@@ -271,21 +277,54 @@ TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
 
 TEST(Fdir, DepthBandIsDerivedFromModelAndCameraUnlessSet) {
   FdirMonitor f;
-  f.init(NavigationParams{}, 0.25, 800.0);  // a 0.5 m lab object, f = 800 px
-  EXPECT_DOUBLE_EQ(f.minDepthM(), 0.25);    // inside the bounding sphere: impossible
-  EXPECT_DOUBLE_EQ(f.maxDepthM(), 100.0);   // 0.5 m spans 4 px at 100 m
+  f.init(NavigationParams{}, cubeOfRadius(0.25), 800.0);  // a 0.5 m lab object, f = 800 px
+  EXPECT_DOUBLE_EQ(f.minDepthM(), 0.0);                   // the model's box is the limit
+  EXPECT_DOUBLE_EQ(f.maxDepthM(), 100.0);                 // 0.5 m spans 4 px at 100 m
   NearRangeResult r = goodNear();
   r.pose.t_c_m.z() = 0.6;  // the lab sequence's depth: plausible, where a fixed 1 m band flagged it
   NearRangeCheck c;
   c.near = &r;
   EXPECT_EQ(f.checkNearRange(c), 0U);
+  r.pose.t_c_m.z() = 0.1;  // the camera inside the cube (half side 0.144 m)
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r.pose.t_c_m.z() = -0.6;  // behind the camera
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r.pose.t_c_m.z() = 100.5;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r.pose.t_c_m.z() = 0.6;
   NavigationParams p;
   p.min_depth_m = 2.0;
   p.max_depth_m = 50.0;
-  f.init(p, 0.25, 800.0);
+  f.init(p, cubeOfRadius(0.25), 800.0);
   EXPECT_DOUBLE_EQ(f.minDepthM(), 2.0);
   EXPECT_DOUBLE_EQ(f.maxDepthM(), 50.0);
   EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+}
+
+// A satellite with panels (case approach_smallsat): 11 m of panels across a 1.2 m body. In front of the body
+// at 5 m the camera is well inside the 5.6 m bounding sphere and outside the target; 5 m along the panels'
+// axis it would be inside them.
+TEST(Fdir, TheLowerLimitIsTheModelsBoxNotItsBoundingSphere) {
+  const PolygonModel panelled = makeBox(5.5, 0.6, 0.6);
+  FdirMonitor f;
+  f.init(NavigationParams{}, panelled, 1000.0);
+  ASSERT_GT(panelled.boundingRadius(), 5.5);
+  Pose in_front;
+  in_front.t_c_m = Vec3(0.0, 0.0, 5.0);
+  EXPECT_FALSE(f.cameraInsideTarget(in_front));
+  NearRangeResult r = goodNear();
+  r.pose = in_front;
+  NearRangeCheck c;
+  c.near = &r;
+  EXPECT_EQ(f.checkNearRange(c), 0U);
+  // The same depth with the model turned a quarter about y: the camera looks along the panels.
+  Pose along = in_front;
+  along.R_c_m = Eigen::AngleAxisd(0.5 * kPi, Vec3::UnitY()).toRotationMatrix();
+  EXPECT_TRUE(f.cameraInsideTarget(along));
+  r.pose = along;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  along.t_c_m.z() = 5.6;  // just beyond the panel tip
+  EXPECT_FALSE(f.cameraInsideTarget(along));
 }
 
 TEST(Fdir, EvidenceNeedsLinesInliersResidualAndSupport) {
@@ -312,7 +351,7 @@ TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
   FdirMonitor f;
   NavigationParams p;
   p.fault_persistence_frames = 3;
-  f.init(p, 1.5, 1000.0);
+  f.init(p, cubeOfRadius(1.5), 1000.0);
   NearRangeResult r = goodNear();
   NearRangeCheck c;
   c.near = &r;

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 
+#include "visnav/geometry/polygon_model.hpp"
 #include "visnav/navigation/nav_solution.hpp"
 #include "visnav/navigation/navigation_params.hpp"
 #include "visnav/nearrange/near_range_tracker.hpp"
@@ -30,10 +31,15 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params)
 
 class FdirMonitor {
  public:
-  /// `bounding_radius_m` and `focal_px` derive the plausible depth band where the parameters leave it 0.
-  void init(const NavigationParams& params, double bounding_radius_m, double focal_px);
+  /// The model and `focal_px` derive the plausibility limits the parameters leave 0: below, the camera
+  /// inside the model's bounding box (in the model frame); above, the depth where the target spans 4 px.
+  void init(const NavigationParams& params, const PolygonModel& model, double focal_px);
+  /// The configured lower end of the depth band (0: the model's box is the limit instead).
   double minDepthM() const { return m_min_depth_m; }
   double maxDepthM() const { return m_max_depth_m; }
+  /// The camera centre of `pose` lies inside the model's bounding box: no pose of a real target puts it
+  /// there.
+  bool cameraInsideTarget(const Pose& pose) const;
   /// Clears the consecutive-fault count (after a mode change); cumulative counters stay.
   void resetPersistence() { m_consecutive = 0; }
 
@@ -56,6 +62,8 @@ class FdirMonitor {
   NavigationParams m_params;
   double m_min_depth_m = 0.0;
   double m_max_depth_m = 0.0;
+  Vec3 m_box_min_m = Vec3::Zero();  ///< the model's axis-aligned bounding box, model frame
+  Vec3 m_box_max_m = Vec3::Zero();
   std::uint32_t m_pending = 0;
   std::uint32_t m_active = 0;
   int m_consecutive = 0;

@@ -61,6 +61,7 @@ struct NavigationParams {
   int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches (0: never)
   bool reacquire_far_cue = true;  ///< that acquisition looks where far range finds the target, if it does
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
+  bool refute_unconfirmed_cue = true;  ///< an acquisition that confirmed nothing at its cue refutes it too
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
 
   template <typename Visitor>
@@ -115,8 +116,9 @@ struct NavigationParams {
     v.real({"navigation", "max_rms_px", "px", 0.001, 100.0, "FDIR: pose-fit residual above this is a fault"},
            max_rms_px);
     v.real({"navigation", "min_depth_m", "m", 0.0, 100000.0,
-            "FDIR: plausible depth band, lower end; 0 derives it from the model: the camera cannot be inside "
-            "the target's bounding sphere"},
+            "FDIR: plausible depth band, lower end; 0 derives the limit from the model: the camera cannot be "
+            "inside the model's bounding box (model frame). Not its bounding sphere: the panels of case "
+            "approach_smallsat make that 5.8 m in radius, and the approach ends at 5 m"},
            min_depth_m);
     v.real({"navigation", "max_depth_m", "m", 0.0, 100000.0,
             "FDIR: plausible depth band, upper end; 0 derives it from the model and camera: the depth at "
@@ -275,6 +277,14 @@ struct NavigationParams {
                "and not the twin; the find is flagged (campaign --trace). Campaign box/44 (quarter-turn "
                "twin 1.2 px apart at 14 m): tracked 0.05 -> 0.81; false: the twin always refuses"},
               reacquire_twin_continuity);
+    v.boolean({"navigation", "refute_unconfirmed_cue", "-", 0, 1,
+               "an acquisition that failed at far range's cue with edges there (no_candidate, not_confirmed, "
+               "ambiguous) refutes that fix as one that found no edges (no_target) does: far range passes "
+               "over the region until it has grown 4x in n (the range halved: a target too small to "
+               "confirm) or [farrange] refuted_fix_frames passed. Without it the same limb or glow was "
+               "handed over again after every back-off (campaign cao/51: 6 attempts on a 3.5 m reading of "
+               "a limb while the target was 700-30 m away, 12 mode changes); false: no_target only"},
+              refute_unconfirmed_cue);
     v.integer(
         {"navigation", "reacquire_cue_starts", "count", 0, LocalSearchLimits::kMaxCueStarts,
          "close-range reacquisition: of the starts of a frame, this many go where the predicted outline, "
