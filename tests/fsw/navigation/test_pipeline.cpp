@@ -42,6 +42,46 @@ TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
   EXPECT_LT(err.head<3>().norm() * kDegPerRad, 3.0);
 }
 
+TEST_F(PipelineTest, AnAcquisitionThatConfirmsNothingAtTheCueRefutesItUntilTheGroundSaysAgain) {
+  // The pipeline looks for a bar where the camera sees the plate: far range hands the plate over, the
+  // acquisition finds edges there but no bar. Far range then passes over that region (refute_unconfirmed_cue)
+  // instead of handing it over again after its back-off; a ground re-acquire command clears that.
+  const PolygonModel bar = makeBox(1.4, 0.15, 0.15);
+  for (const bool refute_unconfirmed : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.refute_unconfirmed_cue = refute_unconfirmed;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), bar, p).ok);
+    acq::AcquisitionFailure failure = acq::AcquisitionFailure::kNone;
+    int failed_at = -1;
+    for (int i = 0; i < kFrames && failed_at < 0; ++i) {
+      const Frame f = frameAt(i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      ASSERT_NE(pipeline.mode(), NavMode::kNearRange) << "a bar confirmed on a plate, frame " << i;
+      if (pipeline.lastAcquisition().state == acq::AcquisitionState::kFailed) {
+        failure = pipeline.lastAcquisition().failure;
+        failed_at = i;
+      }
+    }
+    ASSERT_GE(failed_at, 0) << "the scene must reach a failed acquisition";
+    ASSERT_NE(failure, acq::AcquisitionFailure::kNoTarget) << "edges are there: the plate's";
+    EXPECT_EQ(pipeline.farRange().refutedCount(), refute_unconfirmed ? 1 : 0) << toString(failure);
+    EXPECT_EQ(pipeline.mode(), NavMode::kFarRange);
+    // Far range passes over the plate now: the next frame's fix, if any, is not the plate.
+    const Frame next = frameAt(failed_at + 1);
+    NavSolution out;
+    ASSERT_EQ(pipeline.process(&next, next.exposure_time_ns, out), Status::kOk);
+    const bool passed_over = (pipeline.lastFarRange().flags & far::kFlagRefutedSkipped) != 0U;
+    EXPECT_EQ(passed_over, refute_unconfirmed);
+    const bool plate_fix = out.far.valid && std::abs(out.far.distance_m - 25.0) < 2.5;
+    EXPECT_EQ(plate_fix, !refute_unconfirmed) << out.far.distance_m << " m";
+    CommandAck ack;
+    EXPECT_TRUE(pipeline.command(ModeCommandKind::kReacquire, 7, next.sequence, ack));
+    EXPECT_EQ(pipeline.farRange().refutedCount(), 0);
+  }
+}
+
 TEST_F(PipelineTest, CommandsAndFallbackAllocateNothingAfterInit) {
   NavigationPipeline pipeline;
   ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
