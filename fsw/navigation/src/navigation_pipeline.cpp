@@ -43,7 +43,7 @@ void NavigationPipeline::setClock(MonotonicClockNs clock) {
 void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_number) {
   m_last_pose = pose;
   m_have_pose = true;
-  m_last_pose_exposure_ns = 0;  // given, not measured on a frame
+  m_delivered = {};  // given, not measured on a frame
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
   m_filter.reset();
@@ -162,8 +162,8 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
   m_coasted = 0;
   m_last_pose = pose;
   m_have_pose = true;
-  m_last_pose_covariance = covariance;
-  m_last_pose_exposure_ns = m_last_exposure_ns;
+  m_delivered[1] = m_delivered[0];
+  m_delivered[0] = DeliveredPose{pose, covariance, m_last_exposure_ns};
   // The pose is tracked whatever its uncertainty (the next frame is predicted from it), but it is valid
   // output only when its own covariance says it is known to the accuracy a user may rely on: a small target
   // far out has an attitude the image barely constrains, and a pose wrong by degrees then looks as good as
@@ -234,12 +234,17 @@ bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck&
 }
 
 void NavigationPipeline::restartFilter(const Pose& pose, const Mat6& covariance) {
-  // With the pose delivered on the frame before, the filter restarts with the motion between the two (a
-  // target approaching at 7 m/s, restarted at zero velocity, was rejected again on every frame: case
-  // approach_smallsat, NIS 130-190 over 40 frames); otherwise from this pose alone.
-  if (m_have_pose && m_last_pose_exposure_ns != 0 && m_last_pose_exposure_ns == m_previous_exposure_ns &&
-      m_filter.initialiseFromTwo(m_last_pose, m_last_pose_covariance, pose, covariance,
-                                 static_cast<double>(m_last_exposure_ns - m_previous_exposure_ns) * 1e-9) ==
+  // With poses delivered on the two frames before, the filter restarts with the motion the three agree on
+  // (a target approaching at 7 m/s, restarted at rest, was rejected again on every frame: case
+  // approach_smallsat, NIS 130-190 over 40 frames); otherwise from this pose alone. Not from two: one fit
+  // 0.7 m off in depth then reads as 3.5 m/s, and the prediction runs away (campaign box/17).
+  const DeliveredPose& middle = m_delivered[0];
+  const DeliveredPose& oldest = m_delivered[1];
+  if (m_previous_exposure_ns != 0 && middle.exposure_ns == m_previous_exposure_ns && oldest.exposure_ns != 0 &&
+      oldest.exposure_ns < middle.exposure_ns &&
+      m_filter.initialiseFromThree(oldest.pose, oldest.covariance, middle.pose, middle.covariance, pose,
+                                   covariance, static_cast<double>(middle.exposure_ns - oldest.exposure_ns) * 1e-9,
+                                   static_cast<double>(m_last_exposure_ns - middle.exposure_ns) * 1e-9) ==
           Status::kOk)
     return;
   m_filter.initialise(pose, covariance);

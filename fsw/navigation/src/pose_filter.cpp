@@ -105,33 +105,46 @@ Status PoseFilter::initialise(const Pose& pose, const Mat6& pose_covariance) {
   return Status::kOk;
 }
 
-Status PoseFilter::initialiseFromTwo(const Pose& previous, const Mat6& previous_covariance, const Pose& current,
-                                     const Mat6& current_covariance, double dt_s) {
-  const Mat6 p_prev = symmetricPart<6>(previous_covariance);
-  const Mat6 p_cur = symmetricPart<6>(current_covariance);
+Status PoseFilter::initialiseFromThree(const Pose& oldest, const Mat6& oldest_covariance, const Pose& middle,
+                                       const Mat6& middle_covariance, const Pose& current,
+                                       const Mat6& current_covariance, double first_dt_s, double second_dt_s) {
+  const Mat6 p0 = symmetricPart<6>(oldest_covariance);
+  const Mat6 p1 = symmetricPart<6>(middle_covariance);
+  const Mat6 p2 = symmetricPart<6>(current_covariance);
   Eigen::LDLT<Mat6> ldlt;
-  if (!previous.R_c_m.allFinite() || !allFinite(previous.t_c_m) || !factorPositive<6>(p_prev, ldlt) ||
-      !(dt_s > 0.0) || !(dt_s <= m_params.max_prediction_s))
+  const double span_s = first_dt_s + second_dt_s;
+  if (!oldest.R_c_m.allFinite() || !allFinite(oldest.t_c_m) || !middle.R_c_m.allFinite() ||
+      !allFinite(middle.t_c_m) || !factorPositive<6>(p0, ldlt) || !factorPositive<6>(p1, ldlt) ||
+      !(first_dt_s > 0.0) || !(second_dt_s > 0.0) || !(span_s <= m_params.max_prediction_s))
     return Status::kInvalidArgument;
-  const Status started = initialise(current, p_cur);
+  const Status started = initialise(current, p2);
   if (started != Status::kOk) return started;
-  // Rates = (current [-] previous) / dt with the two fits' errors independent: the rates (w, v) share the
-  // pose's (omega, dt) layout, so cov(pose, rates) = P_cur / dt and cov(rates) = (P_prev + P_cur) / dt^2.
-  const Vec6 step = previous.boxMinus(current);
-  const Vec6 rates = step / dt_s;
+  // The rates span the outer two fits, their errors independent: the rates (w, v) share the pose's
+  // (omega, dt) layout, so cov(pose, rates) = P2 / T and cov(rates) = (P0 + P2) / T^2 over T = dt1 + dt2.
+  const Vec6 rates = oldest.boxMinus(current) / span_s;
+  // The two steps must agree (constant velocity): their difference is noise, covariance
+  // P0 / dt1^2 + P1 (1 / dt1 + 1 / dt2)^2 + P2 / dt2^2. A fit that jumped makes one step alone.
+  const Vec6 step_change = middle.boxMinus(current) / second_dt_s - oldest.boxMinus(middle) / first_dt_s;
+  const double middle_weight = 1.0 / first_dt_s + 1.0 / second_dt_s;
+  const Mat6 change_cov = p0 / (first_dt_s * first_dt_s) + p1 * (middle_weight * middle_weight) +
+                          p2 / (second_dt_s * second_dt_s);
   Mat12 p = Mat12::Zero();
-  p.topLeftCorner<6, 6>() = p_cur;
-  p.topRightCorner<6, 6>() = p_cur / dt_s;
-  p.bottomLeftCorner<6, 6>() = p_cur / dt_s;
-  p.bottomRightCorner<6, 6>() = (p_prev + p_cur) / (dt_s * dt_s);
+  p.topLeftCorner<6, 6>() = p2;
+  p.topRightCorner<6, 6>() = p2 / span_s;
+  p.bottomLeftCorner<6, 6>() = p2 / span_s;
+  p.bottomRightCorner<6, 6>() = (p0 + p2) / (span_s * span_s);
   for (int block = 0; block < 2; ++block) {
     const int rate_index = kAngularVelocity + 3 * block;
     const Vec3 rate = rates.segment<3>(3 * block);
-    const Mat3 cov = p.block<3, 3>(rate_index, rate_index);
-    Eigen::LDLT<Mat3> cov_factor;
-    const bool significant = factorPositive<3>(cov, cov_factor) && rate.dot(cov_factor.solve(rate)) > m_params.restart_rate_chi2;
-    const bool plausible = block != 0 || rates.head<3>().norm() <= m_params.restart_max_rate_deg_s * kRadPerDeg;
-    if (significant && plausible) {
+    const Vec3 change = step_change.segment<3>(3 * block);
+    Eigen::LDLT<Mat3> rate_factor;
+    Eigen::LDLT<Mat3> change_factor;
+    const bool significant = factorPositive<3>(Mat3(p.block<3, 3>(rate_index, rate_index)), rate_factor) &&
+                             rate.dot(rate_factor.solve(rate)) > m_params.restart_rate_chi2;
+    const bool consistent = factorPositive<3>(Mat3(change_cov.block<3, 3>(3 * block, 3 * block)), change_factor) &&
+                            change.dot(change_factor.solve(change)) <= m_params.restart_rate_chi2;
+    const bool plausible = block != 0 || rate.norm() <= m_params.restart_max_rate_deg_s * kRadPerDeg;
+    if (significant && consistent && plausible) {
       (block == 0 ? m_angular_velocity : m_velocity) = rate;
     } else {  // as initialise(): zero with the configured prior
       setUncorrelatedBlock(p, rate_index,

@@ -4,6 +4,8 @@
 // process() allocates nothing, throws nothing and is bounded (acquisition spreads its search over cycles).
 #pragma once
 
+#include <array>
+
 #include <cstdint>
 
 #include "visnav/acquisition/acquisition.hpp"
@@ -81,8 +83,8 @@ class NavigationPipeline {
   /// The last word on validity: a pose is valid only while the track's mirror branch is known
   /// (track_branch.hpp).
   void confirmBranch(NavMode processed_in, NavSolution& out);
-  /// Restarts the filter on a pose the image vouches for against it: from two points when the frame before
-  /// delivered a pose (PoseFilter::initialiseFromTwo), else from this one.
+  /// Restarts the filter on a pose the image vouches for against it: from three poses when the two frames
+  /// before delivered one each (PoseFilter::initialiseFromThree), else from this one.
   void restartFilter(const Pose& pose, const Mat6& covariance);
   bool fuseNearRange(const NearRangeResult& r, NearRangeCheck& check);
   void startReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
@@ -115,8 +117,13 @@ class NavigationPipeline {
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
   Pose m_last_pose;                 ///< last trusted 6-DOF pose
   bool m_have_pose = false;
-  Mat6 m_last_pose_covariance = Mat6::Identity();  ///< its covariance (when delivered: see below)
-  std::int64_t m_last_pose_exposure_ns = 0;  ///< exposure of the frame that delivered it (0: not delivered)
+  /// The last two poses delivered on a frame, newest first (restartFilter): exposure 0 when none.
+  struct DeliveredPose {
+    Pose pose;
+    Mat6 covariance = Mat6::Identity();
+    std::int64_t exposure_ns = 0;
+  };
+  std::array<DeliveredPose, 2> m_delivered{};
   int m_coasted = 0;                     ///< consecutive near-range frames the prediction filled in
   bool m_next_attempt_far_cued = false;  ///< the close-range acquisition's cues alternate (reacquire_far_cue)
   /// The track began with a reacquisition's find and none of its poses has yet met

@@ -48,15 +48,18 @@ class PoseFilter {
 
   /// Start from a 6-DOF pose (e.g. acquisition): velocities zero with the configured large uncertainty.
   Status initialise(const Pose& pose, const Mat6& pose_covariance);
-  /// Start from two consecutive 6-DOF poses `dt_s` apart (two-point start): the pose is `current`; each rate
-  /// (angular, linear) is the difference of the two over dt, with covariance (P_prev + P_cur) / dt^2 and
-  /// cross-covariance P_cur / dt to the pose, where it is significant (its NIS against zero above
-  /// restart_rate_chi2) and, for the angular rate, at most restart_max_rate_deg_s. A rate within the fits'
-  /// noise, or a turn no target makes in one frame, starts at zero with the configured prior as in
-  /// initialise(). kInvalidArgument (state untouched) on a non-finite pose, a covariance that is not
-  /// positive definite, or dt not in (0, max_prediction_s].
-  Status initialiseFromTwo(const Pose& previous, const Mat6& previous_covariance, const Pose& current,
-                           const Mat6& current_covariance, double dt_s);
+  /// Start from three consecutive 6-DOF poses, `first_dt_s` and `second_dt_s` apart (a track the filter
+  /// rejected but the image vouched for): the pose is `current`; each rate (angular, linear) is the
+  /// difference of `oldest` and `current` over the span T, with covariance (P_oldest + P_current) / T^2 and
+  /// cross-covariance P_current / T to the pose, where it is motion: significant (its NIS against zero above
+  /// restart_rate_chi2), the two steps agreeing (the NIS of their difference at most restart_rate_chi2: one
+  /// fit that jumped makes one step alone) and, for the angular rate, at most restart_max_rate_deg_s.
+  /// Otherwise that rate starts at zero with the configured prior, as in initialise(). kInvalidArgument
+  /// (state untouched) on a non-finite pose, a covariance that is not positive definite, or an interval not
+  /// positive or a span above max_prediction_s.
+  Status initialiseFromThree(const Pose& oldest, const Mat6& oldest_covariance, const Pose& middle,
+                             const Mat6& middle_covariance, const Pose& current, const Mat6& current_covariance,
+                             double first_dt_s, double second_dt_s);
   /// Start from a position only (far range): attitude unknown until the first pose update adopts one.
   Status initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance);
 
