@@ -49,14 +49,14 @@ class PoseFilter {
   /// Start from a 6-DOF pose (e.g. acquisition): velocities zero with the configured large uncertainty.
   Status initialise(const Pose& pose, const Mat6& pose_covariance);
   /// Start from three consecutive 6-DOF poses, `first_dt_s` and `second_dt_s` apart (a track the filter
-  /// rejected but the image vouched for): the pose is `current`; each rate (angular, linear) is the
-  /// difference of `oldest` and `current` over the span T, with covariance (P_oldest + P_current) / T^2 and
-  /// cross-covariance P_current / T to the pose, where it is motion: significant (its NIS against zero above
-  /// restart_rate_chi2), the two steps agreeing (the NIS of their difference at most restart_rate_chi2: one
-  /// fit that jumped makes one step alone) and, for the angular rate, at most restart_max_rate_deg_s.
-  /// Otherwise that rate starts at zero with the configured prior, as in initialise(). kInvalidArgument
-  /// (state untouched) on a non-finite pose, a covariance that is not positive definite, or an interval not
-  /// positive or a span above max_prediction_s.
+  /// rejected but the image vouched for): as initialise() from `current`, except the velocity when the
+  /// three show one: the difference of `oldest` and `current` over their span T, with covariance
+  /// (P_oldest + P_current) / T^2 (position blocks) and cross-covariance P_current / T to the pose, taken
+  /// when it is significant (its NIS against zero above restart_rate_chi2) and the two steps agree (the NIS
+  /// of their difference at most restart_rate_chi2: one fit that jumped makes one step alone). The angular
+  /// rate always starts at zero: single fits' attitude differences are biased beyond their covariance.
+  /// kInvalidArgument (state untouched) on a non-finite pose, a covariance that is not positive definite,
+  /// or an interval not positive or a span above max_prediction_s.
   Status initialiseFromThree(const Pose& oldest, const Mat6& oldest_covariance, const Pose& middle,
                              const Mat6& middle_covariance, const Pose& current, const Mat6& current_covariance,
                              double first_dt_s, double second_dt_s);

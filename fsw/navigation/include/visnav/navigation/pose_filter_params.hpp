@@ -13,9 +13,8 @@ struct PoseFilterParams {
   // Initial uncertainty of what one pose (or position) cannot tell.
   double initial_velocity_sigma_m_s = 0.5;
   double initial_angular_velocity_sigma_deg_s = 5.0;
-  // Restart from a track (initialiseFromThree): which rates of three consecutive fits are motion.
+  // Restart from a track (initialiseFromThree): when three consecutive fits' velocity is motion.
   double restart_rate_chi2 = 11.34;        ///< 3 dof, 99 %
-  double restart_max_rate_deg_s = 25.0;  ///< 5 deg a frame at 5 Hz
   // Innovation gates (chi-square quantiles).
   double pose_gate_chi2 = 22.46;      ///< 6 dof, 99.9 %
   double position_gate_chi2 = 16.27;  ///< 3 dof, 99.9 %
@@ -48,18 +47,13 @@ struct PoseFilterParams {
            initial_angular_velocity_sigma_deg_s);
     v.real({"filter", "restart_rate_chi2", "-", 0.1, 1e6,
             "a filter restarted from three consecutive poses (the image won against the filter twice in a "
-            "row) starts each rate (angular, linear) at the outer two's difference over their interval when "
-            "that is motion: significant against the fits' noise (its NIS against zero, 3 dof, above this; "
-            "11.34 = 99 %) and the two steps agreeing (the NIS of their difference at most this); otherwise "
-            "at zero with the initial sigma. Restarted at rest, a target approaching at 7 m/s was rejected "
-            "on every frame (case approach_smallsat: NIS 130-190 over 40 frames); from two fits instead of "
-            "three, one fit 0.7 m off in depth started a box at 3.5 m/s and lost it (campaign box/17). "
-            "1e6 switches the rates off"},
+            "row) starts with the outer two's velocity when that is motion: significant against the fits' "
+            "noise (its NIS against zero, 3 dof, above this; 11.34 = 99 %) and the two steps agreeing (the "
+            "NIS of their difference at most this); otherwise at rest with the initial sigma. Restarted at "
+            "rest, a target approaching at 7 m/s was rejected on every frame (case approach_smallsat: NIS "
+            "130-190 over 40 frames); from two fits instead of three, one fit 0.7 m off in depth started a "
+            "box at 3.5 m/s and lost it (campaign box/17). 1e6 switches it off"},
            restart_rate_chi2);
-    v.real({"filter", "restart_max_rate_deg_s", "deg/s", 0.0, 1e4,
-            "a restart from three fits takes the angular rate only up to this rate: a faster turn is a fit "
-            "that jumped (onto a twin or another face), not a target's motion"},
-           restart_max_rate_deg_s);
     v.real({"filter", "pose_gate_chi2", "-", 0.1, 1000.0,
             "6-DOF measurement rejected when its NIS exceeds this (chi-square, 6 dof: 16.81 = 99 %, "
             "22.46 = 99.9 %)"},
