@@ -240,12 +240,12 @@ void NavigationPipeline::restartFilter(const Pose& pose, const Mat6& covariance)
   // 0.7 m off in depth then reads as 3.5 m/s, and the prediction runs away (campaign box/17).
   const DeliveredPose& middle = m_delivered[0];
   const DeliveredPose& oldest = m_delivered[1];
-  if (m_previous_exposure_ns != 0 && middle.exposure_ns == m_previous_exposure_ns && oldest.exposure_ns != 0 &&
-      oldest.exposure_ns < middle.exposure_ns &&
-      m_filter.initialiseFromThree(oldest.pose, oldest.covariance, middle.pose, middle.covariance, pose,
-                                   covariance, static_cast<double>(middle.exposure_ns - oldest.exposure_ns) * 1e-9,
-                                   static_cast<double>(m_last_exposure_ns - middle.exposure_ns) * 1e-9) ==
-          Status::kOk)
+  if (m_previous_exposure_ns != 0 && middle.exposure_ns == m_previous_exposure_ns &&
+      oldest.exposure_ns != 0 && oldest.exposure_ns < middle.exposure_ns &&
+      m_filter.initialiseFromThree(
+          oldest.pose, oldest.covariance, middle.pose, middle.covariance, pose, covariance,
+          static_cast<double>(middle.exposure_ns - oldest.exposure_ns) * 1e-9,
+          static_cast<double>(m_last_exposure_ns - middle.exposure_ns) * 1e-9) == Status::kOk)
     return;
   m_filter.initialise(pose, covariance);
 }

@@ -107,7 +107,8 @@ Status PoseFilter::initialise(const Pose& pose, const Mat6& pose_covariance) {
 
 Status PoseFilter::initialiseFromThree(const Pose& oldest, const Mat6& oldest_covariance, const Pose& middle,
                                        const Mat6& middle_covariance, const Pose& current,
-                                       const Mat6& current_covariance, double first_dt_s, double second_dt_s) {
+                                       const Mat6& current_covariance, double first_dt_s,
+                                       double second_dt_s) {
   const Mat6 p0 = symmetricPart<6>(oldest_covariance);
   const Mat6 p1 = symmetricPart<6>(middle_covariance);
   const Mat6 p2 = symmetricPart<6>(current_covariance);

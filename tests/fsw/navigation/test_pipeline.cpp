@@ -250,7 +250,8 @@ TEST_F(PipelineTest, AFilterTheImageOverrulesRestartsWithTheMotionItsLastFitsAgr
   // (rates off), it starts at rest again and rejects on and on (case approach_smallsat: NIS 130-190 over
   // 40 frames).
   std::vector<test::RenderedFrame> seq;
-  for (int i = 0; i < 14; ++i) seq.push_back(test::renderFrame(renderer, test::plateAt(16.0 - 0.5 * i, 0.1, 1.0, -1.0), 700U + i));
+  for (int i = 0; i < 14; ++i)
+    seq.push_back(test::renderFrame(renderer, test::plateAt(16.0 - 0.5 * i, 0.1, 1.0, -1.0), 700U + i));
   for (const double rate_chi2 : {11.34, 1e6}) {
     PipelineParams p = params;
     p.filter.restart_rate_chi2 = rate_chi2;

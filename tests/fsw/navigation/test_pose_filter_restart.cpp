@@ -103,8 +103,8 @@ TEST(PoseFilterRestart, TheSeededVelocityCarriesTheCovarianceOfTheOuterFits) {
   EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat12>(f.covariance()).eigenvalues().minCoeff(), -1e-15);
 }
 
-// A still target: the differences of the fits are their noise, so no velocity is seeded and the start is exactly
-// initialise()'s from the last fit.
+// A still target: the differences of the fits are their noise, so no velocity is seeded and the start is
+// exactly initialise()'s from the last fit.
 TEST(PoseFilterRestart, NoiseBetweenFitsOfAStillTargetSeedsNoVelocity) {
   const Mat6 cov = nearCovariance();
   Pcg32 rng(5);

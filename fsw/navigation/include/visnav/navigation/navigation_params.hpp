@@ -61,7 +61,7 @@ struct NavigationParams {
   int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches (0: never)
   bool reacquire_far_cue = true;  ///< that acquisition looks where far range finds the target, if it does
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
-  bool refute_unconfirmed_cue = true;  ///< an acquisition that confirmed nothing at its cue refutes it too
+  bool refute_unconfirmed_cue = true;     ///< an acquisition that confirmed nothing at its cue refutes it too
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
 
   template <typename Visitor>

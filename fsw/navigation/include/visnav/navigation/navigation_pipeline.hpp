@@ -5,7 +5,6 @@
 #pragma once
 
 #include <array>
-
 #include <cstdint>
 
 #include "visnav/acquisition/acquisition.hpp"

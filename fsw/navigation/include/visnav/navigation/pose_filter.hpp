@@ -58,8 +58,8 @@ class PoseFilter {
   /// kInvalidArgument (state untouched) on a non-finite pose, a covariance that is not positive definite,
   /// or an interval not positive or a span above max_prediction_s.
   Status initialiseFromThree(const Pose& oldest, const Mat6& oldest_covariance, const Pose& middle,
-                             const Mat6& middle_covariance, const Pose& current, const Mat6& current_covariance,
-                             double first_dt_s, double second_dt_s);
+                             const Mat6& middle_covariance, const Pose& current,
+                             const Mat6& current_covariance, double first_dt_s, double second_dt_s);
   /// Start from a position only (far range): attitude unknown until the first pose update adopts one.
   Status initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance);
 

@@ -14,7 +14,7 @@ struct PoseFilterParams {
   double initial_velocity_sigma_m_s = 0.5;
   double initial_angular_velocity_sigma_deg_s = 5.0;
   // Restart from a track (initialiseFromThree): when three consecutive fits' velocity is motion.
-  double restart_rate_chi2 = 11.34;        ///< 3 dof, 99 %
+  double restart_rate_chi2 = 11.34;  ///< 3 dof, 99 %
   // Innovation gates (chi-square quantiles).
   double pose_gate_chi2 = 22.46;      ///< 6 dof, 99.9 %
   double position_gate_chi2 = 16.27;  ///< 3 dof, 99.9 %
