@@ -238,9 +238,14 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
   // track then holds that fragment's size (plate/3: n = 42 at 53 m, read as 408 m). A tracked target is then
   // looked for by its outline alone: clusters of strong edge response, holes filled, inside the gate. Only
   // with a track: without one, a strong edge anywhere (limb, glow) would do.
-  if (!(m_params.extended_min_half_px > 0.0)) return -1;
-  if (!gate.active) return searchExtendedUntracked(flags);
-  findOutlines();
+  if (!(m_params.extended_min_half_px > 0.0) || !gate.active) return -1;
+  const Roi& roi = m_edge_response.roi();
+  std::uint8_t* row_max = m_edge_row_max.data();
+  for (int ry = 0; ry < roi.height; ++ry) {
+    const std::uint8_t* s = m_edge_response.row(ry);
+    row_max[ry] = *std::max_element(s, s + roi.width);
+  }
+  m_finder.find(m_edge_response, row_max, m_ext_spawn_q, m_ext_grow_q, m_params.min_cluster_px);
   // The gate as in selectRobust, but the silhouette may be up to extended_max_growth times the tracked
   // size (a fragment's track), never smaller than max_size_ratio allows, at least extended_min_half_px in
   // half extent (a small outline is the eq. 13 search's job), and not cut by the image border (the limb's
@@ -272,52 +277,6 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
     }
   }
   if (best >= 0) flags |= kFlagExtended | kFlagGated;
-  return best;
-}
-
-void FarRangeEstimator::findOutlines() {
-  const Roi& roi = m_edge_response.roi();
-  std::uint8_t* row_max = m_edge_row_max.data();
-  for (int ry = 0; ry < roi.height; ++ry) {
-    const std::uint8_t* s = m_edge_response.row(ry);
-    row_max[ry] = *std::max_element(s, s + roi.width);
-  }
-  m_finder.find(m_edge_response, row_max, m_ext_spawn_q, m_ext_grow_q, m_params.min_cluster_px);
-}
-
-int FarRangeEstimator::searchExtendedUntracked(std::uint32_t& flags) {
-  // Without a track a large closed outline is still a target far range can hand over: a dim target close in
-  // (campaign plate/43: brightness 0.28 in noise 0.1, 300 px across) spawns no eq. 13 cluster on any frame,
-  // and far range held 1-5 px noise clusters it read as 1200-2600 m. Only outlines of at least
-  // extended_untracked_min_half_px, inside the image (the limb's arc is cut by the border), largest first;
-  // a wrong one (a glow's rim) is refuted by the acquisition that finds no target there.
-  if (!(m_params.extended_untracked_min_half_px > 0.0)) return -1;
-  findOutlines();
-  auto& clusters = m_finder.clusters();
-  int best = -1;
-  int second = -1;
-  double best_size = 0.0;
-  double second_size = 0.0;
-  for (std::size_t i = 0; i < clusters.size(); ++i) {
-    Cluster& c = clusters[i];
-    if (c.pixel_count < m_params.min_cluster_px || c.halfExtentPx() < m_params.extended_untracked_min_half_px)
-      continue;
-    if (touchesImageBorder(c) || c.axis_ratio > m_params.max_axis_ratio) continue;
-    if (m_params.fill_holes) m_finder.fillHoles(c);
-    if (passedOver(c, flags)) continue;
-    const double size = usedPixels(c);
-    if (best < 0 || size > best_size) {
-      second = best;
-      second_size = best_size;
-      best = static_cast<int>(i);
-      best_size = size;
-    } else if (second < 0 || size > second_size) {
-      second = static_cast<int>(i);
-      second_size = size;
-    }
-  }
-  if (best >= 0) flags |= kFlagExtended | kFlagUnconfirmed;
-  if (second >= 0 && second_size >= 0.7 * best_size) flags |= kFlagAmbiguous;
   return best;
 }
 

@@ -144,10 +144,6 @@ class FarRangeEstimator {
   int selectRobust(const Gate& gate, std::uint32_t& flags);
   void prepareCandidates();
   int searchExtended(const Gate& gate, std::uint32_t& flags);
-  /// searchExtended() without a track: the largest closed outline of extended_untracked_min_half_px.
-  int searchExtendedUntracked(std::uint32_t& flags);
-  /// Clusters of strong edge response (eq. 10) in the last searched region: the outlines of extended targets.
-  void findOutlines();
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;   ///< n of eq. 16 for this method

@@ -41,7 +41,6 @@ struct FarRangeParams {
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
   double extended_min_half_px = 12.0;
-  double extended_untracked_min_half_px = 24.0;
   double extended_spawn = 0.99;
   double extended_grow = 0.6;
   double extended_max_growth = 64.0;
@@ -135,13 +134,6 @@ struct FarRangeParams {
             "an outline of at least this half extent is taken (12 was measured on the full campaign); 0 "
             "switches the search off"},
            extended_min_half_px);
-    v.real({"farrange", "extended_untracked_min_half_px", "px", 0.0, 100000.0,
-            "robust: without a track, when eq. 13 finds no candidate, the largest closed outline on the edge "
-            "response of at least this half extent (not cut by the image border, not line-like) is taken, "
-            "flagged unconfirmed: a dim target close in spawns no eq. 13 cluster at all (campaign plate/43, "
-            "300 px across, read as noise at 1200-2600 m). Larger than extended_min_half_px: no gate says "
-            "where; 0 switches it off"},
-           extended_untracked_min_half_px);
     v.real({"farrange", "extended_spawn", "-", 0.0, 1.0,
             "robust: that outline search spawns where the edge response of eq. 10 exceeds this"},
            extended_spawn);
