@@ -22,6 +22,8 @@ void ModeManager::reset() {
   m_far_count = 0;
   m_acquisition_failures = 0;
   m_holdoff_frames = 0;
+  m_handover_distance_m = 0.0;
+  m_retry_below_m = 0.0;
   m_last = ModeTransition{};
   m_last.from = m_mode;
   m_last.to = m_mode;
@@ -58,12 +60,22 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
   ++m_frames_in_mode;
   switch (m_mode) {
     case NavMode::kStandby: break;  // only a resume command leaves standby
-    case NavMode::kFarRange:
+    case NavMode::kFarRange: {
       m_close_count = in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
+      // After an acquisition that saw edges but confirmed nothing, the same target at the same size fails
+      // the same way: wait until it has come acquire_retry_growth times nearer, or for the longest back-off
+      // (a target that holds its range is tried again).
+      const bool grown =
+          m_retry_below_m <= 0.0 || (in.far_valid && in.far_distance_m < m_retry_below_m) ||
+          m_frames_in_mode > static_cast<std::uint32_t>(m_params.acquire_retry_holdoff_max_frames);
       if (m_close_count >= m_params.enter_frames &&
-          m_frames_in_mode > static_cast<std::uint32_t>(m_holdoff_frames))
+          m_frames_in_mode > static_cast<std::uint32_t>(m_holdoff_frames) && grown) {
+        m_handover_distance_m = in.far_distance_m;
+        m_retry_below_m = 0.0;
         transition(NavMode::kAcquisition, "far range: target close enough", frame_number);
+      }
       break;
+    }
     case NavMode::kAcquisition:
       if (in.acquisition_succeeded) {
         m_acquisition_failures = 0;
@@ -71,6 +83,8 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
         transition(NavMode::kNearRange, "acquisition: first pose confirmed", frame_number);
       } else if (in.acquisition_failed) {
         backOff();
+        if (in.acquisition_unconfirmed && m_params.acquire_retry_growth > 1.0)
+          m_retry_below_m = m_handover_distance_m / m_params.acquire_retry_growth;
         transition(NavMode::kFarRange, "acquisition: failed", frame_number);
       } else if (m_frames_in_mode >= static_cast<std::uint32_t>(m_params.acquisition_timeout_frames)) {
         backOff();

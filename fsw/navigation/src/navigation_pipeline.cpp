@@ -131,6 +131,7 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
     const bool unconfirmed = result.failure == acq::AcquisitionFailure::kNoCandidate ||
                              result.failure == acq::AcquisitionFailure::kNotConfirmed ||
                              result.failure == acq::AcquisitionFailure::kAmbiguous;
+    in.acquisition_unconfirmed = unconfirmed;
     if (result.failure == acq::AcquisitionFailure::kNoTarget ||
         (unconfirmed && m_params.navigation.refute_unconfirmed_cue))
       m_far.refuteLastFix();

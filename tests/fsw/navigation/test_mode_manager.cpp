@@ -118,6 +118,67 @@ TEST(ModeManager, FailedAcquisitionsBackOffExponentially) {
   EXPECT_EQ(waited, 3U);
 }
 
+TEST(ModeManager, AnUnconfirmedAcquisitionIsRetriedOnceTheTargetHasComeNearer) {
+  // Case approach_smallsat: acquisition saw the satellite at 157 m but could confirm no pose (no_candidate),
+  // then again at 122 m (ambiguous); at 69 m it succeeded. After such a failure the next hand-over waits
+  // until far range reads acquire_retry_growth (2) times nearer than the last hand-over, or for the longest
+  // back-off (80 frames) when the target holds its range. A failure without edges (no_target) only backs off.
+  for (const bool unconfirmed : {true, false}) {
+    ModeManager m;
+    ASSERT_TRUE(m.init(plateHandover()).ok);
+    std::uint64_t frame = 0;
+    for (int i = 0; i < 3; ++i) m.step(farAt(28.0), ++frame);
+    ASSERT_EQ(m.mode(), NavMode::kAcquisition);
+    ModeInputs failed;
+    failed.acquisition_failed = true;
+    failed.acquisition_unconfirmed = unconfirmed;
+    m.step(failed, ++frame);
+    ASSERT_EQ(m.mode(), NavMode::kFarRange);
+    // Approaching 0.25 m a frame from 27 m: the back-off alone hands over after 6 frames (at 25.5 m); the
+    // retry rule waits for 14 m (half of 28 m).
+    double d = 27.0;
+    while (m.mode() == NavMode::kFarRange && d > 5.0) {
+      m.step(farAt(d), ++frame);
+      d -= 0.25;
+    }
+    ASSERT_EQ(m.mode(), NavMode::kAcquisition);
+    const double handed_over_at = d + 0.25;
+    if (unconfirmed) {
+      EXPECT_LT(handed_over_at, 14.0);
+      EXPECT_GT(handed_over_at, 13.0);
+    } else {
+      EXPECT_GT(handed_over_at, 25.0);
+    }
+  }
+  // A target that holds its range is tried again after the longest back-off.
+  NavigationParams p = plateHandover();
+  ModeManager m;
+  ASSERT_TRUE(m.init(p).ok);
+  std::uint64_t frame = 0;
+  for (int i = 0; i < 3; ++i) m.step(farAt(28.0), ++frame);
+  ModeInputs failed;
+  failed.acquisition_failed = true;
+  failed.acquisition_unconfirmed = true;
+  m.step(failed, ++frame);
+  std::uint64_t waited = 0;
+  while (m.mode() == NavMode::kFarRange && waited < 1000) {
+    m.step(farAt(28.0), ++frame);
+    ++waited;
+  }
+  EXPECT_EQ(waited, static_cast<std::uint64_t>(p.acquire_retry_holdoff_max_frames) + 1U);
+  // Switched off (<= 1): the back-off alone.
+  p.acquire_retry_growth = 1.0;
+  ASSERT_TRUE(m.init(p).ok);
+  for (int i = 0; i < 3; ++i) m.step(farAt(28.0), ++frame);
+  m.step(failed, ++frame);
+  waited = 0;
+  while (m.mode() == NavMode::kFarRange && waited < 1000) {
+    m.step(farAt(28.0), ++frame);
+    ++waited;
+  }
+  EXPECT_EQ(waited, 6U);
+}
+
 TEST(ModeManager, NoiseAroundAThresholdNeverChatters) {
   // A range estimate oscillating with +-3 m noise around 35 m, between the two thresholds' midpoint:
   // after the first hand-over no further transition may happen.

@@ -19,7 +19,9 @@ struct ModeInputs {
   bool far_valid = false;  ///< far range found the target (far range mode)
   double far_distance_m = 0.0;
   bool acquisition_succeeded = false;
-  bool acquisition_failed = false;    ///< acquisition gave up on its own
+  bool acquisition_failed = false;  ///< acquisition gave up on its own
+  /// ... with edges at the cue but no pose it could confirm (no_candidate, not_confirmed, ambiguous)
+  bool acquisition_unconfirmed = false;
   bool near_fault_persisted = false;  ///< FDIR: a near-range fault held fault_persistence_frames
   bool depth_known = false;           ///< a depth estimate exists (filter or near range)
   double depth_m = 0.0;  ///< t_c_m.z (CONVENTIONS.md): what far range's distance and the thresholds measure
@@ -53,10 +55,13 @@ class ModeManager {
   NavigationParams m_params;
   NavMode m_mode = NavMode::kFarRange;
   std::uint32_t m_frames_in_mode = 0;
-  int m_close_count = 0;           ///< consecutive frames below acquire_below_m (far range)
-  int m_far_count = 0;             ///< consecutive frames above far_range_above_m (near range)
-  int m_acquisition_failures = 0;  ///< consecutive failed or timed-out acquisitions (reset by success)
-  int m_holdoff_frames = 0;        ///< far range may hand over again after this many frames in far range
+  int m_close_count = 0;               ///< consecutive frames below acquire_below_m (far range)
+  int m_far_count = 0;                 ///< consecutive frames above far_range_above_m (near range)
+  int m_acquisition_failures = 0;      ///< consecutive failed or timed-out acquisitions (reset by success)
+  int m_holdoff_frames = 0;            ///< far range may hand over again after this many frames in far range
+  double m_handover_distance_m = 0.0;  ///< far range's distance when it last handed over
+  /// After an unconfirmed acquisition: far range hands over again below this distance (0: no such limit).
+  double m_retry_below_m = 0.0;
   ModeTransition m_last;
   std::uint64_t m_transitions = 0;
 };

@@ -22,8 +22,9 @@ struct NavigationParams {
   int acquisition_timeout_frames = 25;   ///< acquisition gives up (back to far range) after this many frames
   int acquire_retry_holdoff_frames = 5;  ///< far range waits this long after a failed acquisition...
   int acquire_retry_holdoff_max_frames = 80;  ///< ... doubling per consecutive failure up to this
-  int fault_persistence_frames = 5;           ///< a near-range fault held this long falls back to far range
-  int coast_frames = 3;  ///< frames the filter may propagate without a usable measurement
+  double acquire_retry_growth = 2.0;  ///< after an unconfirmed acquisition: retry that many times nearer
+  int fault_persistence_frames = 5;   ///< a near-range fault held this long falls back to far range
+  int coast_frames = 3;               ///< frames the filter may propagate without a usable measurement
   // FDIR thresholds (near range).
   double min_inlier_ratio = 0.5;  ///< edge-point inliers / points over the used lines, below: fault
   int min_usable_lines = 3;       ///< fewer used lines: fault
@@ -99,6 +100,14 @@ struct NavigationParams {
     v.integer({"navigation", "acquire_retry_holdoff_max_frames", "frames", 0, 100000,
                "upper bound of that back-off (80 frames: 16 s at 5 Hz)"},
               acquire_retry_holdoff_max_frames);
+    v.real({"navigation", "acquire_retry_growth", "-", 0.0, 1000.0,
+            "after an acquisition that found edges at far range's cue but confirmed no pose there "
+            "(no_candidate, not_confirmed, ambiguous), far range hands over again only once its distance "
+            "is this many times below the one it handed over at (the target then spans as many times more "
+            "pixels), or after acquire_retry_holdoff_max_frames: the same target at the same size fails the "
+            "same way (case approach_smallsat: no_candidate at 157 m, ambiguous at 122 m, confirmed at "
+            "69 m). <= 1: the back-off alone"},
+           acquire_retry_growth);
     v.integer({"navigation", "acquisition_timeout_frames", "count", 1, 10000,
                "acquisition returns to far range when it has not succeeded within this many frames"},
               acquisition_timeout_frames);
