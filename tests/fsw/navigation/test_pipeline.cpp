@@ -247,8 +247,8 @@ TEST_F(PipelineTest, AFilterTheImageOverrulesRestartsWithTheMotionItsLastFitsAgr
   // The plate approaching 0.5 m a frame (2.5 m/s) from 16 m, started with its pose and no motion: the filter
   // rejects the fits it predicted at rest, the image wins. Restarted from three consecutive fits (from the
   // third frame on), the filter takes the approach and accepts the following fits; restarted from one
-  // (rates off), it starts at rest again and rejects on and on (case approach_smallsat: NIS 130-190 over
-  // 40 frames).
+  // (rates off), it starts at rest again and rejects on and on (case approach_smallsat: NIS 23-194 on
+  // 45 frames).
   std::vector<test::RenderedFrame> seq;
   for (int i = 0; i < 14; ++i)
     seq.push_back(test::renderFrame(renderer, test::plateAt(16.0 - 0.5 * i, 0.1, 1.0, -1.0), 700U + i));
