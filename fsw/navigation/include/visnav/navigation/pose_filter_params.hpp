@@ -45,17 +45,15 @@ struct PoseFilterParams {
     v.real({"filter", "initial_angular_velocity_sigma_deg_s", "deg/s", 1e-6, 1000.0,
             "1-sigma angular-velocity uncertainty when the attitude is first measured"},
            initial_angular_velocity_sigma_deg_s);
-    v.real(
-        {"filter", "restart_rate_chi2", "-", 0.1, 1e6,
-         "a filter restarted on a pose the image vouches for against it, with poses delivered on the two "
-         "frames before, starts with the outer two's velocity when that is motion: significant against the "
-         "fits' "
-         "noise (its NIS against zero, 3 dof, above this; 11.34 = 99 %) and the two steps agreeing (the "
-         "NIS of their difference at most this); otherwise at rest with the initial sigma. Restarted at "
-         "rest, a target approaching at 7 m/s was rejected on every frame (case approach_smallsat: NIS "
-         "23-194 on 45 frames); from two fits instead of three, one fit 0.7 m off in depth started a "
-         "box at 3.5 m/s and lost it (campaign box/17). 1e6 switches it off"},
-        restart_rate_chi2);
+    v.real({"filter", "restart_rate_chi2", "-", 0.1, 1e6,
+            "a filter restarted on a pose the image vouches for against it, with poses delivered on the two "
+            "frames before, starts with the outer two's velocity when that is motion: significant against "
+            "the fits' noise (its NIS against zero, 3 dof, above this; 11.34 = 99 %) and the two steps "
+            "agreeing (the NIS of their difference at most this); otherwise at rest with the initial sigma. "
+            "Restarted at rest, a target approaching at 7 m/s had 45 fits rejected (case approach_smallsat, "
+            "NIS 23-194); from two fits instead of three, one fit 0.7 m off in depth started a box at "
+            "3.5 m/s and lost it (campaign box/17). 1e6 switches it off"},
+           restart_rate_chi2);
     v.real({"filter", "pose_gate_chi2", "-", 0.1, 1000.0,
             "6-DOF measurement rejected when its NIS exceeds this (chi-square, 6 dof: 16.81 = 99 %, "
             "22.46 = 99.9 %)"},
