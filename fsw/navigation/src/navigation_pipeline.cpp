@@ -236,9 +236,9 @@ bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck&
 
 void NavigationPipeline::restartFilter(const Pose& pose, const Mat6& covariance) {
   // With poses delivered on the two frames before, the filter restarts with the motion the three agree on
-  // (a target approaching at 7 m/s, restarted at rest, was rejected again on every frame: case
+  // (a target approaching at 7 m/s, restarted at rest, was rejected again and again: case
   // approach_smallsat: 45 fits rejected, NIS 23-194); otherwise from this pose alone. Not from two: one fit
-  // 0.7 m off in depth then reads as 3.5 m/s, and the prediction runs away (campaign box/17).
+  // 0.7 m apart in depth from the one before read as 3.5 m/s, and the prediction runs away (campaign box/17).
   const DeliveredPose& middle = m_delivered[0];
   const DeliveredPose& oldest = m_delivered[1];
   if (m_previous_exposure_ns != 0 && middle.exposure_ns == m_previous_exposure_ns &&

@@ -123,7 +123,7 @@ Status PoseFilter::initialiseFromThree(const Pose& oldest, const Mat6& oldest_co
   // The velocity spans the outer two fits, their errors independent: cov(position, v) = P2 / T and
   // cov(v) = (P0 + P2) / T^2 over T = dt1 + dt2 (position blocks). The angular rate is not taken: the
   // attitude differences of single fits are biased beyond their covariance (case low_contrast_octagon: three
-  // fits 1.3-2.5 deg 1-sigma read as 14 deg/s, and the next two fits were rejected); the filter learns it
+  // fits 1.3-2.5 deg 1-sigma read as 14 deg/s, and the next fit was rejected too); the filter learns it
   // from the following updates as after initialise().
   const Vec3 velocity = (current.t_c_m - oldest.t_c_m) / span_s;
   // The two steps must agree (constant velocity): their difference is noise, covariance

@@ -129,9 +129,9 @@ TEST(PoseFilterRestart, NoiseBetweenFitsOfAStillTargetSeedsNoVelocity) {
   EXPECT_LE(seeded, kDraws * 4 / 100);
 }
 
-// One fit 0.7 m off in depth after two that agree (campaign box/17 at 14.5 m, fits of 0.03-0.07 m 1-sigma
-// in depth): the outer two differ as an approach would, but the steps do not agree, so no velocity is
-// seeded. The offset on the middle fit alone: neither.
+// One fit 0.7 m off in depth after two that agree (campaign box/17 at 14.5 m: two fits 0.7 m apart read as
+// 3.5 m/s; its fits had 0.03-0.07 m 1-sigma in depth): the outer two differ as an approach would, but the
+// steps do not agree, so no velocity is seeded. The offset on the middle fit alone: neither.
 TEST(PoseFilterRestart, OneFitThatJumpedSeedsNoVelocity) {
   Mat6 cov = nearCovariance();
   cov(5, 5) = 0.05 * 0.05;

@@ -51,7 +51,7 @@ struct PoseFilterParams {
             "the fits' noise (its NIS against zero, 3 dof, above this; 11.34 = 99 %) and the two steps "
             "agreeing (the NIS of their difference at most this); otherwise at rest with the initial sigma. "
             "Restarted at rest, a target approaching at 7 m/s had 45 fits rejected (case approach_smallsat, "
-            "NIS 23-194); from two fits instead of three, one fit 0.7 m off in depth started a box at "
+            "NIS 23-194); from two fits instead of three, two fits 0.7 m apart in depth started a box at "
             "3.5 m/s and lost it (campaign box/17). 1e6 switches it off"},
            restart_rate_chi2);
     v.real({"filter", "pose_gate_chi2", "-", 0.1, 1000.0,
