@@ -150,6 +150,26 @@ TEST(PoseFilterRestart, OneFitThatJumpedSeedsNoVelocity) {
   EXPECT_NEAR(f.velocity().z(), 0.7 / (2.0 * kDt), 1e-12);
 }
 
+// A motion the prior of a restart at rest already covers (zero with initial_velocity_sigma_m_s 0.5 m/s) is
+// not seeded, however tight the fits: campaign plate/107's fits read 0.88 m/s for a plate closing at
+// 0.25 m/s, and the prediction carried that drift through the search that followed. Beyond
+// sqrt(restart_rate_chi2) = 3.37 prior sigmas (1.68 m/s) it is.
+TEST(PoseFilterRestart, AMotionThePriorCoversIsNotSeeded) {
+  Mat6 cov = nearCovariance() * 1e-4;  // fits far tighter than the motion
+  const Pose p0 = Pose::fromYpr({0.0, 0.0, 0.0}, Vec3(0.0, 0.0, 25.0));
+  for (const double speed : {0.88, 1.6, 1.8, 2.5}) {
+    const Vec3 velocity(0.0, 0.0, -speed);
+    const Pose p1 = moved(p0, velocity, kDt);
+    const Pose p2 = moved(p1, velocity, kDt);
+    PoseFilter f = makeFilter();
+    ASSERT_EQ(f.initialiseFromThree(p0, cov, p1, cov, p2, cov, kDt, kDt), Status::kOk);
+    if (speed < 1.68)
+      EXPECT_TRUE(f.velocity().isZero()) << speed << " m/s";
+    else
+      EXPECT_NEAR(f.velocity().z(), -speed, 1e-9) << speed << " m/s";
+  }
+}
+
 TEST(PoseFilterRestart, RejectsInvalidInputsAndLeavesTheStateUntouched) {
   const Mat6 cov = nearCovariance();
   const Pose p0 = Pose::fromYpr({0.0, 0.0, 0.0}, Vec3(0.0, 0.0, 20.0));

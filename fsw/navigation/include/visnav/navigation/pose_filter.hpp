@@ -52,7 +52,8 @@ class PoseFilter {
   /// rejected but the image vouched for): as initialise() from `current`, except the velocity when the
   /// three show one: the difference of `oldest` and `current` over their span T, with covariance
   /// (P_oldest + P_current) / T^2 (position blocks) and cross-covariance P_current / T to the pose, taken
-  /// when it is significant (its NIS against zero above restart_rate_chi2) and the two steps agree (the NIS
+  /// when it is significant (its NIS against zero above restart_rate_chi2, under the fits' covariance and
+  /// under the prior initial_velocity_sigma_m_s) and the two steps agree (the NIS
   /// of their difference at most restart_rate_chi2: one fit that jumped makes one step alone). The angular
   /// rate always starts at zero: single fits' attitude differences are biased beyond their covariance.
   /// kInvalidArgument (state untouched) on a non-finite pose, a covariance that is not positive definite,

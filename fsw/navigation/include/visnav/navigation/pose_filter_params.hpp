@@ -48,7 +48,8 @@ struct PoseFilterParams {
     v.real({"filter", "restart_rate_chi2", "-", 0.1, 1e6,
             "a filter restarted on a pose the image vouches for against it, with poses delivered on the two "
             "frames before, starts with the outer two's velocity when that is motion: significant against "
-            "the fits' noise (its NIS against zero, 3 dof, above this; 11.34 = 99 %) and the two steps "
+            "the fits' noise and against the prior of a restart at rest, initial_velocity_sigma_m_s (its NIS "
+            "against zero, 3 dof, above this under both; 11.34 = 99 %) and the two steps "
             "agreeing (the NIS of their difference at most this); otherwise at rest with the initial sigma. "
             "Restarted at rest, a target approaching at 7 m/s had 45 fits rejected (case approach_smallsat, "
             "NIS 23-194); from two fits instead of three, two fits 0.7 m apart in depth started a box at "
