@@ -25,8 +25,9 @@ void FdirMonitor::init(const NavigationParams& params, const PolygonModel& model
   m_params = params;
   // The camera cannot be inside the target; beyond the depth where the target spans 4 px no 6-DOF fit is
   // possible. Both scale with the model and the camera, so no default fits one scene only. The lower limit
-  // is the model's box, not its bounding sphere: a satellite's panels make the sphere 5.8 m in radius around a body
-  // the camera comes within 5 m of (case approach_smallsat: flagged from 5.8 m on, its last 3 frames lost).
+  // is the model's box, not its bounding sphere: a satellite's panels make the sphere 5.8 m in radius around
+  // a body the camera comes within 5 m of (case approach_smallsat: flagged from 5.8 m on, its last 3 frames
+  // lost).
   m_min_depth_m = params.min_depth_m;
   m_max_depth_m =
       params.max_depth_m > 0.0 ? params.max_depth_m : focal_px * 2.0 * model.boundingRadius() / 4.0;
