@@ -163,8 +163,8 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
   m_coasted = 0;
   m_last_pose = pose;
   m_have_pose = true;
-  m_delivered[1] = m_delivered[0];
-  m_delivered[0] = DeliveredPose{pose, covariance, m_last_exposure_ns};
+  m_delivered_newest ^= 1U;  // the older slot becomes the newest: no copy of the other
+  m_delivered[m_delivered_newest] = DeliveredPose{pose, covariance, m_last_exposure_ns};
   // The pose is tracked whatever its uncertainty (the next frame is predicted from it), but it is valid
   // output only when its own covariance says it is known to the accuracy a user may rely on: a small target
   // far out has an attitude the image barely constrains, and a pose wrong by degrees then looks as good as
@@ -239,8 +239,8 @@ void NavigationPipeline::restartFilter(const Pose& pose, const Mat6& covariance)
   // (a target approaching at 7 m/s, restarted at rest, was rejected again and again: case
   // approach_smallsat: 45 fits rejected, NIS 23-194); otherwise from this pose alone. Not from two: one fit
   // 0.7 m apart in depth from the one before read as 3.5 m/s, and the prediction runs away (campaign box/17).
-  const DeliveredPose& middle = m_delivered[0];
-  const DeliveredPose& oldest = m_delivered[1];
+  const DeliveredPose& middle = m_delivered[m_delivered_newest];
+  const DeliveredPose& oldest = m_delivered[m_delivered_newest ^ 1U];
   if (m_previous_exposure_ns != 0 && middle.exposure_ns == m_previous_exposure_ns &&
       oldest.exposure_ns != 0 && oldest.exposure_ns < middle.exposure_ns &&
       m_filter.initialiseFromThree(

@@ -116,13 +116,15 @@ class NavigationPipeline {
   FarRangeSolution m_last_far_fix;  ///< last valid far-range solution (cue for acquisition)
   Pose m_last_pose;                 ///< last trusted 6-DOF pose
   bool m_have_pose = false;
-  /// The last two poses delivered on a frame, newest first (restartFilter): exposure 0 when none.
+  /// The last two poses delivered on a frame (restartFilter), the newest at m_delivered_newest: exposure 0
+  /// when none.
   struct DeliveredPose {
     Pose pose;
     Mat6 covariance = Mat6::Identity();
     std::int64_t exposure_ns = 0;
   };
   std::array<DeliveredPose, 2> m_delivered{};
+  unsigned m_delivered_newest = 0;
   int m_coasted = 0;                     ///< consecutive near-range frames the prediction filled in
   bool m_next_attempt_far_cued = false;  ///< the close-range acquisition's cues alternate (reacquire_far_cue)
   /// The track began with a reacquisition's find and none of its poses has yet met
