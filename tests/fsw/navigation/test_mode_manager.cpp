@@ -408,6 +408,35 @@ TEST(Fdir, EvidenceNeedsLinesInliersResidualAndSupport) {
   EXPECT_FALSE(imageEvidenceGood(r, p));
 }
 
+TEST(Fdir, EvidenceNeedsAPoseCertainEnoughToBeDelivered) {
+  // Lines, inliers, residual and support all good, but the fit's own covariance is looser than a valid pose
+  // may be: it may not overrule the filter (the limits are the delivery limits, so it is read from them).
+  const NavigationParams p;
+  ASSERT_GT(p.max_valid_attitude_sigma_deg, 0.0);
+  ASSERT_GT(p.max_valid_position_sigma_rel, 0.0);
+  const double range = 10.0;
+  const auto withSigmas = [&](double attitude_deg, double position_rel) {
+    NearRangeResult r = goodNear();
+    r.pose.t_c_m = Vec3(0, 0, range);
+    // Equal per axis: sqrt(trace) = the given 1-sigma (nav_solution.hpp poseSigmas).
+    const double a = attitude_deg * kRadPerDeg;
+    const double t = position_rel * range;
+    r.covariance.topLeftCorner<3, 3>() = Mat3::Identity() * (a * a / 3.0);
+    r.covariance.bottomRightCorner<3, 3>() = Mat3::Identity() * (t * t / 3.0);
+    return r;
+  };
+  const double limit_deg = p.max_valid_attitude_sigma_deg;
+  const double limit_rel = p.max_valid_position_sigma_rel;
+  EXPECT_TRUE(imageEvidenceGood(withSigmas(0.95 * limit_deg, 0.95 * limit_rel), p));
+  EXPECT_FALSE(imageEvidenceGood(withSigmas(1.05 * limit_deg, 0.5 * limit_rel), p));
+  EXPECT_FALSE(imageEvidenceGood(withSigmas(0.5 * limit_deg, 1.05 * limit_rel), p));
+  // With the delivery limits switched off (0), so is this test.
+  NavigationParams off = p;
+  off.max_valid_attitude_sigma_deg = 0.0;
+  off.max_valid_position_sigma_rel = 0.0;
+  EXPECT_TRUE(imageEvidenceGood(withSigmas(10.0 * limit_deg, 10.0 * limit_rel), off));
+}
+
 TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
   FdirMonitor f;
   NavigationParams p;
