@@ -22,9 +22,10 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params)
   // restart from a pose the image does not vouch for (case low_contrast_octagon frame 103: 2.9 deg 1-sigma,
   // 6.3 deg off, and the restarted filter then disputed the right fits that followed).
   const PoseSigmas sigma = poseSigmas(r.pose, r.covariance);
-  const bool certain =
-      (params.max_valid_attitude_sigma_deg <= 0.0 || sigma.attitude_deg <= params.max_valid_attitude_sigma_deg) &&
-      (params.max_valid_position_sigma_rel <= 0.0 || sigma.position_rel <= params.max_valid_position_sigma_rel);
+  const bool certain = (params.max_valid_attitude_sigma_deg <= 0.0 ||
+                        sigma.attitude_deg <= params.max_valid_attitude_sigma_deg) &&
+                       (params.max_valid_position_sigma_rel <= 0.0 ||
+                        sigma.position_rel <= params.max_valid_position_sigma_rel);
   return lines && inliers && residual && support && certain;
 }
 
