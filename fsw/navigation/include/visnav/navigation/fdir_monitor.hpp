@@ -25,8 +25,10 @@ struct NearRangeCheck {
 };
 
 /// Lines, inliers, residual and edge support of a near-range measurement all say the image holds the
-/// model where the tracker put it, and the pose came from intersected vertices (eq. 7), not from the
-/// point-to-line fallback. Such a measurement wins over a filter that rejects it.
+/// model where the tracker put it, the pose came from intersected vertices (eq. 7), not from the
+/// point-to-line fallback, and its own covariance is within the delivery limits
+/// (`max_valid_attitude_sigma_deg`, `max_valid_position_sigma_rel`). Such a measurement wins over a filter
+/// that rejects it; close-range reacquisition takes a start or a confirmation only on it.
 bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params);
 
 class FdirMonitor {
