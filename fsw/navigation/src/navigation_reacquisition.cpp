@@ -11,6 +11,8 @@ namespace visnav::nav {
 void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_t frame_number,
                                             NavSolution& out, ModeInputs& in) {
   m_near_result.status = TrackStatus::kLost;
+  // The search is predicted from the filter: only with the motion it knows (pose_filter.hpp).
+  if (m_params.navigation.reacquire_drop_insignificant_rates) m_filter.dropInsignificantRates();
   m_reacquisition.start();
   m_acquisition.reset();
   m_far.reset();  // its light track starts with the search (reacquire_far_cue)

@@ -61,6 +61,15 @@ class PoseFilter {
   Status initialiseFromThree(const Pose& oldest, const Mat6& oldest_covariance, const Pose& middle,
                              const Mat6& middle_covariance, const Pose& current,
                              const Mat6& current_covariance, double first_dt_s, double second_dt_s);
+  /// What dropInsignificantRates() set to zero (bit set).
+  static constexpr std::uint32_t kDroppedVelocity = 1U;
+  static constexpr std::uint32_t kDroppedAngularVelocity = 2U;
+  /// Sets the velocity and the angular velocity each to zero unless it is significant: its NIS against zero
+  /// under its own covariance above restart_rate_chi2, and for the velocity also against the start-at-rest
+  /// prior (initial_velocity_sigma_m_s), as in initialiseFromThree. The covariance is kept. For a search:
+  /// what the last fits could not tell from noise is not carried through it. Returns what was dropped
+  /// (kDropped* bits; 0 when uninitialised or nothing was).
+  std::uint32_t dropInsignificantRates();
   /// Start from a position only (far range): attitude unknown until the first pose update adopts one.
   Status initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance);
 
