@@ -167,9 +167,9 @@ std::uint32_t PoseFilter::dropInsignificantRates() {
   // target that did not move (campaign box/129: lost at 22.4 m with 0.8 m/s and 3.4 deg/s from fits the
   // filter had rejected, the prediction 24 m and 104 deg off 100 frames later, never found). The velocity
   // must also exceed what the start-at-rest prior covers, as in the restart (initialiseFromThree): biased
-  // fits agree on a drift (seeds 1-60 of the campaign: with this test wrong frames 44 -> 34, without it no
-  // gain). The angular rate is not held to its prior: a 4.5 deg/s tumble the track had measured, dropped,
-  // left the search 20 deg behind the target when it turned back into view (campaign cao/52).
+  // fits agree on a drift their covariance calls significant (campaign box/4: 7 wrong frames without this
+  // test, none with it). The angular rate is not held to its prior: a 4.5 deg/s tumble the track had
+  // measured, dropped, left the search 20 deg behind the target when it turned back into view (cao/52).
   if (!m_initialised) return 0U;
   const auto significant = [this](const Vec3& rate, int block) {
     const Mat3 cov = symmetricPart<3>(Mat3(m_covariance.block<3, 3>(block, block)));
