@@ -1,0 +1,213 @@
+// The FDIR monitor (fdir_monitor.hpp): each check's fault bit, persistence, the depth band derived from the
+// model and the camera, and the image evidence that lets a measurement overrule the filter.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "visnav/geometry/polygon_model.hpp"
+#include "visnav/navigation/fdir_monitor.hpp"
+
+namespace visnav::nav {
+namespace {
+
+NearRangeResult goodNear() {
+  NearRangeResult r;
+  r.status = TrackStatus::kTracking;
+  r.lines_total = 4;
+  r.lines_used = 4;
+  r.scanlines = 110;
+  r.edge_points = 100;
+  r.inlier_points = 95;
+  r.rms_px = 0.1;
+  r.pose.t_c_m = Vec3(0, 0, 10);
+  return r;
+}
+
+/// A cube whose bounding sphere has `radius_m`.
+PolygonModel cubeOfRadius(double radius_m) {
+  const double half = radius_m / std::sqrt(3.0);
+  return makeBox(half, half, half);
+}
+
+TEST(Fdir, EachCheckRaisesItsBit) {
+  FdirMonitor f;
+  f.init(NavigationParams{}, cubeOfRadius(1.5), 1000.0);  // derived: outside the cube, up to 750 m
+  NearRangeResult r = goodNear();
+  NearRangeCheck c;
+  c.near = &r;
+  EXPECT_EQ(f.checkNearRange(c), 0U);
+  r.lines_used = 2;
+  EXPECT_EQ(f.checkNearRange(c), kFaultTooFewLines);
+  r = goodNear();
+  r.inlier_points = 40;
+  EXPECT_EQ(f.checkNearRange(c), kFaultInlierRatio);
+  r = goodNear();
+  r.rms_px = 1.5;
+  EXPECT_EQ(f.checkNearRange(c), kFaultResidual);
+  r = goodNear();
+  r.flags = kFlagSolverFailed;
+  EXPECT_EQ(f.checkNearRange(c), kFaultNotConverged);
+  r = goodNear();
+  c.innovation_checked = true;
+  c.innovation_accepted = false;
+  EXPECT_EQ(f.checkNearRange(c), kFaultInnovation);
+  c = NearRangeCheck{};
+  c.near = &r;
+  r.pose.t_c_m.z() = 0.5;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r = goodNear();
+  c.centre_in_image = false;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  // 100 ms of latency beyond one camera period (a free-running 5 Hz cycle takes frames 0-200 ms old).
+  EXPECT_EQ(f.checkFrameAge(200.0, 0.0), kFaultFrameAge);  // period not known yet: latency alone
+  EXPECT_EQ(f.checkFrameAge(10.0, 0.0), 0U);
+  EXPECT_EQ(f.checkFrameAge(290.0, 200.0), 0U);  // the phase offset of free-running clocks is no fault
+  EXPECT_EQ(f.checkFrameAge(310.0, 200.0), kFaultFrameAge);
+  EXPECT_EQ(f.faultCounts()[2], 1U);  // residual
+  EXPECT_EQ(f.faultCounts()[5], 2U);  // implausible twice
+}
+
+TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
+  FdirMonitor f;
+  NavigationParams p;
+  p.fault_persistence_frames = 3;
+  f.init(p, cubeOfRadius(1.5), 1000.0);
+  NearRangeResult bad = goodNear();
+  bad.lines_used = 0;
+  NearRangeResult good = goodNear();
+  NearRangeCheck cb, cg;
+  cb.near = &bad;
+  cg.near = &good;
+  f.checkNearRange(cb);
+  f.checkNearRange(cb);
+  f.checkNearRange(cg);  // one good frame clears the run
+  f.checkNearRange(cb);
+  f.checkNearRange(cb);
+  EXPECT_FALSE(f.faultPersisted());
+  f.checkNearRange(cb);
+  EXPECT_TRUE(f.faultPersisted());
+  EXPECT_EQ(f.endFrame(), kFaultTooFewLines);
+  EXPECT_EQ(f.endFrame(), 0U);  // the active set is per frame
+}
+
+TEST(Fdir, DepthBandIsDerivedFromModelAndCameraUnlessSet) {
+  FdirMonitor f;
+  f.init(NavigationParams{}, cubeOfRadius(0.25), 800.0);  // a 0.5 m lab object, f = 800 px
+  EXPECT_DOUBLE_EQ(f.minDepthM(), 0.0);                   // the model's box is the limit
+  EXPECT_DOUBLE_EQ(f.maxDepthM(), 100.0);                 // 0.5 m spans 4 px at 100 m
+  NearRangeResult r = goodNear();
+  r.pose.t_c_m.z() = 0.6;  // the lab sequence's depth: plausible, where a fixed 1 m band flagged it
+  NearRangeCheck c;
+  c.near = &r;
+  EXPECT_EQ(f.checkNearRange(c), 0U);
+  r.pose.t_c_m.z() = 0.1;  // the camera inside the cube (half side 0.144 m)
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r.pose.t_c_m.z() = -0.6;  // behind the camera
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r.pose.t_c_m.z() = 100.5;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  r.pose.t_c_m.z() = 0.6;
+  NavigationParams p;
+  p.min_depth_m = 2.0;
+  p.max_depth_m = 50.0;
+  f.init(p, cubeOfRadius(0.25), 800.0);
+  EXPECT_DOUBLE_EQ(f.minDepthM(), 2.0);
+  EXPECT_DOUBLE_EQ(f.maxDepthM(), 50.0);
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+}
+
+// A satellite with panels (case approach_smallsat): 11 m of panels across a 1.2 m body. In front of the body
+// at 5 m the camera is well inside the 5.6 m bounding sphere and outside the target; 5 m along the panels'
+// axis it would be inside them.
+TEST(Fdir, TheLowerLimitIsTheModelsBoxNotItsBoundingSphere) {
+  const PolygonModel panelled = makeBox(5.5, 0.6, 0.6);
+  FdirMonitor f;
+  f.init(NavigationParams{}, panelled, 1000.0);
+  ASSERT_GT(panelled.boundingRadius(), 5.5);
+  Pose in_front;
+  in_front.t_c_m = Vec3(0.0, 0.0, 5.0);
+  EXPECT_FALSE(f.cameraInsideTarget(in_front));
+  NearRangeResult r = goodNear();
+  r.pose = in_front;
+  NearRangeCheck c;
+  c.near = &r;
+  EXPECT_EQ(f.checkNearRange(c), 0U);
+  // The same depth with the model turned a quarter about y: the camera looks along the panels.
+  Pose along = in_front;
+  along.R_c_m = Eigen::AngleAxisd(0.5 * kPi, Vec3::UnitY()).toRotationMatrix();
+  EXPECT_TRUE(f.cameraInsideTarget(along));
+  r.pose = along;
+  EXPECT_EQ(f.checkNearRange(c), kFaultImplausible);
+  along.t_c_m.z() = 5.6;  // just beyond the panel tip
+  EXPECT_FALSE(f.cameraInsideTarget(along));
+}
+
+TEST(Fdir, EvidenceNeedsLinesInliersResidualAndSupport) {
+  const NavigationParams p;
+  NearRangeResult r = goodNear();
+  EXPECT_TRUE(imageEvidenceGood(r, p));
+  r.lines_used = 2;  // half the measured lines
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.inlier_points = 60;
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.rms_px = 0.9;
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.scanlines = 400;  // most scanlines found nothing where the model has an edge
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  r = goodNear();
+  r.status = TrackStatus::kLost;
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+}
+
+TEST(Fdir, EvidenceNeedsAPoseCertainEnoughToBeDelivered) {
+  // Lines, inliers, residual and support all good, but the fit's own covariance is looser than a valid pose
+  // may be: it may not overrule the filter (the limits are the delivery limits, so it is read from them).
+  const NavigationParams p;
+  ASSERT_GT(p.max_valid_attitude_sigma_deg, 0.0);
+  ASSERT_GT(p.max_valid_position_sigma_rel, 0.0);
+  const double range = 10.0;
+  const auto withSigmas = [&](double attitude_deg, double position_rel) {
+    NearRangeResult r = goodNear();
+    r.pose.t_c_m = Vec3(0, 0, range);
+    // Equal per axis: sqrt(trace) = the given 1-sigma (nav_solution.hpp poseSigmas).
+    const double a = attitude_deg * kRadPerDeg;
+    const double t = position_rel * range;
+    r.covariance.topLeftCorner<3, 3>() = Mat3::Identity() * (a * a / 3.0);
+    r.covariance.bottomRightCorner<3, 3>() = Mat3::Identity() * (t * t / 3.0);
+    return r;
+  };
+  const double limit_deg = p.max_valid_attitude_sigma_deg;
+  const double limit_rel = p.max_valid_position_sigma_rel;
+  EXPECT_TRUE(imageEvidenceGood(withSigmas(0.95 * limit_deg, 0.95 * limit_rel), p));
+  EXPECT_FALSE(imageEvidenceGood(withSigmas(1.05 * limit_deg, 0.5 * limit_rel), p));
+  EXPECT_FALSE(imageEvidenceGood(withSigmas(0.5 * limit_deg, 1.05 * limit_rel), p));
+  // With the delivery limits switched off (0), so is this test.
+  NavigationParams off = p;
+  off.max_valid_attitude_sigma_deg = 0.0;
+  off.max_valid_position_sigma_rel = 0.0;
+  EXPECT_TRUE(imageEvidenceGood(withSigmas(10.0 * limit_deg, 10.0 * limit_rel), off));
+}
+
+TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
+  FdirMonitor f;
+  NavigationParams p;
+  p.fault_persistence_frames = 3;
+  f.init(p, cubeOfRadius(1.5), 1000.0);
+  NearRangeResult r = goodNear();
+  NearRangeCheck c;
+  c.near = &r;
+  c.innovation_checked = true;
+  c.innovation_accepted = false;
+  c.evidence_good = true;
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(f.checkNearRange(c), kFaultInnovation);  // flagged every frame...
+  EXPECT_FALSE(f.faultPersisted());                                               // ...never persisting
+  c.evidence_good = false;  // the same innovation on weak evidence counts
+  for (int i = 0; i < 3; ++i) f.checkNearRange(c);
+  EXPECT_TRUE(f.faultPersisted());
+}
+
+}  // namespace
+}  // namespace visnav::nav
