@@ -165,7 +165,7 @@ std::uint32_t PoseFilter::dropInsignificantRates() {
   // A rate the filter cannot tell from zero (its NIS against zero under its own covariance at most
   // restart_rate_chi2) is the noise of the last fits, and a search predicted with it drifts away from a
   // target that did not move (campaign box/129: lost at 22.4 m with 0.8 m/s and 3.4 deg/s from fits the
-  // filter had rejected, the prediction 24 m and 104 deg off 100 frames later, never found). The velocity
+  // filter had rejected, the prediction 19 m and 82 deg off 100 frames later, never found). The velocity
   // must also exceed what the start-at-rest prior covers, as in the restart (initialiseFromThree): biased
   // fits agree on a drift their covariance calls significant (campaign box/4: 7 wrong frames without this
   // test, none with it). The angular rate is not held to its prior: a 4.5 deg/s tumble the track had

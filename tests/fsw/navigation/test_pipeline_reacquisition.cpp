@@ -55,7 +55,7 @@ TEST_F(PipelineTest, ASearchCarriesOnlyTheMotionTheFilterCouldTellFromNoise) {
   // A plate held still at 15 m, tracked for three frames, then hidden: the filter leaves the track with the
   // velocity and rate its fits' noise reads, which it cannot tell from zero. The search is predicted without
   // them (reacquire_drop_insignificant_rates); with the rule off it carries them, and its prediction drifts
-  // (campaign box/129: 24 m and 104 deg off after 100 frames).
+  // (campaign box/129: 19 m and 82 deg off 100 frames into the search).
   const Pose still = test::plateAt(15.0, 0.3, 1.0, -1.0);
   const std::vector<test::RenderedFrame> seq = hiddenApproach(still, still);
   for (const bool drop : {true, false}) {

@@ -287,15 +287,16 @@ struct NavigationParams {
                "and not the twin; the find is flagged (campaign --trace). Campaign box/44 (quarter-turn "
                "twin 1.2 px apart at 14 m): tracked 0.05 -> 0.81; false: the twin always refuses"},
               reacquire_twin_continuity);
-    v.boolean({"navigation", "reacquire_drop_insignificant_rates", "-", 0, 1,
-               "when close-range reacquisition starts, the filter's velocity and angular velocity are each "
-               "set to zero unless significant ([filter] restart_rate_chi2 against their own covariance, "
-               "the velocity also against the start-at-rest prior; PoseFilter::dropInsignificantRates): "
-               "the search is predicted from the filter, and a rate read from the last noisy fits carried "
-               "the prediction away from a target that did not move (campaign box/129: 24 m and 104 deg "
-               "off after 100 frames, never found). false: the search carries the filter's rates as they "
-               "are"},
-              reacquire_drop_insignificant_rates);
+    v.boolean(
+        {"navigation", "reacquire_drop_insignificant_rates", "-", 0, 1,
+         "when close-range reacquisition starts, the filter's velocity and angular velocity are each "
+         "set to zero unless significant ([filter] restart_rate_chi2 against their own covariance, "
+         "the velocity also against the start-at-rest prior; PoseFilter::dropInsignificantRates): "
+         "the search is predicted from the filter, and a rate read from the last noisy fits carried "
+         "the prediction away from a target that did not move (campaign box/129: 19 m and 82 deg "
+         "off 100 frames into the search, never found). false: the search carries the filter's rates as they "
+         "are"},
+        reacquire_drop_insignificant_rates);
     v.boolean({"navigation", "refute_unconfirmed_cue", "-", 0, 1,
                "an acquisition that failed at far range's cue with edges there (no_candidate, not_confirmed, "
                "ambiguous) refutes that fix as one that found no edges (no_target) does: far range passes "
