@@ -23,7 +23,7 @@
 extern "C" {
 #endif
 
-#define VISNAV_ABI_VERSION 1
+#define VISNAV_ABI_VERSION 2
 
 #if defined(__GNUC__)
 #define VISNAV_API __attribute__((visibility("default")))
@@ -82,7 +82,13 @@ typedef struct visnav_solution {
   uint32_t track_flags;     /**< near-range TrackFlag bits (fsw/nearrange), 0 outside near range */
   uint32_t fault_bits;      /**< FDIR fault bits of this frame (visnav_fault_name) */
   int32_t pose_valid;       /**< 1: the 6-DOF pose below is reported (near range, acquisition's first) */
-  double quality;           /**< [0, 1] */
+  int32_t symmetric_twins;  /**< with pose_valid: other attitudes the image cannot tell from it at this range
+                                 (the model's symmetries, near twins under [acquisition]
+                                 near_twin_min_separation_px); 0: unique. The pose is the twin continuous with
+                                 the track (ABI 2) */
+  int32_t twin_by_continuity; /**< 1: an acquisition chose this pose among such near twins by continuity
+                                   with the track lost before (ABI 2) */
+  double quality;             /**< [0, 1] */
   /* 6-DOF pose T_c_m: model (target) frame -> camera frame, through the Kalman filter. */
   double position_m[3];  /**< t_c_m: target origin in the camera frame [m] */
   double quaternion[4];  /**< q_c_m as w, x, y, z with w >= 0 */

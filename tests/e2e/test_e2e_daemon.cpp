@@ -149,7 +149,7 @@ TEST(EndToEnd, MonitorReceivesEverySampleAndScoresLikeReplay) {
   int pose_rows = 0;
   int far_rows = 0;
   for (std::size_t i = 0; i < static_cast<std::size_t>(kFrames); ++i) {
-    for (const char* column : {"frame", "timestamp_ns", "mode"})
+    for (const char* column : {"frame", "timestamp_ns", "mode", "symmetric_twins", "twin_by_continuity"})
       EXPECT_EQ(pose.at(i, column), replay.at(i, column)) << "frame " << i << " column " << column;
     if (!replay.at(i, "x_m").empty()) {  // replay leaves the pose empty when there is none
       ++pose_rows;

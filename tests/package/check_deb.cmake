@@ -7,7 +7,7 @@
 # no build-machine path), libvisnav-idl.a, the pkg-config and CMake files, the ROS 2 message package. The
 # packages stay in BUILD_DIR/package_test for the tests that need them (fixture visnav_debs: dev client,
 # lintian).
-# -DBUILD_DIR=... -DARCH=amd64 -DVERSION=x.y.z -DSOURCE_DIR=... [-DCAPI_PACKAGE=libvisnav1]
+# -DBUILD_DIR=... -DARCH=amd64 -DVERSION=x.y.z -DSOURCE_DIR=... [-DCAPI_PACKAGE=libvisnav2]
 set(work ${BUILD_DIR}/package_test)
 file(REMOVE_RECURSE ${work})
 file(MAKE_DIRECTORY ${work})

@@ -2,9 +2,9 @@
  * `mkoctfile --mex` on Octave (the same mex.h API MATLAB's `mex` compiles). Visnav.m wraps it; README.md
  * describes the calls:
  *   h   = visnav_mex('create', config, camera, model)       % '' for the built-in config / the config's files
- *   sol = visnav_mex('step', h, image, exposure_time_ns)     % image: height x width uint8 or uint16 (bit depth
- *   sol = visnav_mex('step', h, image, t_ns, bit_depth)      %  8 / 16 unless given), [] for no frame
- *   ack = visnav_mex('command', h, kind, command_id)         % kind: 'force_far_range' 'reacquire' 'standby'
+ *   sol = visnav_mex('step', h, image, exposure_time_ns)     % image: height x width uint8 or uint16 (bit
+ * depth sol = visnav_mex('step', h, image, t_ns, bit_depth)      %  8 / 16 unless given), [] for no frame ack
+ * = visnav_mex('command', h, kind, command_id)         % kind: 'force_far_range' 'reacquire' 'standby'
  *         visnav_mex('start_near_range', h, position_m, quaternion_wxyz)   % 'resume' (or 0..3)
  *         visnav_mex('timing', h, on)
  *         visnav_mex('destroy', h)
@@ -53,7 +53,8 @@ static mex_handle* lookup(const mxArray* id_array) {
     mexErrMsgIdAndTxt("visnav:handle", "visnav_mex: the handle must be the scalar 'create' returned");
   id = mxGetScalar(id_array);
   slot = (int)id - 1;
-  if (id != (double)(slot + 1) || slot < 0 || slot >= VISNAV_MEX_MAX_HANDLES || g_handles[slot].handle == NULL)
+  if (id != (double)(slot + 1) || slot < 0 || slot >= VISNAV_MEX_MAX_HANDLES ||
+      g_handles[slot].handle == NULL)
     mexErrMsgIdAndTxt("visnav:handle", "visnav_mex: %g is not a live visnav handle", id);
   return &g_handles[slot];
 }
@@ -106,19 +107,54 @@ static void setInt64(mxArray* s, const char* field, int64_t value) {
   mxSetField(s, 0, field, a);
 }
 
-static const char* const kSolutionFields[] = {
-    "cycle_number",   "frame_number",     "exposure_time_ns",  "frame_received",
-    "mode",           "mode_name",        "track_status",      "track_status_name",
-    "track_flags",    "fault_bits",       "fault_names",       "pose_valid",
-    "quality",        "position_m",       "quaternion",        "ypr_rad",
-    "covariance",     "far_valid",        "far_direction_c",   "far_azimuth_rad",
-    "far_elevation_rad", "far_distance_m", "far_cluster_pixels", "far_circularity",
-    "far_cluster_count", "far_quality",   "tracked_surfaces",  "tracked_surface_mask",
-    "lines_total",    "lines_used",       "edge_points",       "inlier_points",
-    "texture_points", "vertices",         "rms_px",            "lm_iterations",
-    "nis_valid",      "nis",              "filter_valid",      "velocity_c_m_s",
-    "angular_velocity_c_rad_s", "t_project_us", "t_scan_us",   "t_ransac_us",
-    "t_pose_us",      "t_process_us"};
+static const char* const kSolutionFields[] = {"cycle_number",
+                                              "frame_number",
+                                              "exposure_time_ns",
+                                              "frame_received",
+                                              "mode",
+                                              "mode_name",
+                                              "track_status",
+                                              "track_status_name",
+                                              "track_flags",
+                                              "fault_bits",
+                                              "fault_names",
+                                              "pose_valid",
+                                              "quality",
+                                              "position_m",
+                                              "quaternion",
+                                              "ypr_rad",
+                                              "covariance",
+                                              "far_valid",
+                                              "far_direction_c",
+                                              "far_azimuth_rad",
+                                              "far_elevation_rad",
+                                              "far_distance_m",
+                                              "far_cluster_pixels",
+                                              "far_circularity",
+                                              "far_cluster_count",
+                                              "far_quality",
+                                              "tracked_surfaces",
+                                              "tracked_surface_mask",
+                                              "lines_total",
+                                              "lines_used",
+                                              "edge_points",
+                                              "inlier_points",
+                                              "texture_points",
+                                              "vertices",
+                                              "rms_px",
+                                              "lm_iterations",
+                                              "nis_valid",
+                                              "nis",
+                                              "filter_valid",
+                                              "velocity_c_m_s",
+                                              "angular_velocity_c_rad_s",
+                                              "t_project_us",
+                                              "t_scan_us",
+                                              "t_ransac_us",
+                                              "t_pose_us",
+                                              "t_process_us",
+                                              "symmetric_twins",
+                                              "twin_by_continuity"};
 
 static mxArray* solutionStruct(const visnav_solution* s) {
   const int n = (int)(sizeof(kSolutionFields) / sizeof(kSolutionFields[0]));
@@ -129,7 +165,8 @@ static mxArray* solutionStruct(const visnav_solution* s) {
   names[0] = '\0';
   for (bit = 0; bit < 32; ++bit) {
     if ((s->fault_bits & (1U << bit)) != 0U) {
-      int w = snprintf(names + used, sizeof(names) - used, "%s%s", used > 0 ? "," : "", visnav_fault_name(bit));
+      int w =
+          snprintf(names + used, sizeof(names) - used, "%s%s", used > 0 ? "," : "", visnav_fault_name(bit));
       if (w > 0 && (size_t)w < sizeof(names) - used) used += (size_t)w;
     }
   }
@@ -145,6 +182,8 @@ static mxArray* solutionStruct(const visnav_solution* s) {
   setNumber(out, "fault_bits", s->fault_bits);
   mxSetField(out, 0, "fault_names", mxCreateString(names));
   setNumber(out, "pose_valid", s->pose_valid);
+  setNumber(out, "symmetric_twins", s->symmetric_twins);
+  setNumber(out, "twin_by_continuity", s->twin_by_continuity);
   setNumber(out, "quality", s->quality);
   setVector(out, "position_m", s->position_m, 3, 1, 0);
   setVector(out, "quaternion", s->quaternion, 4, 1, 0);
@@ -187,19 +226,22 @@ static void doCreate(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[])
   visnav_handle* handle = NULL;
   int slot, rc;
   int32_t width = 0, height = 0;
-  if (nrhs != 4 || nlhs > 1) mexErrMsgIdAndTxt("visnav:usage", "usage: h = visnav_mex('create', config, camera, model)");
+  if (nrhs != 4 || nlhs > 1)
+    mexErrMsgIdAndTxt("visnav:usage", "usage: h = visnav_mex('create', config, camera, model)");
   if (visnav_abi_version() != VISNAV_ABI_VERSION)
-    mexErrMsgIdAndTxt("visnav:abi", "visnav_mex: built for ABI %d but libvisnav has ABI %d", VISNAV_ABI_VERSION,
-                      visnav_abi_version());
+    mexErrMsgIdAndTxt("visnav:abi", "visnav_mex: built for ABI %d but libvisnav has ABI %d",
+                      VISNAV_ABI_VERSION, visnav_abi_version());
   textArg(prhs[1], config, sizeof(config), "config");
   textArg(prhs[2], camera, sizeof(camera), "camera");
   textArg(prhs[3], model, sizeof(model), "model");
   for (slot = 0; slot < VISNAV_MEX_MAX_HANDLES && g_handles[slot].handle != NULL; ++slot) {
   }
   if (slot == VISNAV_MEX_MAX_HANDLES)
-    mexErrMsgIdAndTxt("visnav:handles", "visnav_mex: %d handles live; destroy one first", VISNAV_MEX_MAX_HANDLES);
+    mexErrMsgIdAndTxt("visnav:handles", "visnav_mex: %d handles live; destroy one first",
+                      VISNAV_MEX_MAX_HANDLES);
   rc = visnav_create(config, camera, model, &handle, err, sizeof(err));
-  if (rc != VISNAV_OK) mexErrMsgIdAndTxt("visnav:create", "visnav_create: %s: %s", visnav_status_text(rc), err);
+  if (rc != VISNAV_OK)
+    mexErrMsgIdAndTxt("visnav:create", "visnav_create: %s: %s", visnav_status_text(rc), err);
   visnav_image_size(handle, &width, &height);
   g_handles[slot].buffer = (uint16_t*)malloc((size_t)width * (size_t)height * sizeof(uint16_t));
   if (g_handles[slot].buffer == NULL) {
@@ -223,7 +265,8 @@ static void doStep(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   int bit_depth, rc;
   visnav_solution sol;
   if ((nrhs != 4 && nrhs != 5) || nlhs > 1)
-    mexErrMsgIdAndTxt("visnav:usage", "usage: sol = visnav_mex('step', h, image, exposure_time_ns [, bit_depth])");
+    mexErrMsgIdAndTxt("visnav:usage",
+                      "usage: sol = visnav_mex('step', h, image, exposure_time_ns [, bit_depth])");
   m = lookup(prhs[1]);
   image = prhs[2];
   t_ns = timeArg(prhs[3]);
@@ -257,7 +300,8 @@ static void doStep(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
     }
   }
   if (rc != VISNAV_OK)
-    mexErrMsgIdAndTxt("visnav:step", "visnav_step: %s: %s", visnav_status_text(rc), visnav_last_error(m->handle));
+    mexErrMsgIdAndTxt("visnav:step", "visnav_step: %s: %s", visnav_status_text(rc),
+                      visnav_last_error(m->handle));
   plhs[0] = solutionStruct(&sol);
 }
 
@@ -279,14 +323,16 @@ static void doCommand(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]
   int kind, rc;
   uint32_t id;
   mxArray* out;
-  if (nrhs != 4 || nlhs > 1) mexErrMsgIdAndTxt("visnav:usage", "usage: ack = visnav_mex('command', h, kind, command_id)");
+  if (nrhs != 4 || nlhs > 1)
+    mexErrMsgIdAndTxt("visnav:usage", "usage: ack = visnav_mex('command', h, kind, command_id)");
   m = lookup(prhs[1]);
   kind = commandKind(prhs[2]);
   id = (uint32_t)scalarArg(prhs[3], "command_id");
   memset(&ack, 0, sizeof(ack));
   rc = visnav_command(m->handle, kind, id, &ack);
   if (rc != VISNAV_OK && rc != VISNAV_ERROR_REJECTED)
-    mexErrMsgIdAndTxt("visnav:command", "visnav_command: %s: %s", visnav_status_text(rc), visnav_last_error(m->handle));
+    mexErrMsgIdAndTxt("visnav:command", "visnav_command: %s: %s", visnav_status_text(rc),
+                      visnav_last_error(m->handle));
   out = mxCreateStructMatrix(1, 1, 4, (const char**)fields);
   setNumber(out, "accepted", ack.accepted);
   setNumber(out, "command_id", ack.command_id);
@@ -300,7 +346,8 @@ static void doStartNearRange(int nrhs, const mxArray* prhs[]) {
   int rc;
   if (nrhs != 4 || !mxIsDouble(prhs[2]) || !mxIsDouble(prhs[3]) || mxGetNumberOfElements(prhs[2]) != 3 ||
       mxGetNumberOfElements(prhs[3]) != 4)
-    mexErrMsgIdAndTxt("visnav:usage", "usage: visnav_mex('start_near_range', h, position_m(3), quaternion_wxyz(4))");
+    mexErrMsgIdAndTxt("visnav:usage",
+                      "usage: visnav_mex('start_near_range', h, position_m(3), quaternion_wxyz(4))");
   m = lookup(prhs[1]);
   rc = visnav_start_near_range(m->handle, mxGetPr(prhs[2]), mxGetPr(prhs[3]));
   if (rc != VISNAV_OK)
@@ -319,7 +366,9 @@ static void doDestroy(int nrhs, const mxArray* prhs[]) {
 void mexFunction(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   char verb[32];
   if (nrhs < 1 || !mxIsChar(prhs[0]) || mxGetString(prhs[0], verb, sizeof(verb)) != 0)
-    mexErrMsgIdAndTxt("visnav:usage", "usage: visnav_mex('create'|'step'|'command'|'start_near_range'|'timing'|'destroy'|'version', ...)");
+    mexErrMsgIdAndTxt(
+        "visnav:usage",
+        "usage: visnav_mex('create'|'step'|'command'|'start_near_range'|'timing'|'destroy'|'version', ...)");
   if (strcmp(verb, "create") == 0) {
     doCreate(nlhs, plhs, nrhs, prhs);
   } else if (strcmp(verb, "step") == 0) {

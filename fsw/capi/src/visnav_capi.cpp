@@ -68,6 +68,8 @@ void fill(const visnav_handle& h, const visnav::nav::NavSolution& sol, visnav_so
   out.fault_bits = sol.fault_bits;
   out.quality = sol.quality;
   out.pose_valid = sol.pose_valid ? 1 : 0;
+  out.symmetric_twins = sol.symmetric_twins;
+  out.twin_by_continuity = sol.twin_by_continuity ? 1 : 0;
   if (sol.pose_valid) {
     Eigen::Quaterniond q = sol.pose.quaternion();
     if (q.w() < 0.0) q.coeffs() *= -1.0;  // CONVENTIONS.md: w >= 0

@@ -121,6 +121,14 @@ void ModelSymmetries::findNear(const PolygonModel& model, double max_rel) {
   });
 }
 
+int ModelSymmetries::indistinguishableTwins(double px_per_m, double min_separation_px) const {
+  int twins = m_count > 0 ? m_count - 1 : 0;
+  if (!(min_separation_px > 0.0) || !(px_per_m > 0.0)) return twins;
+  for (int i = 0; i < m_near_count; ++i)
+    if (m_near_separation_m[static_cast<std::size_t>(i)] * px_per_m < min_separation_px) ++twins;
+  return twins;
+}
+
 Pose ModelSymmetries::nearTwin(const Pose& pose, int i) const {
   const Mat3& s = m_near[static_cast<std::size_t>(i)];
   Pose twin;

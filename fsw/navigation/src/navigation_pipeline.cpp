@@ -68,6 +68,17 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_fdir.resetPersistence();
 }
 
+void NavigationPipeline::flagTwins(NavSolution& out) const {
+  // The "flag the ambiguity": the track keeps the twin continuous with it (acquisition, reacquisition
+  // and the tracker all do), and the user is told how many others the image would have accepted.
+  const double depth_m = out.pose.t_c_m.z();
+  out.symmetric_twins = m_acquisition.symmetries().indistinguishableTwins(
+      depth_m > 0.0 ? m_camera.intrinsics().fx_px / depth_m : 0.0,
+      m_params.acquisition.near_twin_min_separation_px);
+  out.twin_by_continuity =
+      m_acquisition_result.twin_resolved_by_continuity || m_reacquisition_step.twin_by_continuity;
+}
+
 bool NavigationPipeline::centreInImage(const Pose& pose) const {
   Vec2 px;
   if (!m_camera.project(pose.t_c_m, px)) return false;
@@ -374,6 +385,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   if (out.pose_valid) {
     m_last_valid_pose = out.pose;
     m_frames_since_valid = 0;
+    flagTwins(out);
   } else if (m_frames_since_valid != ~0ULL) {
     ++m_frames_since_valid;
   }

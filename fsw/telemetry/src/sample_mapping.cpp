@@ -1,5 +1,6 @@
 #include "visnav/telemetry/sample_mapping.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -80,6 +81,8 @@ void fillPoseEstimate(const nav::NavSolution& nav, std::uint64_t sample_number, 
   out.tracked_surfaces = clampCount(nav.tracked_surfaces);
   out.lines_used = clampCount(nav.lines_used);
   out.lines_total = clampCount(nav.lines_total);
+  out.symmetric_twins = static_cast<std::uint8_t>(std::clamp(nav.symmetric_twins, 0, 255));
+  out.twin_by_continuity = nav.twin_by_continuity;
 }
 
 void fillFarRangeEstimate(const nav::NavSolution& nav, std::uint64_t sample_number,

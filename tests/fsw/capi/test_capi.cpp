@@ -185,6 +185,8 @@ TEST(CApi, SameNumbersAsThePipelineBitForBitThroughEveryMode) {
     ASSERT_EQ(sol.frame_number, ref.frame_number);
     ASSERT_EQ(sol.fault_bits, ref.fault_bits);
     ASSERT_EQ(sol.pose_valid, ref.pose_valid ? 1 : 0);
+    ASSERT_EQ(sol.symmetric_twins, ref.symmetric_twins);
+    ASSERT_EQ(sol.twin_by_continuity, ref.twin_by_continuity ? 1 : 0);
     ASSERT_EQ(sol.quality, ref.quality);  // exact: same code, same inputs
     ASSERT_EQ(sol.far_valid, ref.far.valid ? 1 : 0);
     ASSERT_EQ(sol.far_distance_m, ref.far.distance_m);

@@ -96,6 +96,29 @@ TEST(ModelSymmetries, ANearTwinsSeparationIsHowFarItMovesTheVertices) {
   EXPECT_NEAR(smallest, std::sqrt(2.0) * 0.011, 1e-9);
 }
 
+TEST(ModelSymmetries, IndistinguishableTwinsAreTheSymmetriesAndTheNearTwinsTooCloseToSee) {
+  // The near cube's closest twin moves its vertices sqrt(2) x 0.011 m = 15.6 mm: 0.73 px at 26 m with
+  // f 1215 px (under 2 px: one more twin), 3.2 px at 6 m (told apart). Its 4 half turns give 3 exact twins.
+  const PolygonModel near_cube = makeBox(0.615, 0.585, 0.574);
+  const ModelSymmetries s = nearCubeSymmetries(near_cube);
+  ASSERT_EQ(s.size(), 4);
+  EXPECT_EQ(s.indistinguishableTwins(1215.0 / 6.0, 2.0), 3);
+  const int far_twins = s.indistinguishableTwins(1215.0 / 26.0, 2.0);
+  EXPECT_GT(far_twins, 3);
+  EXPECT_LE(far_twins, 3 + s.nearCount());
+  EXPECT_EQ(s.indistinguishableTwins(1215.0 / 26.0, 0.0), 3) << "no separation limit: exact ones only";
+  EXPECT_EQ(s.indistinguishableTwins(1e-9, 2.0), 3 + s.nearCount()) << "a point: every near twin";
+  // A square plate: three quarter turns about its normal show the same image at any range.
+  ModelSymmetries square;
+  square.find(makeRectanglePlate(2.0, 2.0));
+  EXPECT_EQ(square.indistinguishableTwins(100.0, 2.0), 3);
+  // An asymmetric-looking rectangle plate: only its half turn.
+  ModelSymmetries rectangle;
+  rectangle.find(makeRectanglePlate(2.3, 1.8));
+  EXPECT_EQ(rectangle.indistinguishableTwins(100.0, 2.0), 1);
+  EXPECT_EQ(ModelSymmetries{}.indistinguishableTwins(100.0, 2.0), 0) << "nothing found: unique";
+}
+
 TEST(ModelSymmetries, ANearTwinKeepsTheCentroidInPlaceAndItsVerticesClose) {
   // A model whose origin is off its centroid: the twin turns about the centroid, not the origin.
   PolygonModel box = makeBox(0.615, 0.585, 0.574);

@@ -32,7 +32,11 @@ TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
   EXPECT_EQ(pipeline.mode(), NavMode::kNearRange);
   EXPECT_EQ(pipeline.modes().transitionCount(), 2U);  // far -> acquisition -> near, no chatter
   ASSERT_TRUE(out.pose_valid);
-  // The plate is 2-fold symmetric about its normal: compare with the nearer twin of the truth.
+  // The plate is 2-fold symmetric about its normal: the image cannot tell one twin from the other, and
+  // telemetry says so; no lost track chose between them.
+  EXPECT_EQ(out.symmetric_twins, 1);
+  EXPECT_FALSE(out.twin_by_continuity);
+  // Compare with the nearer twin of the truth.
   const Pose truth = frames.back().truth;
   Pose twin = truth;
   twin.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitZ()).toRotationMatrix();
@@ -297,6 +301,7 @@ TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
       const Frame f = frameAt(i);
       ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
       if (out.pose_valid) ++valid;
+      EXPECT_EQ(out.symmetric_twins, out.pose_valid ? 1 : 0) << "flagged only with a pose to flag";
       EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "limit " << limit_deg << " frame " << i;
     }
     const double sigma_deg = std::sqrt(out.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;

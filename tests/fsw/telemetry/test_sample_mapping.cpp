@@ -51,6 +51,8 @@ TEST(SampleMapping, PoseEstimateEveryField) {
   EXPECT_EQ(s.tracked_surfaces, 1U);
   EXPECT_EQ(s.lines_used, 5U);
   EXPECT_EQ(s.lines_total, 9U);
+  EXPECT_EQ(s.symmetric_twins, 1U);
+  EXPECT_TRUE(s.twin_by_continuity);
 }
 
 TEST(SampleMapping, TrackStatusFollowsPoseFaultsAndMode) {
@@ -72,6 +74,14 @@ TEST(SampleMapping, CountsAreClampedToTheFieldRange) {
   fillPoseEstimate(nav, 1, 0, s);
   EXPECT_EQ(s.lines_total, 65535U);
   EXPECT_EQ(s.lines_used, 0U);
+  nav.symmetric_twins = 300;  // more than a uint8 holds
+  nav.twin_by_continuity = true;
+  fillPoseEstimate(nav, 1, 0, s);
+  EXPECT_EQ(s.symmetric_twins, 255U);
+  EXPECT_TRUE(s.twin_by_continuity);
+  nav.symmetric_twins = -1;
+  fillPoseEstimate(nav, 1, 0, s);
+  EXPECT_EQ(s.symmetric_twins, 0U);
 }
 
 TEST(SampleMapping, FarRangeEstimateEveryField) {

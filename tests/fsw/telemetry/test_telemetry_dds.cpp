@@ -120,6 +120,8 @@ TEST_F(TelemetryDds, PoseAndFarRangeRoundTripFieldByField) {
     EXPECT_EQ(p.tracked_surfaces, n.tracked_surfaces);
     EXPECT_EQ(p.lines_used, n.lines_used);
     EXPECT_EQ(p.lines_total, n.lines_total);
+    EXPECT_EQ(p.symmetric_twins, n.symmetric_twins);
+    EXPECT_EQ(p.twin_by_continuity, n.twin_by_continuity);
 
     const visnav_FarRangeEstimate& f = fars[i - 1];
     EXPECT_EQ(f.sample_number, i);

@@ -44,7 +44,7 @@ function test_visnav_mex(sequence_dir, config, out_csv)
   fputs(out, [',tracked_surfaces,surface_mask,lines_total,lines_used,edge_points,inlier_points,texture_points,' ...
               'vertices,rms_px,lm_iterations,t_project_us,t_scan_us,t_ransac_us,t_pose_us,t_total_us,' ...
               'fault_bits,far_valid,far_azimuth_deg,far_elevation_deg,far_distance_m,far_cluster_px,far_circularity,' ...
-              'far_clusters,nis' "\n"]);
+              'far_clusters,nis,symmetric_twins,twin_by_continuity' "\n"]);
   deg = 180 / pi;
   modes = zeros(1, 4);
   for k = 1:numel(frames)
@@ -79,7 +79,7 @@ function test_visnav_mex(sequence_dir, config, out_csv)
     if sol.nis_valid
       fprintf(out, '%.6g', sol.nis);
     end
-    fputs(out, "\n");
+    fprintf(out, ',%d,%d\n', sol.symmetric_twins, sol.twin_by_continuity);
   end
   fclose(out);
 

@@ -52,9 +52,12 @@ void drawView(std::FILE* out, const MonitorOptions& options, const LatestSamples
                  static_cast<unsigned long long>(p.frame_number), p.quality, faultList(p.fault_bits).c_str());
     std::fprintf(out, "position t_c_m [m]   x %9.4f  y %9.4f  z %9.4f\n", p.position_m[0], p.position_m[1],
                  p.position_m[2]);
-    std::fprintf(out, "attitude [deg]       yaw %8.3f  pitch %8.3f  roll %8.3f   surfaces %u lines %u/%u\n",
-                 p.yaw_rad * kDegPerRad, p.pitch_rad * kDegPerRad, p.roll_rad * kDegPerRad,
-                 p.tracked_surfaces, p.lines_used, p.lines_total);
+    std::fprintf(
+        out,
+        "attitude [deg]       yaw %8.3f  pitch %8.3f  roll %8.3f   surfaces %u lines %u/%u  twins %u%s\n",
+        p.yaw_rad * kDegPerRad, p.pitch_rad * kDegPerRad, p.roll_rad * kDegPerRad, p.tracked_surfaces,
+        p.lines_used, p.lines_total, p.symmetric_twins,
+        p.twin_by_continuity ? " (chosen by continuity)" : "");
   } else {
     std::fputs("no PoseEstimate yet\n\n\n", out);
   }

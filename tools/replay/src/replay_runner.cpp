@@ -30,7 +30,7 @@ void writeHeader(std::FILE* f) {
       ",tracked_surfaces,surface_mask,lines_total,lines_used,edge_points,inlier_points,texture_points,"
       "vertices,rms_px,lm_iterations,t_project_us,t_scan_us,t_ransac_us,t_pose_us,t_total_us,"
       "fault_bits,far_valid,far_azimuth_deg,far_elevation_deg,far_distance_m,far_cluster_px,far_circularity,"
-      "far_clusters,nis\n",
+      "far_clusters,nis,symmetric_twins,twin_by_continuity\n",
       f);
 }
 
@@ -74,7 +74,7 @@ void writeRow(std::FILE* f, std::int64_t frame, std::int64_t timestamp_ns, const
                far.cluster_pixels, far.circularity, far.cluster_count);
   // The filter's NIS for this frame's 6-DOF update (empty when there was none): what its gate judged.
   if (pose_update.status == Status::kOk && pose_update.dof == 6) std::fprintf(f, "%.6g", pose_update.nis);
-  std::fputc('\n', f);
+  std::fprintf(f, ",%d,%d\n", sol.symmetric_twins, sol.twin_by_continuity ? 1 : 0);
 }
 
 void drawProgress(int done, int total, const ReplaySummary& s) {

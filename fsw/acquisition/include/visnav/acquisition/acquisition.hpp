@@ -106,6 +106,8 @@ class Acquisition {
   Status step(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
 
   AcquisitionState state() const { return m_state; }
+  /// The model's symmetries and near twins (within near_twin_max_rel), found at init.
+  const ModelSymmetries& symmetries() const { return m_symmetries; }
   /// The best distinct coarse hypotheses so far, best first (debug view for tests and tools).
   const BoundedBuffer<AcquisitionCandidate>& candidates() const { return m_candidates; }
   /// The refined candidates the tracker checked, best first (debug view).

@@ -71,6 +71,11 @@ class ModelSymmetries {
   /// How far near(i) moves the model's vertices [m]: the largest distance of a turned vertex from the
   /// nearest vertex of the model (what an image has to tell the two poses apart by).
   double nearSeparationM(int i) const { return m_near_separation_m[static_cast<std::size_t>(i)]; }
+  /// Other attitudes an image at `px_per_m` (focal length over depth) cannot tell from a pose's: the
+  /// model's symmetries besides the identity, plus the near twins that move its vertices less than
+  /// `min_separation_px` there (none when it is <= 0). 0: the attitude is unique. What telemetry flags as
+  /// ambiguity (PoseEstimate.symmetric_twins); the pose reported is the one continuous with the track.
+  int indistinguishableTwins(double px_per_m, double min_separation_px) const;
   /// The pose that shows the model turned by near(i) about its centroid in place of `pose`:
   /// R S and t + R c - R S c, so the centroid stays where it was.
   Pose nearTwin(const Pose& pose, int i) const;

@@ -67,6 +67,13 @@ struct NavSolution {
   int tracked_surfaces = 0;
   int lines_used = 0;
   int lines_total = 0;
+  /// With a valid pose: other attitudes the image cannot tell from it at this range (the model's exact
+  /// symmetries, and its near twins closer than [acquisition] near_twin_min_separation_px). 0: unique. The
+  /// pose reported is the one continuous with the track; the ambiguity is flagged, not resolved.
+  int symmetric_twins = 0;
+  /// This frame's pose came from an acquisition that chose between near twins the image could not tell
+  /// apart by their continuity with a track lost a few frames before (AcquisitionResult).
+  bool twin_by_continuity = false;
   FarRangeSolution far;
   std::uint32_t fault_bits = 0;  ///< FaultBit set this frame
   StageTimes timing;

@@ -96,6 +96,8 @@ class NavigationPipeline {
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
+  /// Fills out.symmetric_twins and out.twin_by_continuity for a valid pose.
+  void flagTwins(NavSolution& out) const;
 
   PinholeCamera m_camera;
   PipelineParams m_params;

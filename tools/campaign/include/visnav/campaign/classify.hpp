@@ -61,6 +61,7 @@ struct FrameOutcome {
   int lines_used = 0;
   int lines_total = 0;
   bool reacquired = false;  ///< the candidate came from close-range reacquisition
+  int symmetric_twins = 0;  ///< NavSolution::symmetric_twins: attitudes the image cannot tell apart (valid)
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
