@@ -18,6 +18,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
               frames whose tracker flags have none of --rival-flags, or an acquisition / reacquisition
               confirmation (unless --no-confirmed-sources)
+  view        a candidate that showed no face of the model within [navigation] max_valid_view_angle_deg
+              (frames.csv column shows_face, as the pipeline judged it; --no-view-gate ignores it)
   --max-nis   (not shipped) withhold frames whose filter NIS exceeds this
 
 Prints tracked mean and confidently wrong frames (scenes) per family, as visnav-campaign defines them.
@@ -46,6 +48,7 @@ def parse_args(argv):
     p.add_argument('--no-confirmed-sources', action='store_true')
     p.add_argument('--break-after', type=int, default=1)
     p.add_argument('--max-nis', type=float, default=0.0)
+    p.add_argument('--no-view-gate', action='store_true')
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -71,6 +74,8 @@ def replay_scene(rows, a):
                 and float(r['attitude_sigma_deg']) <= a.doubted_attitude_sigma_deg):
             track_doubted = False
         if certain and a.max_nis > 0 and r['nis'] and float(r['nis']) > a.max_nis:
+            certain = False
+        if certain and not a.no_view_gate and r.get('shows_face', '1') == '0':
             certain = False
         valid = certain
         if a.branch_confirm_frames > 0:

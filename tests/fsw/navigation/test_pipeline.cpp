@@ -312,6 +312,31 @@ TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   }
 }
 
+TEST_F(PipelineTest, APoseShowingNoSurfaceNearFacingIsTrackedButNotValid) {
+  // The plate's face turns 1.2-1.7 deg from the line of sight to its centre here (yaw 1, pitch -1 deg, 0.1 m
+  // off the axis). Limits of 80 deg (edge-on only), 0.5 deg (under that angle: the plate counts as turned
+  // away on every frame) and the check off, on the same ten frames. The covariance limit is off: this plate
+  // at 26 m is near it (the test above).
+  for (const double limit_deg : {80.0, 0.5, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.max_valid_view_angle_deg = limit_deg;
+    p.navigation.max_valid_attitude_sigma_deg = 0.0;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    NavSolution out;
+    int valid = 0;
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameAt(i);
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (out.pose_valid) ++valid;
+      EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "limit " << limit_deg << " frame " << i;
+    }
+    EXPECT_EQ(valid, limit_deg == 0.5 ? 0 : 10) << "limit " << limit_deg;
+    EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, limit " << limit_deg;
+  }
+}
+
 TEST_F(PipelineTest, CycleNumbersAreMonotonicAndFrameNumbersAreTheCameras) {
   // Camera sequence 0, 1, (no frame), (no frame), 4 (2 and 3 dropped by the camera), 5.
   NavigationPipeline pipeline;

@@ -191,6 +191,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.lines_total = pipeline->lastNearRange().lines_total;
     f.reacquired = pipeline->lastReacquisition().found;
     f.symmetric_twins = sol.symmetric_twins;
+    f.shows_face = pipeline->lastPoseShowedAFace();
     const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
     if (u.status == Status::kOk && u.dof == 6) {
       f.has_nis = true;

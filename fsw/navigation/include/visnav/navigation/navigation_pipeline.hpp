@@ -70,6 +70,9 @@ class NavigationPipeline {
   const ReacquisitionStep& lastReacquisition() const { return m_reacquisition_step; }
   /// The acquisition mode's step of the last frame (state kIdle when the frame was not in that mode).
   const acq::AcquisitionResult& lastAcquisition() const { return m_acquisition_result; }
+  /// Whether this frame's 6-DOF pose, delivered or withheld, showed a face (max_valid_view_angle_deg); true
+  /// when there was none. For the campaign's offline gate replay.
+  bool lastPoseShowedAFace() const { return m_pose_showed_face; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -96,11 +99,15 @@ class NavigationPipeline {
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
+  /// Some surface of the model faces the camera within [navigation] max_valid_view_angle_deg on `pose`.
+  bool showsAFace(const Pose& pose) const;
   /// Fills out.symmetric_twins and out.twin_by_continuity for a valid pose.
   void flagTwins(NavSolution& out) const;
 
   PinholeCamera m_camera;
   PipelineParams m_params;
+  double m_max_view_cos = 1.0;     ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
+  bool m_pose_showed_face = true;  ///< lastPoseShowedAFace()
   MonotonicClockNs m_clock = nullptr;
   ModeManager m_modes;
   FdirMonitor m_fdir;

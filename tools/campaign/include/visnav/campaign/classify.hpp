@@ -62,6 +62,7 @@ struct FrameOutcome {
   int lines_total = 0;
   bool reacquired = false;  ///< the candidate came from close-range reacquisition
   int symmetric_twins = 0;  ///< NavSolution::symmetric_twins: attitudes the image cannot tell apart (valid)
+  bool shows_face = true;   ///< the candidate showed a face (NavigationPipeline::lastPoseShowedAFace)
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
