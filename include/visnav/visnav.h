@@ -86,8 +86,9 @@ typedef struct visnav_solution {
                                  (the model's symmetries, near twins under [acquisition]
                                  near_twin_min_separation_px); 0: unique. The pose is the twin continuous with
                                  the track (ABI 2) */
-  int32_t twin_by_continuity; /**< 1: an acquisition chose this pose among such near twins by continuity
-                                   with the track lost before (ABI 2) */
+  int32_t twin_by_continuity; /**< 1 (with pose_valid): this pose's track began with an acquisition that
+                                   chose among such near twins by continuity with the track lost before
+                                   (ABI 2) */
   double quality;             /**< [0, 1] */
   /* 6-DOF pose T_c_m: model (target) frame -> camera frame, through the Kalman filter. */
   double position_m[3];  /**< t_c_m: target origin in the camera frame [m] */

@@ -49,6 +49,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_delivered = {};  // given, not measured on a frame
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
+  m_track_twin_by_continuity = false;
   m_filter.reset();
   // The given pose starts the filter (start_pose_sigma_*): the first measurements are checked against it.
   // Without it an ambiguous first fit (which never starts a track) left the filter empty and the prediction
@@ -78,8 +79,7 @@ void NavigationPipeline::flagTwins(NavSolution& out) const {
   out.symmetric_twins = m_acquisition.symmetries().indistinguishableTwins(
       depth_m > 0.0 ? m_camera.intrinsics().fx_px / depth_m : 0.0,
       m_params.acquisition.near_twin_min_separation_px);
-  out.twin_by_continuity =
-      m_acquisition_result.twin_resolved_by_continuity || m_reacquisition_step.twin_by_continuity;
+  out.twin_by_continuity = m_track_twin_by_continuity;
 }
 
 bool NavigationPipeline::showsAFace(const Pose& pose) const {
@@ -172,6 +172,7 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
   // plate of PipelineTest.AcquiresByItselfAndTracks at 24-26 m never met 1 deg), so its whole track would be
   // withheld.
   m_track_doubted = false;
+  m_track_twin_by_continuity = result.twin_resolved_by_continuity;
 }
 
 Pose NavigationPipeline::predictedPose() const {

@@ -35,6 +35,7 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     // (campaign plate/135: re-found 13.8 deg off with a 1.7 deg 1-sigma; replayed on the full run
     // before the close-range acquisition was on: wrong frames 165 -> 160 for 0.001 of tracked mean).
     m_track_doubted = true;
+    m_track_twin_by_continuity = step.twin_by_continuity;
     deliver(step.pose, step.covariance, step.quality, out, true);
   } else {
     coast(out);

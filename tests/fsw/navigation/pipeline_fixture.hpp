@@ -37,6 +37,23 @@ class PipelineTest : public ::testing::Test {
     return f;
   }
   Frame frameAt(int i) const { return frameOf(frames, i); }
+  /// Ten frames of the plate from its true start at 26 m under `p`: how many were valid; `out` is the last
+  /// solution. Every frame stays in near range, and symmetric_twins is set exactly on the valid ones (the
+  /// plate's half turn).
+  int validOverTenFrames(const PipelineParams& p, NavSolution& out) {
+    NavigationPipeline pipeline;
+    EXPECT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    int valid = 0;
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameAt(i);
+      EXPECT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (out.pose_valid) ++valid;
+      EXPECT_EQ(out.symmetric_twins, out.pose_valid ? 1 : 0) << "flagged only with a pose to flag";
+      EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
+    }
+    return valid;
+  }
   /// Tracked at 15 m for 3 frames, then hidden for 10 frames (an eclipse: background and noise only) while
   /// the plate comes 3 m closer and turns 20 deg; visible again from frame kHiddenUntil on (30 frames).
   static constexpr int kHiddenUntil = 13;

@@ -292,18 +292,8 @@ TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   for (const double limit_deg : {180.0, 1e-9, 0.0}) {
     PipelineParams p = params;
     p.navigation.max_valid_attitude_sigma_deg = limit_deg;
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
     NavSolution out;
-    int valid = 0;
-    for (int i = 0; i < 10; ++i) {
-      const Frame f = frameAt(i);
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      if (out.pose_valid) ++valid;
-      EXPECT_EQ(out.symmetric_twins, out.pose_valid ? 1 : 0) << "flagged only with a pose to flag";
-      EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "limit " << limit_deg << " frame " << i;
-    }
+    const int valid = validOverTenFrames(p, out);
     const double sigma_deg = std::sqrt(out.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
     EXPECT_GT(sigma_deg, 0.0);
     EXPECT_EQ(valid, limit_deg == 1e-9 ? 0 : 10) << "limit " << limit_deg << ", last sigma " << sigma_deg;
@@ -321,18 +311,8 @@ TEST_F(PipelineTest, APoseShowingNoSurfaceNearFacingIsTrackedButNotValid) {
     PipelineParams p = params;
     p.navigation.max_valid_view_angle_deg = limit_deg;
     p.navigation.max_valid_attitude_sigma_deg = 0.0;
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
     NavSolution out;
-    int valid = 0;
-    for (int i = 0; i < 10; ++i) {
-      const Frame f = frameAt(i);
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      if (out.pose_valid) ++valid;
-      EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "limit " << limit_deg << " frame " << i;
-    }
-    EXPECT_EQ(valid, limit_deg == 0.5 ? 0 : 10) << "limit " << limit_deg;
+    EXPECT_EQ(validOverTenFrames(p, out), limit_deg == 0.5 ? 0 : 10) << "limit " << limit_deg;
     EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, limit " << limit_deg;
   }
 }

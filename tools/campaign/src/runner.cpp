@@ -192,6 +192,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.reacquired = pipeline->lastReacquisition().found;
     f.symmetric_twins = sol.symmetric_twins;
     f.shows_face = pipeline->lastPoseShowedAFace();
+    f.twin_by_continuity = sol.twin_by_continuity;
     const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
     if (u.status == Status::kOk && u.dof == 6) {
       f.has_nis = true;

@@ -71,8 +71,9 @@ struct NavSolution {
   /// symmetries, and its near twins closer than [acquisition] near_twin_min_separation_px). 0: unique. The
   /// pose reported is the one continuous with the track; the ambiguity is flagged, not resolved.
   int symmetric_twins = 0;
-  /// This frame's pose came from an acquisition that chose between near twins the image could not tell
-  /// apart by their continuity with a track lost a few frames before (AcquisitionResult).
+  /// With a valid pose: its track began with an acquisition that chose between near twins the image could
+  /// not tell apart by their continuity with a track lost a few frames before (AcquisitionResult). Set on
+  /// every pose of that track: each rests on that choice.
   bool twin_by_continuity = false;
   FarRangeSolution far;
   std::uint32_t fault_bits = 0;  ///< FaultBit set this frame

@@ -108,6 +108,8 @@ class NavigationPipeline {
   PipelineParams m_params;
   double m_max_view_cos = 1.0;     ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
   bool m_pose_showed_face = true;  ///< lastPoseShowedAFace()
+  /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
+  bool m_track_twin_by_continuity = false;
   MonotonicClockNs m_clock = nullptr;
   ModeManager m_modes;
   FdirMonitor m_fdir;

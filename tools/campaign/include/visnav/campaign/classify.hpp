@@ -63,6 +63,7 @@ struct FrameOutcome {
   bool reacquired = false;  ///< the candidate came from close-range reacquisition
   int symmetric_twins = 0;  ///< NavSolution::symmetric_twins: attitudes the image cannot tell apart (valid)
   bool shows_face = true;   ///< the candidate showed a face (NavigationPipeline::lastPoseShowedAFace)
+  bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
