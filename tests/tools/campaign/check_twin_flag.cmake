@@ -1,6 +1,7 @@
 # Checks a campaign frames.csv (visnav-campaign --frames) for the ambiguity flag on a delivered pose: at least
 # one valid frame with twin_by_continuity 1 and symmetric_twins >= 4 (a box's 3 half turns and a near twin),
 # and no frame flagged by continuity without a valid pose. Usage: cmake -DFRAMES=path -P check_twin_flag.cmake
+cmake_policy(SET CMP0007 NEW)  # keep the empty fields of a CSV row as list elements
 if(NOT EXISTS "${FRAMES}")
   message(FATAL_ERROR "check_twin_flag: ${FRAMES} does not exist")
 endif()
