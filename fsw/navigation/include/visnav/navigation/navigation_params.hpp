@@ -193,8 +193,8 @@ struct NavigationParams {
             "biased with a small covariance (stop 32's full run: 47 of its 139 confidently wrong frames, "
             "plates turning edge-on, 5-19 % of the range off with a 0.5-2.3 % 1-sigma; with the check on "
             "that run's plates, octagons and cao models: 71 -> 23 wrong frames for 22 of 64 239 expected "
-            "frames). A closed body always shows a face within 55 deg, so only flat and open models are "
-            "affected; 0 switches the check off"},
+            "frames). A box always shows a face within 55 deg (the cube's worst view, along a diagonal), so "
+            "boxes and the satellite are not affected, flat models are; 0 switches the check off"},
            max_valid_view_angle_deg);
     v.real({"navigation", "start_pose_sigma_deg", "deg", 0.0, 180.0,
             "a start pose given by the operator (startNearRange, visnav-replay --initial-pose) starts the "
