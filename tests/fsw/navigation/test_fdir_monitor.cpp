@@ -29,6 +29,13 @@ PolygonModel cubeOfRadius(double radius_m) {
   return makeBox(half, half, half);
 }
 
+/// The monitor with default limits, a fault persisting after `frames` frames, for a 1.5 m cube at f 1000 px.
+void initWithPersistence(FdirMonitor& f, int frames) {
+  NavigationParams p;
+  p.fault_persistence_frames = frames;
+  f.init(p, cubeOfRadius(1.5), 1000.0);
+}
+
 TEST(Fdir, EachCheckRaisesItsBit) {
   FdirMonitor f;
   f.init(NavigationParams{}, cubeOfRadius(1.5), 1000.0);  // derived: outside the cube, up to 750 m
@@ -69,9 +76,7 @@ TEST(Fdir, EachCheckRaisesItsBit) {
 
 TEST(Fdir, PersistenceNeedsConsecutiveFaultyFrames) {
   FdirMonitor f;
-  NavigationParams p;
-  p.fault_persistence_frames = 3;
-  f.init(p, cubeOfRadius(1.5), 1000.0);
+  initWithPersistence(f, 3);
   NearRangeResult bad = goodNear();
   bad.lines_used = 0;
   NearRangeResult good = goodNear();
@@ -193,9 +198,7 @@ TEST(Fdir, EvidenceNeedsAPoseCertainEnoughToBeDelivered) {
 
 TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
   FdirMonitor f;
-  NavigationParams p;
-  p.fault_persistence_frames = 3;
-  f.init(p, cubeOfRadius(1.5), 1000.0);
+  initWithPersistence(f, 3);
   NearRangeResult r = goodNear();
   NearRangeCheck c;
   c.near = &r;
