@@ -18,6 +18,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
               frames whose tracker flags have none of --rival-flags, or an acquisition / reacquisition
               confirmation (unless --no-confirmed-sources)
+  awaited     an acquisition's pose is not valid on its own frame; the next frame confirms the branch if it is
+              a near-range frame with a certain, rival-free pose ([navigation] acquisition_awaits_near_range;
+              --no-acquisition-await: valid on its own frame and confirming, as before)
   view        a candidate that showed no face of the model within [navigation] max_valid_view_angle_deg
               (frames.csv column shows_face, as the pipeline judged it; --no-view-gate ignores it)
   --max-nis   (not shipped) withhold frames whose filter NIS exceeds this
@@ -49,6 +52,7 @@ def parse_args(argv):
     p.add_argument('--break-after', type=int, default=1)
     p.add_argument('--max-nis', type=float, default=0.0)
     p.add_argument('--no-view-gate', action='store_true')
+    p.add_argument('--no-acquisition-await', action='store_true')
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -57,8 +61,12 @@ def replay_scene(rows, a):
     """Per-frame (valid, wrong) under the gates, in frame order."""
     known, run, bad = True, 0, 0  # the near scenes start from a given pose: the branch is known
     track_doubted = False  # the track began with a find and none of its poses met the doubted limit yet
+    awaiting = False  # an acquisition's pose waits for the next near-range frame
     out = []
     for r in rows:
+        awaited = awaiting and r['mode'] == 'near_range'
+        if r['mode'] != 'acquisition':
+            awaiting = False
         if r['reacquired'] == '1':
             track_doubted = True
         elif r['mode'] == 'acquisition':
@@ -77,6 +85,10 @@ def replay_scene(rows, a):
             certain = False
         if certain and not a.no_view_gate and r.get('shows_face', '1') == '0':
             certain = False
+        acquisition_pose = r['mode'] == 'acquisition' and r['candidate'] == '1'
+        if acquisition_pose and not a.no_acquisition_await:
+            certain = False
+            awaiting = True
         valid = certain
         if a.branch_confirm_frames > 0:
             if not certain:
@@ -86,9 +98,10 @@ def replay_scene(rows, a):
                     known = False
             else:
                 bad = 0
-                if not a.no_confirmed_sources and (r['mode'] == 'acquisition' or r['reacquired'] == '1'):
-                    known = True
                 rival_free = r['mode'] != 'near_range' or (int(r['near_flags']) & a.rival_flags) == 0
+                if not a.no_confirmed_sources and (acquisition_pose or r['reacquired'] == '1'
+                                                   or (awaited and rival_free)):
+                    known = True
                 if not rival_free:
                     run = 0
                 elif run < a.branch_confirm_frames:

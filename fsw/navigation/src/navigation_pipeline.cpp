@@ -50,6 +50,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
   m_track_twin_by_continuity = false;
+  m_acquisition_awaits_near = false;
   m_filter.reset();
   // The given pose starts the filter (start_pose_sigma_*): the first measurements are checked against it.
   // Without it an ambiguous first fit (which never starts a track) left the filter empty and the prediction
@@ -173,6 +174,13 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
   // withheld.
   m_track_doubted = false;
   m_track_twin_by_continuity = result.twin_resolved_by_continuity;
+  // Its confirmation frames all saw the same small target: a wrong pose confirmed there is as consistent
+  // with itself as a right one. The first near-range fit, with the filter started from it, is the check
+  // (campaign box/40: confirmed 44 deg off at 44.5 m, the next five fits rejected at NIS 79-146).
+  if (m_params.navigation.acquisition_awaits_near_range) {
+    out.pose_valid = false;
+    m_acquisition_awaits_near = true;
+  }
 }
 
 Pose NavigationPipeline::predictedPose() const {
@@ -229,7 +237,13 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // twin well enough to count as rival-free.
   const bool rival_free = processed_in != NavMode::kNearRange ||
                           (m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U;
-  const bool confirmed = processed_in == NavMode::kAcquisition || m_reacquisition_step.found;
+  // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
+  // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
+  const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
+  if (processed_in != NavMode::kAcquisition) m_acquisition_awaits_near = false;
+  const bool confirmed =
+      (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) || m_reacquisition_step.found ||
+      awaited;
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
 }
 

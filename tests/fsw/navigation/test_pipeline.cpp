@@ -46,6 +46,63 @@ TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
   EXPECT_LT(err.head<3>().norm() * kDegPerRad, 3.0);
 }
 
+TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
+  // acquisition_awaits_near_range: on its own frame the acquisition's pose is tracked (it starts the filter
+  // and is reported) but not valid; the first near-range fit, checked by the filter started from it,
+  // confirms it. With nothing to agree on that frame (the target hidden), no pose is valid until something
+  // else confirms the branch. Off: valid on its own frame, as before.
+  struct Outcome {
+    int acquired_at = -1;
+    bool acquired_valid = false;
+    double acquired_quality = 0.0;
+    double acquired_error_m = 0.0;
+    std::vector<bool> valid_after;  // the frames after the acquisition's
+  };
+  Pose behind = test::plateAt(26.0, 0.1, 1.0, -1.0);
+  behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+  const test::RenderedFrame hidden = test::renderFrame(renderer, behind, 999U);
+  const auto run = [&](bool awaits, bool hide_next) {
+    PipelineParams p = params;
+    p.navigation.acquisition_awaits_near_range = awaits;
+    NavigationPipeline pipeline;
+    EXPECT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    Outcome o;
+    for (int i = 0; i < kFrames; ++i) {
+      Frame f = frameAt(i);
+      if (hide_next && o.acquired_at >= 0 && i == o.acquired_at + 1) f.image = hidden.image();
+      NavSolution out;
+      EXPECT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (o.acquired_at >= 0) {
+        o.valid_after.push_back(out.pose_valid);
+      } else if (out.mode == NavMode::kAcquisition &&
+                 pipeline.lastAcquisition().state == acq::AcquisitionState::kSucceeded) {
+        o.acquired_at = i;
+        o.acquired_valid = out.pose_valid;
+        o.acquired_quality = out.quality;
+        o.acquired_error_m = (out.pose.t_c_m - frames[static_cast<std::size_t>(i)].truth.t_c_m).norm();
+      }
+    }
+    return o;
+  };
+  const Outcome awaited = run(true, false);
+  ASSERT_GE(awaited.acquired_at, 0) << "never acquired";
+  ASSERT_FALSE(awaited.valid_after.empty());
+  EXPECT_FALSE(awaited.acquired_valid) << "valid before near range agreed";
+  EXPECT_GT(awaited.acquired_quality, 0.0) << "the pose is still reported, as tracked";
+  EXPECT_LT(awaited.acquired_error_m, 0.05 * 26.0);
+  EXPECT_TRUE(awaited.valid_after[0]) << "the first near-range fit agrees and confirms it";
+
+  const Outcome off = run(false, false);
+  EXPECT_EQ(off.acquired_at, awaited.acquired_at) << "validity does not feed back into tracking";
+  EXPECT_TRUE(off.acquired_valid);
+
+  const Outcome unconfirmed = run(true, true);
+  ASSERT_EQ(unconfirmed.acquired_at, awaited.acquired_at);
+  ASSERT_GE(unconfirmed.valid_after.size(), 2U);
+  EXPECT_FALSE(unconfirmed.valid_after[0]) << "the hidden frame";
+  EXPECT_FALSE(unconfirmed.valid_after[1]) << "the branch was never confirmed: one fit does not make it known";
+}
+
 TEST_F(PipelineTest, AnAcquisitionThatConfirmsNothingAtTheCueRefutesItUntilTheGroundSaysAgain) {
   // The pipeline looks for a bar where the camera sees the plate: far range hands the plate over, the
   // acquisition finds edges there but no bar. Far range then passes over that region (refute_unconfirmed_cue)

@@ -46,6 +46,7 @@ struct NavigationParams {
   double start_pose_sigma_deg = 2.5;    ///< 1-sigma (sqrt of trace) of a given start pose's attitude; 0: none
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
   int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
+  bool acquisition_awaits_near_range = true;  ///< an acquisition's pose is valid once near range agrees
   int filter_diverged_rejections = 2;   ///< consecutive rejections of a clean track: restart the filter
   int far_filter_reset_rejections = 3;  ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
@@ -218,6 +219,17 @@ struct NavigationParams {
          "octagon/174: 26 withheld frames, then 66 valid ones 34-140 deg off); 0 switches the check "
          "off"},
         branch_confirm_frames);
+    v.boolean(
+        {"navigation", "acquisition_awaits_near_range", "-", 0, 1,
+         "the pose an acquisition confirms is delivered tracked but not valid on its own frame, and the "
+         "track's branch becomes known only when the first near-range frame after it delivers a valid, "
+         "rival-free fit the filter (started from the acquisition) does not reject as a jump; otherwise "
+         "branch_confirm_frames rival-free frames are needed as after any break. The acquisition's "
+         "confirmation frames all look at one small target: on stop 33's full campaign all 5 of its wrong "
+         "frames (5.6-159 deg off) were on the acquisition's own frame; in the three traced (box/89, /40, "
+         "/16) the near-range fits after it disagreed (NIS 38-146) and were withheld. Costs one frame per "
+         "acquisition; false: valid on its own frame"},
+        acquisition_awaits_near_range);
     v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
                "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
                "filter from it"},

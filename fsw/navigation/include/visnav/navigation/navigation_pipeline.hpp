@@ -110,6 +110,7 @@ class NavigationPipeline {
   bool m_pose_showed_face = true;  ///< lastPoseShowedAFace()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
   bool m_track_twin_by_continuity = false;
+  bool m_acquisition_awaits_near = false;  ///< acquisition_awaits_near_range: the next frame may confirm it
   MonotonicClockNs m_clock = nullptr;
   ModeManager m_modes;
   FdirMonitor m_fdir;
