@@ -241,9 +241,8 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
   if (processed_in != NavMode::kAcquisition) m_acquisition_awaits_near = false;
-  const bool confirmed =
-      (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) || m_reacquisition_step.found ||
-      awaited;
+  const bool confirmed = (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) ||
+                         m_reacquisition_step.found || awaited;
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
 }
 

@@ -100,7 +100,8 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
   ASSERT_EQ(unconfirmed.acquired_at, awaited.acquired_at);
   ASSERT_GE(unconfirmed.valid_after.size(), 2U);
   EXPECT_FALSE(unconfirmed.valid_after[0]) << "the hidden frame";
-  EXPECT_FALSE(unconfirmed.valid_after[1]) << "the branch was never confirmed: one fit does not make it known";
+  EXPECT_FALSE(unconfirmed.valid_after[1])
+      << "the branch was never confirmed: one fit does not make it known";
 }
 
 TEST_F(PipelineTest, AnAcquisitionThatConfirmsNothingAtTheCueRefutesItUntilTheGroundSaysAgain) {

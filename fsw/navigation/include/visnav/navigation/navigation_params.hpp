@@ -47,8 +47,8 @@ struct NavigationParams {
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
   int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
   bool acquisition_awaits_near_range = true;  ///< an acquisition's pose is valid once near range agrees
-  int filter_diverged_rejections = 2;   ///< consecutive rejections of a clean track: restart the filter
-  int far_filter_reset_rejections = 3;  ///< consecutive far-range rejections: restart the filter
+  int filter_diverged_rejections = 2;         ///< consecutive rejections of a clean track: restart the filter
+  int far_filter_reset_rejections = 3;        ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;
