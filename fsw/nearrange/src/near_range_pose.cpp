@@ -80,6 +80,51 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
   return ambiguous;
 }
 
+void NearRangeTracker::findChamferCorners() {
+  // For every face of five or more vertices and every run of three edges a -> bridge -> b along its ring,
+  // the point where the lines of a and b meet, if they do near the bridge (no further from its midpoint than
+  // twice its length: a regular octagon's is half its length away; near-parallel lines meet far off and are
+  // no corner). Init only: edges are found by their vertex pair.
+  m_chamfer_corners.clear();
+  const auto& vertices = m_model.vertices();
+  const auto edgeOf = [&](int u, int v) {
+    const auto& edges = m_model.edges();
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      if ((edges[e].v0 == u && edges[e].v1 == v) || (edges[e].v0 == v && edges[e].v1 == u))
+        return static_cast<int>(e);
+    return -1;
+  };
+  for (const ModelSurface& surface : m_model.surfaces()) {
+    const std::vector<int>& ring = surface.vertex_indices;
+    const std::size_t n = ring.size();
+    if (n < 5) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int p0 = ring[i], p1 = ring[(i + 1) % n], p2 = ring[(i + 2) % n], p3 = ring[(i + 3) % n];
+      ChamferCorner c;
+      c.edge_a = edgeOf(p0, p1);
+      c.bridge = edgeOf(p1, p2);
+      c.edge_b = edgeOf(p2, p3);
+      if (c.edge_a < 0 || c.bridge < 0 || c.edge_b < 0) continue;
+      // Closest points of the two lines p1 + s (p1 - p0) and p2 + t (p2 - p3).
+      const Vec3 da = vertices[p1] - vertices[p0];
+      const Vec3 db = vertices[p2] - vertices[p3];
+      const Vec3 w = vertices[p1] - vertices[p2];
+      const double aa = da.dot(da), bb = db.dot(db), ab = da.dot(db);
+      const double det = aa * bb - ab * ab;
+      if (!(det > kMinVertexSinAngle * kMinVertexSinAngle * aa * bb)) continue;  // parallel: no corner
+      const double sa = (ab * db.dot(w) - bb * da.dot(w)) / det;
+      const double tb = (aa * db.dot(w) - ab * da.dot(w)) / det;
+      const Vec3 on_a = vertices[p1] + sa * da;
+      const Vec3 on_b = vertices[p2] + tb * db;
+      const double bridge_m = (vertices[p2] - vertices[p1]).norm();
+      if ((on_a - on_b).norm() > 1e-6 * std::max(1.0, m_model.boundingRadius())) continue;  // not coplanar
+      c.point_m = 0.5 * (on_a + on_b);
+      if ((c.point_m - 0.5 * (vertices[p1] + vertices[p2])).norm() > 2.0 * bridge_m) continue;
+      if (!m_chamfer_corners.push(c)) return;
+    }
+  }
+}
+
 int NearRangeTracker::collectVertices(int excluded_slot) {
   // A vertex is observed where two measured lines of edges meeting at it intersect (eq. 6, Cramer form).
   // With outline edges a vertex may join three measured edges: the best-conditioned pair (largest |sin| of
@@ -118,6 +163,26 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     obs.px_ideal = m_vertex_best_px[v];
     obs.variance_px2 = m_vertex_best_var[v];
     m_vertex_obs.push(obs);
+  }
+  // Chamfer corners (findChamferCorners), where the bridge edge has no line: with one, its two real
+  // vertices are observed above.
+  if (m_chamfer_corners.empty()) return static_cast<int>(m_vertex_obs.size());
+  for (int& slot : m_slot_of_edge) slot = -1;
+  for (int i = 0; i < slots; ++i)
+    if (m_edges[i].line_ok && i != excluded_slot) m_slot_of_edge[m_edges[i].model_edge] = i;
+  for (const ChamferCorner& c : m_chamfer_corners) {
+    const int i = m_slot_of_edge[c.edge_a];
+    const int j = m_slot_of_edge[c.edge_b];
+    if (i < 0 || j < 0 || m_slot_of_edge[c.bridge] >= 0) continue;
+    const Line2d& a = m_edges[i].line;
+    const Line2d& b = m_edges[j].line;
+    const double sin_angle = std::fabs(std::sin(a.theta_rad - b.theta_rad));
+    VertexObservation obs;
+    if (!intersect(a, b, obs.px_ideal, kMinVertexSinAngle)) continue;
+    obs.point_m = c.point_m;
+    obs.variance_px2 =
+        0.5 * (m_edges[i].end_variance_px2 + m_edges[j].end_variance_px2) / (sin_angle * sin_angle);
+    if (!m_vertex_obs.push(obs)) break;
   }
   return static_cast<int>(m_vertex_obs.size());
 }

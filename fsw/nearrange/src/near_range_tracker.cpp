@@ -49,7 +49,10 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_points_ideal.reserve(points);
   m_inlier.reserve(params.max_scanlines_per_edge);
   m_scratch.reserve(params.max_scanlines_per_edge);
-  m_vertex_obs.reserve(surfaces * static_cast<std::size_t>(model.maxSurfaceVertices()));
+  // Each face can give one chamfer corner per vertex too (findChamferCorners).
+  m_vertex_obs.reserve(2 * surfaces * static_cast<std::size_t>(model.maxSurfaceVertices()));
+  m_chamfer_corners.reserve(surfaces * static_cast<std::size_t>(model.maxSurfaceVertices()));
+  m_slot_of_edge.reserve(edges);
   m_edge_obs.reserve(points);
   m_confusable_partner.reserve(edges);
   m_vertex_px.reserve(model.vertices().size());
@@ -71,12 +74,14 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   for (std::size_t i = 0; i < edges; ++i) {
     m_edge_selected.push(0);
     m_confusable_partner.push(-1);
+    m_slot_of_edge.push(-1);
   }
   for (std::size_t i = 0; i < edges * kPolarityBins; ++i) {
     m_polarity.push(0);
     m_polarity_next.push(0);
   }
   findModelMirrors();
+  findChamferCorners();
   reset();
   return LoadError::success();
 }
@@ -219,7 +224,8 @@ void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out)
   for (EdgeMeasurement& slot : m_edges) {
     // A panel's thickness or a foreshortened edge is too short to measure: it is no evidence either way,
     // so it neither counts as a line nor as a rejected one (the evidence test compares used with total).
-    if (slot.scanlines == 0) continue;
+    // An edge with fewer scanlines than a line needs (a chamfer seen from afar) can never give one.
+    if (slot.scanlines < m_params.min_points_per_line) continue;
     // A confusable edge whose own step was not found (flat lighting: it has none) is no evidence either.
     if (slot.confusable && slot.point_count < m_params.min_points_per_line) continue;
     ++out.lines_total;

@@ -43,7 +43,7 @@ class VertexProblem {
     cost = 0.0;
     for (int i = 0; i < m_count; ++i) {
       Vec2 px;
-      if (!m_camera.projectIdeal(pose.transform(m_model.vertices()[m_obs[i].vertex]), px)) return false;
+      if (!m_camera.projectIdeal(pose.transform(observedPoint(m_model, m_obs[i])), px)) return false;
       cost += (px - m_obs[i].px_ideal).squaredNorm();
     }
     return true;
@@ -123,7 +123,7 @@ bool finish(const LmSummary<6>& lm, double pixel_sigma_px, PoseFitResult& result
 
 bool vertexResidual(const PinholeCamera& camera, const PolygonModel& model, const VertexObservation& obs,
                     const Pose& pose, Vec2& residual, Mat26& jacobian) {
-  const Vec3 rotated = pose.R_c_m * model.vertices()[obs.vertex];
+  const Vec3 rotated = pose.R_c_m * observedPoint(model, obs);
   Vec2 px;
   Mat23 d_px_d_p;
   if (!camera.projectIdeal(rotated + pose.t_c_m, px, &d_px_d_p)) return false;

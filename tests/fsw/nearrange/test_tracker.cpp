@@ -153,6 +153,48 @@ TEST_F(TrackerTest, InitRejectsBrokenHysteresis) {
   EXPECT_NE(e.message.find("visibility_exit_low_deg"), std::string::npos);
 }
 
+TEST(ChamferedPlateTest, LongEdgesMeetAcrossUnmeasuredCutsAsCorners) {
+  // A 2.0 x 1.6 m plate with its corners cut 0.1 m (the campaign's octagon family): at 20 m the cuts are
+  // 7 px long, too short for a line, so no two measured lines share a vertex. Where their lines meet across
+  // a cut is a point of the model too (findChamferCorners): the vertex fit (eq. 7) runs, not the
+  // point-to-line fallback, and the cuts count neither as lines nor as missed ones.
+  const double hx = 1.0, hy = 0.8, c = 0.1;
+  const std::vector<Vec3> v = {{hx - c, -hy, 0.0},  {hx, -hy + c, 0.0}, {hx, hy - c, 0.0},
+                               {hx - c, hy, 0.0},   {-hx + c, hy, 0.0}, {-hx, hy - c, 0.0},
+                               {-hx, -hy + c, 0.0}, {-hx + c, -hy, 0.0}};
+  ModelSurface face;
+  face.name = "plate";
+  face.vertex_indices = {0, 1, 2, 3, 4, 5, 6, 7};
+  PolygonModel model;
+  ASSERT_TRUE(PolygonModel::build(v, {face}, model).ok);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  NearRangeTracker tracker;
+  ASSERT_TRUE(tracker.init(vgaCamera(), model, NearRangeParams{}).ok);
+
+  const Pose far_truth = plateAt(20.0, 0.2, 8.0, -5.0);
+  const test::RenderedFrame far_frame = renderFrame(renderer, far_truth, 11);
+  NearRangeResult r;
+  ASSERT_EQ(tracker.track(far_frame.image(), far_truth, 0, r), Status::kOk);
+  ASSERT_NE(r.status, TrackStatus::kLost);
+  EXPECT_EQ(r.flags & kFlagResidualFallback, 0U) << "four corners across the cuts: the vertex fit";
+  EXPECT_EQ(r.lines_total, 4) << "a cut too short for a line is no evidence either way";
+  EXPECT_EQ(r.lines_used, 4);
+  EXPECT_EQ(r.vertices, 4);
+  EXPECT_LT((r.pose.t_c_m - far_truth.t_c_m).norm(), 0.01 * 20.0);
+
+  // At 4 m the cuts are 35 px long and measured: the eight real corners, and no corner across a cut that
+  // has a line of its own.
+  tracker.reset();
+  const Pose near_truth = plateAt(4.0, 0.05, 8.0, -5.0);
+  const test::RenderedFrame near_frame = renderFrame(renderer, near_truth, 12);
+  ASSERT_EQ(tracker.track(near_frame.image(), near_truth, 1, r), Status::kOk);
+  ASSERT_NE(r.status, TrackStatus::kLost);
+  EXPECT_EQ(r.lines_used, 8);
+  EXPECT_EQ(r.vertices, 8);
+  EXPECT_LT((r.pose.t_c_m - near_truth.t_c_m).norm(), 0.01 * 4.0);
+}
+
 TEST_F(TrackerTest, AFaceOnPlateIsNotAmbiguous) {
   // The mirrored start of a face-on plate is the same pose: no rival, no flag.
   const Pose truth = test::plateAt(12.0);

@@ -176,10 +176,22 @@ class NearRangeTracker {
   /// a rotation) converges to a distinct pose that fits the same lines about as well.
   bool mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used);
   void findModelMirrors();
+  void findChamferCorners();
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
   double covarianceScale(const PoseFitResult& fit, std::uint32_t flags) const;
 
   static constexpr int kPolarityBins = 16;
+
+  /// Where the lines of two edges of one face meet across the short edge between them (a chamfered or
+  /// octagonal outline seen from afar: its short edges are too short to measure, so its long ones share no
+  /// vertex). The intersection of two coplanar 3D lines projects to the intersection of their images, so
+  /// it is observed like a vertex (eq. 6) whenever the bridge edge has no line of its own.
+  struct ChamferCorner {
+    int edge_a = -1;
+    int edge_b = -1;
+    int bridge = -1;
+    Vec3 point_m = Vec3::Zero();
+  };
 
   PinholeCamera m_camera;
   PolygonModel m_model;
@@ -207,6 +219,9 @@ class NearRangeTracker {
   BoundedBuffer<double> m_vertex_best_sin;  ///< per model vertex: best |sin| of a measured line pair
   BoundedBuffer<Vec2> m_vertex_best_px;
   BoundedBuffer<double> m_vertex_best_var;  ///< per model vertex: its observation's per-axis variance
+  BoundedBuffer<ChamferCorner> m_chamfer_corners;
+  BoundedBuffer<int>
+      m_slot_of_edge;  ///< per model edge: its m_edges slot with a line, or -1 (collectVertices)
   BoundedBuffer<EdgePointObservation> m_edge_obs;
   ModelSymmetries m_symmetries;
   std::array<Mat3, 3> m_mirrors{};  ///< axis reflections of the model frame that map the model onto itself

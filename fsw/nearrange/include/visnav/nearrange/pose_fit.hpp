@@ -12,11 +12,19 @@ namespace visnav {
 
 /// A measured image position (ideal pixels) of model vertex `vertex` (eq. 6 output).
 struct VertexObservation {
-  int vertex = -1;
+  int vertex = -1;  ///< model vertex index; -1: the model point `point_m`
   Vec2 px_ideal = Vec2::Zero();
   /// Per-axis variance of px_ideal [px^2] propagated from the two fitted lines that made it (0: unknown).
   double variance_px2 = 0.0;
+  /// With vertex -1: the model-frame point observed, e.g. where the lines of two edges of one face meet
+  /// across a short edge between them (a chamfered corner, NearRangeTracker).
+  Vec3 point_m = Vec3::Zero();
 };
+
+/// The model-frame point a vertex observation measures.
+inline const Vec3& observedPoint(const PolygonModel& model, const VertexObservation& obs) {
+  return obs.vertex >= 0 ? model.vertices()[static_cast<std::size_t>(obs.vertex)] : obs.point_m;
+}
 
 /// A measured edge point (ideal pixels) lying on model edge `edge`.
 struct EdgePointObservation {
