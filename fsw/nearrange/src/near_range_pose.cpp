@@ -164,16 +164,21 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     obs.variance_px2 = m_vertex_best_var[v];
     m_vertex_obs.push(obs);
   }
-  // Chamfer corners (findChamferCorners), where the bridge edge has no line: with one, its two real
-  // vertices are observed above.
+  // Chamfer corners (findChamferCorners), where the bridge edge is too short this frame to give a line
+  // (fitLines: fewer scanlines than min_points_per_line). A bridge long enough to measure gives its own two
+  // vertices above when its line was found, and when it was not, that is a missed line, not a chamfer: on
+  // a regular octagon close up, corners across missed lines changed which lines the leave-one-out search
+  // dropped, and case low_contrast_octagon lost 3 of 150 frames.
   if (m_chamfer_corners.empty()) return static_cast<int>(m_vertex_obs.size());
   for (int& slot : m_slot_of_edge) slot = -1;
-  for (int i = 0; i < slots; ++i)
-    if (m_edges[i].line_ok && i != excluded_slot) m_slot_of_edge[m_edges[i].model_edge] = i;
+  for (int i = 0; i < slots; ++i) m_slot_of_edge[m_edges[i].model_edge] = i;
+  const auto hasLine = [&](int slot) { return slot >= 0 && slot != excluded_slot && m_edges[slot].line_ok; };
   for (const ChamferCorner& c : m_chamfer_corners) {
     const int i = m_slot_of_edge[c.edge_a];
     const int j = m_slot_of_edge[c.edge_b];
-    if (i < 0 || j < 0 || m_slot_of_edge[c.bridge] >= 0) continue;
+    const int k = m_slot_of_edge[c.bridge];
+    if (!hasLine(i) || !hasLine(j)) continue;
+    if (k >= 0 && m_edges[k].scanlines >= m_params.min_points_per_line) continue;
     const Line2d& a = m_edges[i].line;
     const Line2d& b = m_edges[j].line;
     const double sin_angle = std::fabs(std::sin(a.theta_rad - b.theta_rad));
