@@ -126,7 +126,10 @@ struct NearRangeParams {
     v.integer({"nearrange", "ransac_seed", "-", 0, 2147483647,
                "seed of the deterministic generator (same seed and input => same output)"},
               ransac_seed);
-    v.integer({"nearrange", "min_points_per_line", "count", 2, 1000, "fewer consensus points: line not used"},
+    v.integer({"nearrange", "min_points_per_line", "count", 2, 1000,
+               "fewer consensus points: line not used; an edge too short for this many scanlines (a chamfer "
+               "seen from afar) counts neither as a line nor as a missed one, and the lines of its two "
+               "neighbours on the face meet across it as a corner of the vertex fit"},
               min_points_per_line);
     v.real({"nearrange", "min_inlier_ratio", "-", 0.0, 1.0, "smaller consensus/points ratio: line not used"},
            min_inlier_ratio);
