@@ -148,17 +148,49 @@ LoadError PolygonModel::build(const std::vector<Vec3>& vertices, std::vector<Mod
   return LoadError::success();
 }
 
+namespace {
+
+/// One flat surface through `ring` (counter-clockwise seen from +z, its normal), no back face.
+PolygonModel flatPlate(const std::vector<Vec3>& ring, double albedo) {
+  ModelSurface s;
+  s.name = "plate";
+  for (int i = 0; i < static_cast<int>(ring.size()); ++i) s.vertex_indices.push_back(i);
+  s.albedo = albedo;
+  PolygonModel m;
+  PolygonModel::build(ring, {s}, m);
+  return m;
+}
+
+}  // namespace
+
 PolygonModel makeRectanglePlate(double width_m, double height_m, double albedo) {
   const double hx = 0.5 * width_m;
   const double hy = 0.5 * height_m;
-  std::vector<Vec3> v = {{-hx, -hy, 0.0}, {hx, -hy, 0.0}, {hx, hy, 0.0}, {-hx, hy, 0.0}};
-  ModelSurface s;
-  s.name = "plate";
-  s.vertex_indices = {0, 1, 2, 3};
-  s.albedo = albedo;
-  PolygonModel m;
-  PolygonModel::build(v, {s}, m);
-  return m;
+  return flatPlate({{-hx, -hy, 0.0}, {hx, -hy, 0.0}, {hx, hy, 0.0}, {-hx, hy, 0.0}}, albedo);
+}
+
+PolygonModel makeOctagonPlate(double width_m, double height_m, double chamfer_m) {
+  const double hx = 0.5 * width_m;
+  const double hy = 0.5 * height_m;
+  const double c = chamfer_m;
+  return flatPlate({{hx - c, -hy, 0.0},
+                    {hx, -hy + c, 0.0},
+                    {hx, hy - c, 0.0},
+                    {hx - c, hy, 0.0},
+                    {-hx + c, hy, 0.0},
+                    {-hx, hy - c, 0.0},
+                    {-hx, -hy + c, 0.0},
+                    {-hx + c, -hy, 0.0}},
+                   ModelSurface{}.albedo);
+}
+
+PolygonModel makeRegularOctagonPlate(double circumradius_m) {
+  std::vector<Vec3> ring;
+  for (int k = 0; k < 8; ++k) {
+    const double a = (22.5 + 45.0 * k) * kRadPerDeg;
+    ring.emplace_back(circumradius_m * std::cos(a), circumradius_m * std::sin(a), 0.0);
+  }
+  return flatPlate(ring, ModelSurface{}.albedo);
 }
 
 PolygonModel makeBox(double hx, double hy, double hz, double albedo) {

@@ -158,15 +158,7 @@ TEST(ChamferedPlateTest, LongEdgesMeetAcrossUnmeasuredCutsAsCorners) {
   // 7 px long, too short for a line, so no two measured lines share a vertex. Where their lines meet across
   // a cut is a point of the model too (findChamferCorners): the vertex fit (eq. 7) runs, not the
   // point-to-line fallback, and the cuts count neither as lines nor as missed ones.
-  const double hx = 1.0, hy = 0.8, c = 0.1;
-  const std::vector<Vec3> v = {{hx - c, -hy, 0.0},  {hx, -hy + c, 0.0}, {hx, hy - c, 0.0},
-                               {hx - c, hy, 0.0},   {-hx + c, hy, 0.0}, {-hx, hy - c, 0.0},
-                               {-hx, -hy + c, 0.0}, {-hx + c, -hy, 0.0}};
-  ModelSurface face;
-  face.name = "plate";
-  face.vertex_indices = {0, 1, 2, 3, 4, 5, 6, 7};
-  PolygonModel model;
-  ASSERT_TRUE(PolygonModel::build(v, {face}, model).ok);
+  const PolygonModel model = makeOctagonPlate(2.0, 1.6, 0.1);
   synthetic::Renderer renderer;
   ASSERT_TRUE(renderer.init(vgaCamera(), model, synthetic::RenderOptions{}).ok);
   NearRangeTracker tracker;

@@ -123,36 +123,6 @@ const char* toString(BackgroundKind kind) {
   return "?";
 }
 
-PolygonModel makeOctagonPlate(double width_m, double height_m, double chamfer_m) {
-  const double hx = 0.5 * width_m;
-  const double hy = 0.5 * height_m;
-  const double c = chamfer_m;
-  // Counter-clockwise seen from +z (the plate's normal), as makeRectanglePlate.
-  const std::vector<Vec3> v = {{hx - c, -hy, 0.0},  {hx, -hy + c, 0.0}, {hx, hy - c, 0.0},
-                               {hx - c, hy, 0.0},   {-hx + c, hy, 0.0}, {-hx, hy - c, 0.0},
-                               {-hx, -hy + c, 0.0}, {-hx + c, -hy, 0.0}};
-  ModelSurface s;
-  s.name = "plate";
-  s.vertex_indices = {0, 1, 2, 3, 4, 5, 6, 7};
-  PolygonModel m;
-  PolygonModel::build(v, {s}, m);
-  return m;
-}
-
-PolygonModel makeRegularOctagonPlate(double circumradius_m) {
-  std::vector<Vec3> v;
-  for (int k = 0; k < 8; ++k) {
-    const double a = (22.5 + 45.0 * k) * kRadPerDeg;
-    v.emplace_back(circumradius_m * std::cos(a), circumradius_m * std::sin(a), 0.0);
-  }
-  ModelSurface s;
-  s.name = "plate";
-  s.vertex_indices = {0, 1, 2, 3, 4, 5, 6, 7};
-  PolygonModel m;
-  PolygonModel::build(v, {s}, m);
-  return m;
-}
-
 double faceOnArea(const PolygonModel& model) {
   double area = 0.0;
   for (const ModelSurface& s : model.surfaces()) {

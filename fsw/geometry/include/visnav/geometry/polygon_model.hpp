@@ -69,6 +69,11 @@ class PolygonModel {
 /// A flat rectangular plate of width x height [m] in the model x-y plane, normal +z (the paper's 4-edge
 /// target).
 PolygonModel makeRectanglePlate(double width_m, double height_m, double albedo = 0.8);
+/// A rectangle w x h [m] with its corners cut by `chamfer_m` along each side, or a regular octagon of
+/// circumradius r [m]: one surface, normal +z, in the model x-y plane, like makeRectanglePlate (no back
+/// face; the campaign's octagon family).
+PolygonModel makeOctagonPlate(double width_m, double height_m, double chamfer_m);
+PolygonModel makeRegularOctagonPlate(double circumradius_m);
 /// A closed box with half-sizes (hx, hy, hz) [m] centred on the origin.
 PolygonModel makeBox(double hx_m, double hy_m, double hz_m, double albedo = 0.8);
 

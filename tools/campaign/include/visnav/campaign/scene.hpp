@@ -32,11 +32,6 @@ struct ModelLibrary {
   std::string cao_path;
 };
 
-/// A regular octagon (circumradius r) or a rectangle w x h with its corners cut by `chamfer` along each side:
-/// one surface, normal +z, in the model x-y plane, like makeRectanglePlate (no back face).
-PolygonModel makeOctagonPlate(double width_m, double height_m, double chamfer_m);
-PolygonModel makeRegularOctagonPlate(double circumradius_m);
-
 /// Area [m^2] of the model seen face-on along -z (surfaces with n_z > 0, projected onto the x-y plane).
 double faceOnArea(const PolygonModel& model);
 
