@@ -185,7 +185,7 @@ class NearRangeTracker {
   /// Where the lines of two edges of one face meet across the short edge between them (a chamfered or
   /// octagonal outline seen from afar: its short edges are too short to measure, so its long ones share no
   /// vertex). The intersection of two coplanar 3D lines projects to the intersection of their images, so
-  /// it is observed like a vertex (eq. 6) whenever the bridge edge has no line of its own.
+  /// it is observed like a vertex (eq. 6) whenever the bridge edge is too short this frame to give a line.
   struct ChamferCorner {
     int edge_a = -1;
     int edge_b = -1;
