@@ -170,8 +170,6 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
   // a regular octagon close up, corners across missed lines changed which lines the leave-one-out search
   // dropped, and case low_contrast_octagon lost 3 of 150 frames.
   if (m_chamfer_corners.empty()) return static_cast<int>(m_vertex_obs.size());
-  for (int& slot : m_slot_of_edge) slot = -1;
-  for (int i = 0; i < slots; ++i) m_slot_of_edge[m_edges[i].model_edge] = i;
   const auto hasLine = [&](int slot) { return slot >= 0 && slot != excluded_slot && m_edges[slot].line_ok; };
   for (const ChamferCorner& c : m_chamfer_corners) {
     const int i = m_slot_of_edge[c.edge_a];

@@ -288,6 +288,10 @@ void NearRangeTracker::measureEdges(const MonoImage& image, const Pose& predicte
   m_points_ideal.clear();
   for (std::size_t e = 0; e < m_model.edges().size(); ++e)
     if (m_edge_selected[e] != 0U) measureEdge(image, predicted, static_cast<int>(e), out);
+  // Which slot measured each model edge: the chamfer corners (collectVertices) look their edges up in it
+  // on every solve of the frame.
+  for (int& slot : m_slot_of_edge) slot = -1;
+  for (int i = 0; i < static_cast<int>(m_edges.size()); ++i) m_slot_of_edge[m_edges[i].model_edge] = i;
   if (out.texture_points > 0) out.flags |= kFlagTextureFallback;
 }
 

@@ -220,8 +220,7 @@ class NearRangeTracker {
   BoundedBuffer<Vec2> m_vertex_best_px;
   BoundedBuffer<double> m_vertex_best_var;  ///< per model vertex: its observation's per-axis variance
   BoundedBuffer<ChamferCorner> m_chamfer_corners;
-  BoundedBuffer<int>
-      m_slot_of_edge;  ///< per model edge: its m_edges slot this frame, or -1 (collectVertices)
+  BoundedBuffer<int> m_slot_of_edge;  ///< per model edge: its m_edges slot this frame, or -1 (measureEdges)
   BoundedBuffer<EdgePointObservation> m_edge_obs;
   ModelSymmetries m_symmetries;
   std::array<Mat3, 3> m_mirrors{};  ///< axis reflections of the model frame that map the model onto itself
