@@ -241,9 +241,34 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
   if (processed_in != NavMode::kAcquisition) m_acquisition_awaits_near = false;
-  const bool confirmed = (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) ||
-                         m_reacquisition_step.found || awaited;
+  const bool confirmed =
+      (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) || m_reacquisition_step.found ||
+      awaited ||
+      (processed_in == NavMode::kNearRange && out.pose_valid && keptTheBranch(out.pose, out.covariance));
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
+}
+
+bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance) const {
+  // A short break is no reason to forget which twin the track follows when the fit after it is as good as
+  // one can be: the tracker's status tracking (all lines, no mirrored rival), the filter's prediction
+  // accepted it, its attitude is known to the doubted limit, and its look stayed with the last valid pose
+  // (the target turns a degree or so a frame; a flat target's twin is twice its tilt away). Looser, the rule
+  // resumed biased tracks: on seeds 1-40 with ambiguous and degraded fits allowed, 547 frames more were
+  // tracked and 13 more were confidently wrong (5-8 deg off, the last valid pose already 2-7 deg off), where
+  // the three rival-free frames had withheld them.
+  const NavigationParams& nav = m_params.navigation;
+  if (nav.branch_continuity_frames <= 0 || m_branch.known() || m_frames_since_valid == ~0ULL ||
+      m_frames_since_valid > static_cast<std::uint64_t>(nav.branch_continuity_frames))
+    return false;
+  if (m_near_result.status != TrackStatus::kTracking || !m_last_pose_update.accepted) return false;
+  if (nav.doubted_max_attitude_sigma_deg > 0.0 &&
+      poseSigmas(pose, covariance).attitude_deg > nav.doubted_max_attitude_sigma_deg)
+    return false;
+  const double tolerance_rad =
+      (nav.branch_continuity_look_deg +
+       nav.reacquire_tolerance_growth_deg_per_frame * static_cast<double>(m_frames_since_valid + 1)) *
+      kRadPerDeg;
+  return m_reacquisition.symmetries().lookDistanceRad(m_last_valid_pose, pose) <= tolerance_rad;
 }
 
 bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck& check) {

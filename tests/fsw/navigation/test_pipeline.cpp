@@ -216,9 +216,11 @@ TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
   // disputes it and a plate at 25 m on VGA has about 2 deg attitude 1-sigma, above the doubted-pose limit
   // (1 deg), so that frame is withheld. Once the fits agree with the restarted filter again the branch is
   // confirmed and the poses are valid. With a limit above the pose's sigma the disputed frame is valid.
+  // The branch is confirmed by rival-free frames here, not by the look's continuity (the test after next).
   for (const double limit_deg : {1.0, 2.4}) {
     PipelineParams p = params;
     p.navigation.doubted_max_attitude_sigma_deg = limit_deg;
+    p.navigation.branch_continuity_frames = 0;
     NavigationPipeline pipeline;
     NavSolution steady;
     NavSolution out;
@@ -244,6 +246,52 @@ TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
     EXPECT_TRUE(out.pose_valid) << "limit " << limit_deg;
     EXPECT_EQ(valid, limit_deg > sigma_deg ? 5 : 5 - (params.navigation.branch_confirm_frames - 1))
         << "limit " << limit_deg;
+  }
+}
+
+TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBranch) {
+  // Ten frames of the approach with frame 4 missing (the camera dropped it): the break makes the branch
+  // unknown. Frame 5's fit is clean, accepted by the filter and looks as frame 3's did, so continuity
+  // confirms it at once. Frames 5 and 6 wait for the third rival-free fit instead without the rule (0
+  // frames), with a look tolerance nothing meets, with a sigma limit below the fit's (this plate at 26 m is
+  // known to about 2 deg, so the test raises the doubted limit from its 1 deg default to 3), or when the
+  // break is longer than the rule allows (two missing frames, 1 allowed). The covariance limit on validity
+  // itself is off: the plate is near it (APoseLessCertainThanTheLimit...).
+  struct Variant {
+    int frames;
+    double look_deg;
+    double growth_deg;
+    double sigma_limit_deg;
+    int missing;
+    int valid;
+  };
+  const int waited = params.navigation.branch_confirm_frames - 1;
+  for (const Variant v : {Variant{3, 3.0, 1.0, 3.0, 1, 9}, Variant{0, 3.0, 1.0, 3.0, 1, 9 - waited},
+                          Variant{3, 0.0, 0.0, 3.0, 1, 9 - waited}, Variant{3, 3.0, 1.0, 1.0, 1, 9 - waited},
+                          Variant{1, 3.0, 1.0, 3.0, 2, 8 - waited}}) {
+    PipelineParams p = params;
+    p.navigation.branch_continuity_frames = v.frames;
+    p.navigation.branch_continuity_look_deg = v.look_deg;
+    p.navigation.reacquire_tolerance_growth_deg_per_frame = v.growth_deg;
+    p.navigation.doubted_max_attitude_sigma_deg = v.sigma_limit_deg;
+    p.navigation.max_valid_attitude_sigma_deg = 0.0;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    int valid = 0;
+    NavSolution out;
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameAt(i);
+      const bool missing = i >= 4 && i < 4 + v.missing;
+      pipeline.process(missing ? nullptr : &f, f.exposure_time_ns, out);
+      EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
+      EXPECT_TRUE(missing || pipeline.lastNearRange().status == TrackStatus::kTracking) << "frame " << i;
+      valid += out.pose_valid ? 1 : 0;
+    }
+    EXPECT_TRUE(out.pose_valid);
+    EXPECT_EQ(valid, v.valid) << "continuity frames " << v.frames << ", look " << v.look_deg
+                              << " deg, sigma limit " << v.sigma_limit_deg << " deg, " << v.missing
+                              << " missing";
   }
 }
 

@@ -47,8 +47,11 @@ struct NavigationParams {
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
   int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
   bool acquisition_awaits_near_range = true;  ///< an acquisition's pose is valid once near range agrees
-  int filter_diverged_rejections = 2;         ///< consecutive rejections of a clean track: restart the filter
-  int far_filter_reset_rejections = 3;        ///< consecutive far-range rejections: restart the filter
+  int branch_continuity_frames =
+      3;  ///< after a break this short, a fit that kept the last valid look confirms
+  double branch_continuity_look_deg = 3.0;  ///< that look's tolerance, widening per frame since (below)
+  int filter_diverged_rejections = 2;       ///< consecutive rejections of a clean track: restart the filter
+  int far_filter_reset_rejections = 3;      ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;
@@ -230,6 +233,21 @@ struct NavigationParams {
          "/16) the near-range fits after it disagreed (NIS 38-146) and were withheld. Costs one frame per "
          "acquisition; false: valid on its own frame"},
         acquisition_awaits_near_range);
+    v.integer({"navigation", "branch_continuity_frames", "count", 0, 1000,
+               "after a break of at most this many frames without a valid pose, a near-range fit confirms "
+               "the track's branch at once when it is as good as a fit gets: status tracking (every "
+               "selected line, no mirrored rival), accepted by the filter's prediction, attitude 1-sigma "
+               "within doubted_max_attitude_sigma_deg, and its look (attitude seen along its own line of "
+               "sight, modulo the model's symmetries) within branch_continuity_look_deg of the last valid "
+               "pose's, widened by reacquire_tolerance_growth_deg_per_frame per frame since. On seeds "
+               "1-40: 86 frames more tracked, none wrong; with ambiguous and degraded fits allowed, 547 "
+               "more and 13 more confidently wrong. 0: only branch_confirm_frames rival-free frames "
+               "confirm"},
+              branch_continuity_frames);
+    v.real({"navigation", "branch_continuity_look_deg", "deg", 0.0, 180.0,
+            "see branch_continuity_frames: the look tolerance on the frame right after the last valid "
+            "pose"},
+           branch_continuity_look_deg);
     v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
                "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
                "filter from it"},
