@@ -19,7 +19,11 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
               frames whose tracker flags have none of --rival-flags, or an acquisition / reacquisition
-              confirmation (unless --no-confirmed-sources)
+              confirmation (unless --no-confirmed-sources), or a certain near-range frame the pipeline
+              judged to have kept the branch by continuity (frames.csv column kept_branch: a clean fit,
+              accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
+              pose's after a break of at most [navigation] branch_continuity_frames; as the pipeline judged
+              it, so exact only with the shipped gates; --no-branch-continuity ignores it)
   awaited     an acquisition's pose is not valid on its own frame; the next frame confirms the branch if it is
               a near-range frame with a certain, rival-free pose ([navigation] acquisition_awaits_near_range;
               --no-acquisition-await: valid on its own frame and confirming, as before)
@@ -55,6 +59,7 @@ def parse_args(argv):
     p.add_argument('--max-nis', type=float, default=0.0)
     p.add_argument('--no-view-gate', action='store_true')
     p.add_argument('--no-acquisition-await', action='store_true')
+    p.add_argument('--no-branch-continuity', action='store_true')
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -101,8 +106,10 @@ def replay_scene(rows, a):
             else:
                 bad = 0
                 rival_free = r['mode'] != 'near_range' or (int(r['near_flags']) & a.rival_flags) == 0
+                continuous = (not a.no_branch_continuity and r['mode'] == 'near_range'
+                              and r.get('kept_branch', '0') == '1')
                 if not a.no_confirmed_sources and (acquisition_pose or r['reacquired'] == '1'
-                                                   or (awaited and rival_free)):
+                                                   or (awaited and rival_free) or continuous):
                     known = True
                 if not rival_free:
                     run = 0

@@ -241,10 +241,11 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
   if (processed_in != NavMode::kAcquisition) m_acquisition_awaits_near = false;
-  const bool confirmed =
-      (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) || m_reacquisition_step.found ||
-      awaited ||
-      (processed_in == NavMode::kNearRange && out.pose_valid && keptTheBranch(out.pose, out.covariance));
+  // Evaluated whatever the branch's state, for the campaign's gate replay (lastFitKeptTheBranch).
+  m_fit_kept_the_branch =
+      processed_in == NavMode::kNearRange && out.pose_valid && keptTheBranch(out.pose, out.covariance);
+  const bool confirmed = (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) ||
+                         m_reacquisition_step.found || awaited || m_fit_kept_the_branch;
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
 }
 
@@ -257,7 +258,7 @@ bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance)
   // tracked and 13 more were confidently wrong (5-8 deg off, the last valid pose already 2-7 deg off), where
   // the three rival-free frames had withheld them.
   const NavigationParams& nav = m_params.navigation;
-  if (nav.branch_continuity_frames <= 0 || m_branch.known() || m_frames_since_valid == ~0ULL ||
+  if (nav.branch_continuity_frames <= 0 || m_frames_since_valid == ~0ULL ||
       m_frames_since_valid > static_cast<std::uint64_t>(nav.branch_continuity_frames))
     return false;
   if (m_near_result.status != TrackStatus::kTracking || !m_last_pose_update.accepted) return false;
@@ -392,6 +393,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_reacquisition_step = ReacquisitionStep{};
   m_acquisition_result = acq::AcquisitionResult{};
   m_pose_showed_face = true;
+  m_fit_kept_the_branch = false;
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;
   out.frame_number = m_last_frame_number;

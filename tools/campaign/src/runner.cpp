@@ -193,6 +193,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.symmetric_twins = sol.symmetric_twins;
     f.shows_face = pipeline->lastPoseShowedAFace();
     f.twin_by_continuity = sol.twin_by_continuity;
+    f.kept_branch = pipeline->lastFitKeptTheBranch();
     const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
     if (u.status == Status::kOk && u.dof == 6) {
       f.has_nis = true;

@@ -73,6 +73,9 @@ class NavigationPipeline {
   /// Whether this frame's 6-DOF pose, delivered or withheld, showed a face (max_valid_view_angle_deg); true
   /// when there was none. For the campaign's offline gate replay.
   bool lastPoseShowedAFace() const { return m_pose_showed_face; }
+  /// Whether the last frame's near-range fit met the branch continuity rule (keptTheBranch), whatever the
+  /// branch's state: what tools/campaign/gate_replay.py replays.
+  bool lastFitKeptTheBranch() const { return m_fit_kept_the_branch; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -109,8 +112,9 @@ class NavigationPipeline {
 
   PinholeCamera m_camera;
   PipelineParams m_params;
-  double m_max_view_cos = 1.0;     ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
-  bool m_pose_showed_face = true;  ///< lastPoseShowedAFace()
+  double m_max_view_cos = 1.0;         ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
+  bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
+  bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
   bool m_track_twin_by_continuity = false;
   bool m_acquisition_awaits_near = false;  ///< acquisition_awaits_near_range: the next frame may confirm it

@@ -64,6 +64,7 @@ struct FrameOutcome {
   int symmetric_twins = 0;  ///< NavSolution::symmetric_twins: attitudes the image cannot tell apart (valid)
   bool shows_face = true;   ///< the candidate showed a face (NavigationPipeline::lastPoseShowedAFace)
   bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
+  bool kept_branch = false;         ///< NavigationPipeline::lastFitKeptTheBranch
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
