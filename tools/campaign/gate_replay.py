@@ -29,6 +29,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               --no-acquisition-await: valid on its own frame and confirming, as before)
   view        a candidate that showed no face of the model within [navigation] max_valid_view_angle_deg
               (frames.csv column shows_face, as the pipeline judged it; --no-view-gate ignores it)
+  jump        a near-range candidate the pipeline withheld as a disputed jump (frames.csv column jumped:
+              the filter rejected it and its look turned more than [navigation] disputed_max_look_change_deg
+              from the frame before's pose; as the pipeline judged it; --no-jump-gate ignores it)
   --max-nis   (not shipped) withhold frames whose filter NIS exceeds this
 
 Prints tracked mean and confidently wrong frames (scenes) per family, as visnav-campaign defines them.
@@ -60,6 +63,7 @@ def parse_args(argv):
     p.add_argument('--no-view-gate', action='store_true')
     p.add_argument('--no-acquisition-await', action='store_true')
     p.add_argument('--no-branch-continuity', action='store_true')
+    p.add_argument('--no-jump-gate', action='store_true')
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -91,6 +95,8 @@ def replay_scene(rows, a):
         if certain and a.max_nis > 0 and r['nis'] and float(r['nis']) > a.max_nis:
             certain = False
         if certain and not a.no_view_gate and r.get('shows_face', '1') == '0':
+            certain = False
+        if certain and not a.no_jump_gate and r.get('jumped', '0') == '1':
             certain = False
         acquisition_pose = r['mode'] == 'acquisition' and r['candidate'] == '1'
         if acquisition_pose and not a.no_acquisition_await:

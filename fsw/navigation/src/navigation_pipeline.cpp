@@ -360,6 +360,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
         m_reacquisition.symmetries().lookDistanceRad(m_last_pose, r.pose) * kDegPerRad > max_look_change_deg;
     deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out,
             doubted || m_track_doubted);
+    m_pose_jumped = jumped;
     if (jumped) out.pose_valid = false;
   } else if (dropped && closeRange()) {
     startReacquisition(image, frame_number, out, in);
@@ -394,6 +395,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_acquisition_result = acq::AcquisitionResult{};
   m_pose_showed_face = true;
   m_fit_kept_the_branch = false;
+  m_pose_jumped = false;
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;
   out.frame_number = m_last_frame_number;

@@ -332,7 +332,7 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
        "extent_px,far_extent_distance_m,candidate,candidate_position_"
        "error_m,candidate_attitude_error_deg,attitude_sigma_deg,position_sigma_rel,near_flags,lines_used,"
        "lines_"
-       "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch\n";
+       "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch,jumped\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
@@ -349,7 +349,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << (f.has_candidate ? num(f.attitude_sigma_deg) : "") << ","
         << (f.has_candidate ? num(f.position_sigma_rel) : "") << "," << f.near_flags << "," << f.lines_used
         << "," << f.lines_total << "," << f.reacquired << "," << num(f.process_us) << "," << f.symmetric_twins
-        << "," << f.shows_face << "," << f.twin_by_continuity << "," << f.kept_branch << "\n";
+        << "," << f.shows_face << "," << f.twin_by_continuity << "," << f.kept_branch << "," << f.jumped
+        << "\n";
     }
   }
 }

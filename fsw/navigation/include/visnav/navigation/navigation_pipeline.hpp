@@ -76,6 +76,8 @@ class NavigationPipeline {
   /// Whether the last frame's near-range fit met the branch continuity rule (keptTheBranch), whatever the
   /// branch's state: what tools/campaign/gate_replay.py replays.
   bool lastFitKeptTheBranch() const { return m_fit_kept_the_branch; }
+  /// Whether the last frame's near-range pose was withheld as a disputed jump (disputed_max_look_change_deg).
+  bool lastPoseJumped() const { return m_pose_jumped; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -115,6 +117,7 @@ class NavigationPipeline {
   double m_max_view_cos = 1.0;         ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
   bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
+  bool m_pose_jumped = false;          ///< lastPoseJumped()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
   bool m_track_twin_by_continuity = false;
   bool m_acquisition_awaits_near = false;  ///< acquisition_awaits_near_range: the next frame may confirm it

@@ -65,6 +65,7 @@ struct FrameOutcome {
   bool shows_face = true;   ///< the candidate showed a face (NavigationPipeline::lastPoseShowedAFace)
   bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
   bool kept_branch = false;         ///< NavigationPipeline::lastFitKeptTheBranch
+  bool jumped = false;              ///< NavigationPipeline::lastPoseJumped
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
