@@ -73,28 +73,6 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_fdir.resetPersistence();
 }
 
-void NavigationPipeline::flagTwins(NavSolution& out) const {
-  // The "flag the ambiguity": the track keeps the twin continuous with it (acquisition, reacquisition
-  // and the tracker all do), and the user is told how many others the image would have accepted.
-  const double depth_m = out.pose.t_c_m.z();
-  out.symmetric_twins = m_acquisition.symmetries().indistinguishableTwins(
-      depth_m > 0.0 ? m_camera.intrinsics().fx_px / depth_m : 0.0,
-      m_params.acquisition.near_twin_min_separation_px);
-  out.twin_by_continuity = m_track_twin_by_continuity;
-}
-
-bool NavigationPipeline::showsAFace(const Pose& pose) const {
-  // An edge-on plate's outline is two pairs of edges a few pixels apart: its fits lock biased with a small
-  // covariance (campaign plate/132: 7 frames 1.1-2.8 m off at 17.5 m, 0.7-1.5 deg 1-sigma).
-  if (!(m_max_view_cos < 1.0)) return true;  // off
-  for (const ModelSurface& s : m_near.model().surfaces()) {
-    const Vec3 centre_c = pose.transform(s.centroid_m);
-    const double distance = centre_c.norm();
-    if (distance > 0.0 && -(pose.R_c_m * s.normal_m).dot(centre_c) > m_max_view_cos * distance) return true;
-  }
-  return false;
-}
-
 bool NavigationPipeline::centreInImage(const Pose& pose) const {
   Vec2 px;
   if (!m_camera.project(pose.t_c_m, px)) return false;
@@ -191,85 +169,6 @@ bool NavigationPipeline::closeRange() const {
   // Below the far-range hand-over the target is too large for far range to find again: a loss there is
   // recovered locally (close-range reacquisition), never by falling back.
   return m_last_pose.t_c_m.z() <= m_params.navigation.far_range_above_m;
-}
-
-void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out,
-                                 bool doubted) {
-  m_coasted = 0;
-  m_last_pose = pose;
-  m_have_pose = true;
-  m_delivered_newest ^= 1U;  // the older slot becomes the newest: no copy of the other
-  m_delivered[m_delivered_newest] = DeliveredPose{pose, covariance, m_last_exposure_ns};
-  // The pose is tracked whatever its uncertainty (the next frame is predicted from it), but it is valid
-  // output only when its own covariance says it is known to the accuracy a user may rely on: a small target
-  // far out has an attitude the image barely constrains, and a pose wrong by degrees then looks as good as
-  // a right one (campaign plate/12: 12 deg off from the true start, 3.9 deg 1-sigma).
-  const NavigationParams& nav = m_params.navigation;
-  // A doubted pose (the filter disputes it, or part of its outline was not found) must be better determined:
-  // a fit on the wrong edges has few of them and weak geometry, its covariance knows the noise but not the
-  // bias (smallsat/83: 1.5 deg 1-sigma, 12 deg off).
-  const PoseSigmas sigma = poseSigmas(pose, covariance);
-  double attitude_limit_deg = nav.max_valid_attitude_sigma_deg;
-  if (doubted && nav.doubted_max_attitude_sigma_deg > 0.0)
-    attitude_limit_deg = attitude_limit_deg > 0.0
-                             ? std::min(attitude_limit_deg, nav.doubted_max_attitude_sigma_deg)
-                             : nav.doubted_max_attitude_sigma_deg;
-  const bool certain =
-      (attitude_limit_deg <= 0.0 || sigma.attitude_deg <= attitude_limit_deg) &&
-      (nav.max_valid_position_sigma_rel <= 0.0 || sigma.position_rel <= nav.max_valid_position_sigma_rel);
-  m_pose_showed_face = showsAFace(pose);
-  // A track that began with a reacquisition's find stays doubted until one of its poses meets the doubted
-  // limit: a find a few degrees off, withheld on its own frame, is otherwise continued and delivered once the
-  // filter has restarted from it (campaign box/25: re-found 17.7 deg off, then 20 frames valid at 17-20 deg
-  // with a 1.1-2.3 deg 1-sigma). Replayed on the full run: wrong frames 210 -> 193, tracked mean 0.549 ->
-  // 0.547.
-  if (doubted && nav.doubted_max_attitude_sigma_deg > 0.0 &&
-      sigma.attitude_deg <= nav.doubted_max_attitude_sigma_deg)
-    m_track_doubted = false;
-  out.pose_valid = certain && m_pose_showed_face;
-  out.pose = pose;
-  out.covariance = covariance;
-  out.quality = quality;
-}
-
-void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
-  // track_branch.hpp says why. A fit without corners (point-to-line fallback) is not checked against its
-  // twin well enough to count as rival-free.
-  const bool rival_free = processed_in != NavMode::kNearRange ||
-                          (m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U;
-  // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
-  // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
-  const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
-  if (processed_in != NavMode::kAcquisition) m_acquisition_awaits_near = false;
-  // Evaluated whatever the branch's state, for the campaign's gate replay (lastFitKeptTheBranch).
-  m_fit_kept_the_branch =
-      processed_in == NavMode::kNearRange && out.pose_valid && keptTheBranch(out.pose, out.covariance);
-  const bool confirmed = (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) ||
-                         m_reacquisition_step.found || awaited || m_fit_kept_the_branch;
-  out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
-}
-
-bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance) const {
-  // A short break is no reason to forget which twin the track follows when the fit after it is as good as
-  // one can be: the tracker's status tracking (all lines, no mirrored rival), the filter's prediction
-  // accepted it, its attitude is known to the doubted limit, and its look stayed with the last valid pose
-  // (the target turns a degree or so a frame; a flat target's twin is twice its tilt away). Looser, the rule
-  // resumed biased tracks: on seeds 1-40 with ambiguous and degraded fits allowed, 547 frames more were
-  // tracked and 13 more were confidently wrong (5-8 deg off, the last valid pose already 2-7 deg off), where
-  // the three rival-free frames had withheld them.
-  const NavigationParams& nav = m_params.navigation;
-  if (nav.branch_continuity_frames <= 0 || m_frames_since_valid == ~0ULL ||
-      m_frames_since_valid > static_cast<std::uint64_t>(nav.branch_continuity_frames))
-    return false;
-  if (m_near_result.status != TrackStatus::kTracking || !m_last_pose_update.accepted) return false;
-  if (nav.doubted_max_attitude_sigma_deg > 0.0 &&
-      poseSigmas(pose, covariance).attitude_deg > nav.doubted_max_attitude_sigma_deg)
-    return false;
-  const double tolerance_rad =
-      (nav.branch_continuity_look_deg +
-       nav.reacquire_tolerance_growth_deg_per_frame * static_cast<double>(m_frames_since_valid + 1)) *
-      kRadPerDeg;
-  return m_reacquisition.symmetries().lookDistanceRad(m_last_valid_pose, pose) <= tolerance_rad;
 }
 
 bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck& check) {
