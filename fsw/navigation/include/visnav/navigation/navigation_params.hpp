@@ -47,8 +47,7 @@ struct NavigationParams {
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
   int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
   bool acquisition_awaits_near_range = true;  ///< an acquisition's pose is valid once near range agrees
-  int branch_continuity_frames =
-      3;  ///< after a break this short, a fit that kept the last valid look confirms
+  int branch_continuity_frames = 3;  ///< after a break this short, a clean fit that kept the look confirms
   double branch_continuity_look_deg = 3.0;  ///< that look's tolerance, widening per frame since (below)
   int filter_diverged_rejections = 2;       ///< consecutive rejections of a clean track: restart the filter
   int far_filter_reset_rejections = 3;      ///< consecutive far-range rejections: restart the filter

@@ -104,10 +104,10 @@ class NavigationPipeline {
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
-  /// Some surface of the model faces the camera within [navigation] max_valid_view_angle_deg on `pose`.
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
   /// last valid pose's look (confirms the branch).
   bool keptTheBranch(const Pose& pose, const Mat6& covariance) const;
+  /// Some surface of the model faces the camera within [navigation] max_valid_view_angle_deg on `pose`.
   bool showsAFace(const Pose& pose) const;
   /// Fills out.symmetric_twins and out.twin_by_continuity for a valid pose.
   void flagTwins(NavSolution& out) const;
