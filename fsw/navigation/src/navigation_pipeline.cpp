@@ -237,6 +237,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   const bool measured = r.status != TrackStatus::kLost;
   check.evidence_good = measured && imageEvidenceGood(r, m_params.navigation);
   bool accepted = false;
+  const double predicted_range_m = predictedPose().t_c_m.norm();  // before a disputed fit restarts the filter
   if (measured) {
     check.centre_in_image = centreInImage(r.pose);
     accepted = fuseNearRange(r, check);
@@ -253,10 +254,17 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     // tracked, not valid. Against the last pose, not the prediction: a filter restarted from two alternating
     // fits predicts a rate they do not have (slew_box: 13.6 deg/s). Until deliver() below, m_last_pose is the
     // frame before's pose, and m_coasted 0 says it was delivered then.
-    const double max_look_change_deg = m_params.navigation.disputed_max_look_change_deg;
-    const bool jumped =
-        (faults & kFaultInnovation) != 0U && max_look_change_deg > 0.0 && m_have_pose && m_coasted == 0 &&
-        m_reacquisition.symmetries().lookDistanceRad(m_last_pose, r.pose) * kDegPerRad > max_look_change_deg;
+    // Its range against the prediction's, which carries the approach's speed (a slew changes neither).
+    const NavigationParams& nav = m_params.navigation;
+    const bool disputed = (faults & kFaultInnovation) != 0U && m_have_pose && m_coasted == 0;
+    const bool turned =
+        nav.disputed_max_look_change_deg > 0.0 &&
+        m_reacquisition.symmetries().lookDistanceRad(m_last_pose, r.pose) * kDegPerRad >
+            nav.disputed_max_look_change_deg;
+    const bool moved_in_range = nav.disputed_max_range_change_rel > 0.0 && predicted_range_m > 0.0 &&
+                                std::fabs(r.pose.t_c_m.norm() / predicted_range_m - 1.0) >
+                                    nav.disputed_max_range_change_rel;
+    const bool jumped = disputed && (turned || moved_in_range);
     deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out,
             doubted || m_track_doubted);
     m_pose_jumped = jumped;

@@ -152,6 +152,37 @@ TEST_F(PipelineTest, ADisputedPoseThatTurnedFasterThanATargetTurnsIsTrackedButNo
   }
 }
 
+TEST_F(PipelineTest, ADisputedPoseThatMovedInRangeFasterThanPredictedIsTrackedButNotValid) {
+  // The same still plate, 6 % further from one frame to the next with the same attitude (what a fit that
+  // locked on another pair of edges looks like in depth): disputed, supported by the image, so tracked on
+  // from, but not valid on that frame under disputed_max_range_change_rel; the look gate alone passes it.
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < 20; ++i)
+    seq.push_back(test::renderFrame(renderer, test::plateAt(i < 10 ? 20.0 : 21.2, 0.1, 1.0, -1.0), 900U + i));
+  for (const double limit_rel : {0.03, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.disputed_max_range_change_rel = limit_rel;
+    p.navigation.doubted_max_attitude_sigma_deg = 0.0;  // as above: this rule alone
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    std::vector<NavSolution> out(seq.size());
+    bool jumped_on_the_move = false;
+    for (std::size_t i = 0; i < seq.size(); ++i) {
+      const Frame f = frameOf(seq, static_cast<int>(i));
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out[i]), Status::kOk);
+      if (i == 10) jumped_on_the_move = pipeline.lastPoseJumped();
+    }
+    for (int i = 1; i < 10; ++i) EXPECT_TRUE(out[static_cast<std::size_t>(i)].pose_valid) << i;
+    ASSERT_NE(out[10].fault_bits & kFaultInnovation, 0U) << "the scene must reach the case";
+    EXPECT_EQ(out[10].mode, NavMode::kNearRange);
+    EXPECT_EQ(out[10].pose_valid, limit_rel == 0.0) << "limit " << limit_rel;
+    EXPECT_EQ(jumped_on_the_move, limit_rel > 0.0) << "the replay's jumped column";
+    EXPECT_NEAR(out[10].pose.t_c_m.norm(), seq[10].truth.t_c_m.norm(), 0.2) << "the track followed the move";
+    EXPECT_TRUE(out.back().pose_valid) << "limit " << limit_rel;
+  }
+}
+
 TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   // The same ten near-range frames under three limits on the pose's own 1-sigma attitude: one no fit
   // exceeds (this plate at 26 m is known to about 2.2 deg, near the 2.5 deg default), a limit below what any

@@ -128,6 +128,7 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRang
   for (const bool far_cue : {true, false}) {
     PipelineParams p = params;
     p.navigation.reacquire_far_cue = far_cue;
+    p.navigation.reacquire_acquisition_tiles = false;  // the prediction's attempts stay on its line of sight
     NavigationPipeline pipeline;
     HiddenRun run;
     runHidden(seq, p, pipeline, run);
@@ -145,6 +146,35 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRang
     } else {
       EXPECT_TRUE(run.found_at < 0 || run.found_at > found_with_cue)
           << "the prediction's cue found it as soon (at " << run.found_at << "): the test tests nothing";
+    }
+  }
+}
+
+TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundByTheAcquisitionsTiles) {
+  // The scene above without far range's help (on a limb or a gradient far range sees no target): the
+  // prediction-cued attempts walk windows over the disc the local search has grown to
+  // (reacquire_acquisition_tiles), and one of them holds the plate. Without the tiles every attempt looks
+  // at the prediction's line of sight, 17 deg from it.
+  const std::vector<test::RenderedFrame> seq =
+      hiddenApproach(test::plateAt(12.0, -2.4, 25.0, -15.0), test::plateAt(15.0, 1.5, 1.0, -1.0));
+  for (const bool tiles : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.reacquire_far_cue = false;
+    p.navigation.reacquire_acquisition_tiles = tiles;
+    NavigationPipeline pipeline;
+    HiddenRun run;
+    runHidden(seq, p, pipeline, run);
+    EXPECT_EQ(run.allocations, 0U) << "tiles " << tiles;
+    EXPECT_FALSE(run.far_cued);
+    const int valid_after = checkValidAfterHidden(seq, pipeline, run);
+    if (tiles) {
+      ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
+      EXPECT_TRUE(run.found_by_acquisition);
+      EXPECT_LE(run.found_at, kHiddenUntil + 12);
+      EXPECT_GE(valid_after, 30 - run.found_at - 1);
+    } else {
+      EXPECT_LT(run.found_at, 0) << "found without tiles: the test tests nothing";
+      EXPECT_EQ(valid_after, 0);
     }
   }
 }

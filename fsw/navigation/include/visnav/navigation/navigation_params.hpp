@@ -42,6 +42,7 @@ struct NavigationParams {
   double doubted_max_attitude_sigma_deg = 1.0;  ///< the same for a near-range pose that is doubted (below)
   double doubt_min_line_fraction = 0.75;        ///< fewer used lines / selected lines: the pose is doubted
   double disputed_max_look_change_deg = 5.0;    ///< a disputed pose turned more than this is not valid
+  double disputed_max_range_change_rel = 0.03;  ///< or its range this far (relative) from the prediction's
   double max_valid_view_angle_deg = 80.0;  ///< a pose showing no surface nearer facing than this is not valid
   double start_pose_sigma_deg = 2.5;    ///< 1-sigma (sqrt of trace) of a given start pose's attitude; 0: none
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
@@ -65,6 +66,7 @@ struct NavigationParams {
   int reacquire_timeout_frames = 300;          ///< searching longer: hand over to far range
   int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches (0: never)
   bool reacquire_far_cue = true;  ///< that acquisition looks where far range finds the target, if it does
+  bool reacquire_acquisition_tiles = true;  ///< its prediction-cued attempts walk tiles over the searched disc
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
   bool refute_unconfirmed_cue = false;  ///< an acquisition that confirmed nothing at its cue refutes it too
@@ -189,6 +191,13 @@ struct NavigationParams {
             "faces of a box does (campaign box/58: 10.7 deg in one frame, NIS 777, 0.4 deg 1-sigma). The "
             "track goes on from it; 0 switches the check off"},
            disputed_max_look_change_deg);
+    v.real({"navigation", "disputed_max_range_change_rel", "-", 0.0, 10.0,
+            "the same for the range: a disputed pose whose range differs from the prediction's by more "
+            "than this share of it is not valid on that frame. The prediction carries the approach's speed, "
+            "and a slew does not change the range; the image constrains depth least, and a fit that locks "
+            "on another pair of edges jumps in it (campaign box/23: 7.1 % in one frame, NIS 468, look "
+            "2.3 deg). The track goes on from it; 0 switches the check off"},
+           disputed_max_range_change_rel);
     v.real({"navigation", "max_valid_view_angle_deg", "deg", 0.0, 90.0,
             "a 6-DOF pose on which no surface of the model faces the camera within this angle (between its "
             "outward normal and the line of sight to its centre) is tracked but not valid: seen edge-on, a "
@@ -321,6 +330,15 @@ struct NavigationParams {
                "5.6 % off in range, box/191). The find is judged as before; "
                "false: the prediction only"},
               reacquire_far_cue);
+    v.boolean({"navigation", "reacquire_acquisition_tiles", "-", 0, 1,
+               "close-range reacquisition: the acquisition's attempts cued by the prediction walk a square "
+               "spiral of windows, one window half-size apart, over the disc the local search has grown to, "
+               "instead of all looking at the prediction: a target lost for long drifts from the "
+               "prediction's line of sight by more than one window (campaign cao/5: 22 deg off after 60 "
+               "frames, every attempt failed with no target in its window). A window without the target "
+               "fails on its own frame (min_edge_snr); the find is judged as before; false: every attempt "
+               "at the prediction"},
+              reacquire_acquisition_tiles);
     v.boolean({"navigation", "reacquire_twin_continuity", "-", 0, 1,
                "close-range reacquisition: that acquisition does not refuse a candidate whose near twin "
                "the image cannot resolve ([acquisition] near_twin_min_separation_px) when the last valid "

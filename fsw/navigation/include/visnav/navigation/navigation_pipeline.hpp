@@ -102,6 +102,8 @@ class NavigationPipeline {
   /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
   /// searches too, cued by the prediction; its find is delivered as the step's.
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
+  /// The line of sight of the next tile over the searched disc (reacquire_acquisition_tiles).
+  Vec3 nextAcquisitionTile(const Vec3& predicted_direction, double spacing_px, double radius_px);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
@@ -149,6 +151,8 @@ class NavigationPipeline {
   unsigned m_delivered_newest = 0;
   int m_coasted = 0;                     ///< consecutive near-range frames the prediction filled in
   bool m_next_attempt_far_cued = false;  ///< the close-range acquisition's cues alternate (reacquire_far_cue)
+  int m_acquisition_tile = 1;  ///< the next tile of the prediction-cued attempts (reacquire_acquisition_tiles)
+  bool m_acquisition_tile_turn = false;  ///< they alternate between the prediction and the next tile
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
