@@ -257,13 +257,12 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     // Its range against the prediction's, which carries the approach's speed (a slew changes neither).
     const NavigationParams& nav = m_params.navigation;
     const bool disputed = (faults & kFaultInnovation) != 0U && m_have_pose && m_coasted == 0;
-    const bool turned =
-        nav.disputed_max_look_change_deg > 0.0 &&
-        m_reacquisition.symmetries().lookDistanceRad(m_last_pose, r.pose) * kDegPerRad >
-            nav.disputed_max_look_change_deg;
-    const bool moved_in_range = nav.disputed_max_range_change_rel > 0.0 && predicted_range_m > 0.0 &&
-                                std::fabs(r.pose.t_c_m.norm() / predicted_range_m - 1.0) >
-                                    nav.disputed_max_range_change_rel;
+    const bool turned = nav.disputed_max_look_change_deg > 0.0 &&
+                        m_reacquisition.symmetries().lookDistanceRad(m_last_pose, r.pose) * kDegPerRad >
+                            nav.disputed_max_look_change_deg;
+    const bool moved_in_range =
+        nav.disputed_max_range_change_rel > 0.0 && predicted_range_m > 0.0 &&
+        std::fabs(r.pose.t_c_m.norm() / predicted_range_m - 1.0) > nav.disputed_max_range_change_rel;
     const bool jumped = disputed && (turned || moved_in_range);
     deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out,
             doubted || m_track_doubted);

@@ -77,7 +77,7 @@ void NavigationPipeline::startFilterFromReacquisition(const ReacquisitionStep& s
 }
 
 Vec3 NavigationPipeline::nextAcquisitionTile(const Vec3& predicted_direction, double spacing_px,
-                                              double radius_px) {
+                                             double radius_px) {
   // Every other attempt looks at the prediction itself: where it is still right, the target's clearest
   // frames must not fall on an attempt elsewhere (campaign cao/20: the prediction's window held the target,
   // approaching, with edge SNR 7.4 on the frame a tile had; re-found 51 frames later). The others walk the
@@ -159,11 +159,11 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
       const double half_px = m_params.acquisition.window_margin * target_radius_px +
                              focal_px * std::tan(margin_deg * kRadPerDeg);
       const double spacing_px = 2.0 * (half_px - target_radius_px);
-      const Vec3 direction =
-          m_params.navigation.reacquire_acquisition_tiles
-              ? nextAcquisitionTile(predicted_direction, spacing_px, step.search_radius_px)
-              : predicted_direction;
-      m_acquisition.start(direction, direction == predicted_direction ? predicted.t_c_m.z() : range_m * direction.z(),
+      const Vec3 direction = m_params.navigation.reacquire_acquisition_tiles
+                                 ? nextAcquisitionTile(predicted_direction, spacing_px, step.search_radius_px)
+                                 : predicted_direction;
+      m_acquisition.start(direction,
+                          direction == predicted_direction ? predicted.t_c_m.z() : range_m * direction.z(),
                           margin_deg);
     }
   }

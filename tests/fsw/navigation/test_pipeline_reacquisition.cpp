@@ -170,7 +170,7 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundByTheAcquisi
     if (tiles) {
       ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
       EXPECT_TRUE(run.found_by_acquisition);
-      EXPECT_LE(run.found_at, kHiddenUntil + 12);
+      EXPECT_LE(run.found_at, kHiddenUntil + 8);
       EXPECT_GE(valid_after, 30 - run.found_at - 1);
     } else {
       EXPECT_LT(run.found_at, 0) << "found without tiles: the test tests nothing";

@@ -33,7 +33,8 @@ TEST(SquareSpiral, NeighbouringIndicesAreNeighbouringCellsWithinARing) {
   for (int k = 1; k < squareSpiralCells(5) - 1; ++k) {
     const Eigen::Vector2i a = squareSpiralCell(k);
     const Eigen::Vector2i b = squareSpiralCell(k + 1);
-    const bool same_ring = std::max(std::abs(a.x()), std::abs(a.y())) == std::max(std::abs(b.x()), std::abs(b.y()));
+    const bool same_ring =
+        std::max(std::abs(a.x()), std::abs(a.y())) == std::max(std::abs(b.x()), std::abs(b.y()));
     if (!same_ring) continue;
     EXPECT_LE(std::abs(a.x() - b.x()), 1) << "index " << k;
     EXPECT_LE(std::abs(a.y() - b.y()), 1) << "index " << k;

@@ -283,7 +283,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             predicted.t_c_m.norm() / truth.t_c_m.norm() - 1.0,
             (pipeline->lastTrustedPose().t_c_m - truth.t_c_m).norm(),
             attitudeErrorModuloDeg(pipeline->lastTrustedPose().R_c_m, truth.R_c_m, scene.symmetries),
-            rs.acquisition_state, rs.acquisition_failure, rs.acquisition_edge_snr, rs.far_cue ? 1 : 0, rs.by_acquisition ? " (found by acquisition)" : "",
+            rs.acquisition_state, rs.acquisition_failure, rs.acquisition_edge_snr, rs.far_cue ? 1 : 0,
+            rs.by_acquisition ? " (found by acquisition)" : "",
             rs.twin_by_continuity ? " (near twin told apart by continuity)" : "");
         res.trace += buf;
       }

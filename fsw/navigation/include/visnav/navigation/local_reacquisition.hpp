@@ -42,10 +42,10 @@ struct ReacquisitionStep {
   /// found by the acquisition that searches alongside after reacquire_acquisition_after_frames
   /// (navigation_pipeline.cpp), not by the local grid.
   bool by_acquisition = false;
-  int acquisition_state = -1;  ///< that acquisition's AcquisitionState this frame (-1: not run)
-  int acquisition_failure = 0;  ///< and its AcquisitionFailure when it failed (0: none)
+  int acquisition_state = -1;         ///< that acquisition's AcquisitionState this frame (-1: not run)
+  int acquisition_failure = 0;        ///< and its AcquisitionFailure when it failed (0: none)
   double acquisition_edge_snr = 0.0;  ///< and its window's edge SNR (0: no window prepared)
-  bool far_cue = false;        ///< that acquisition was cued by far range this frame (reacquire_far_cue)
+  bool far_cue = false;  ///< that acquisition was cued by far range this frame (reacquire_far_cue)
   /// found by that acquisition with a near twin the image cannot resolve, told apart by the look of the
   /// last valid pose (acq::AcquisitionResult::twin_resolved_by_continuity)
   bool twin_by_continuity = false;

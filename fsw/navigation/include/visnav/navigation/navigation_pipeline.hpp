@@ -151,7 +151,7 @@ class NavigationPipeline {
   unsigned m_delivered_newest = 0;
   int m_coasted = 0;                     ///< consecutive near-range frames the prediction filled in
   bool m_next_attempt_far_cued = false;  ///< the close-range acquisition's cues alternate (reacquire_far_cue)
-  int m_acquisition_tile = 1;  ///< the next tile of the prediction-cued attempts (reacquire_acquisition_tiles)
+  int m_acquisition_tile = 1;            ///< the next spiral cell (reacquire_acquisition_tiles)
   bool m_acquisition_tile_turn = false;  ///< they alternate between the prediction and the next tile
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.

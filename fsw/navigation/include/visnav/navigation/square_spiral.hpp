@@ -14,14 +14,14 @@ constexpr int squareSpiralCells(int rings) { return rings < 0 ? 0 : (2 * rings +
 inline Eigen::Vector2i squareSpiralCell(int index) {
   if (index <= 0) return {0, 0};
   int ring = 1;
-  while (squareSpiralCells(ring) <= index) ++ring;  // bounded: ring^2 grows past index
+  while (squareSpiralCells(ring) <= index) ++ring;    // bounded: ring^2 grows past index
   const int m = index - squareSpiralCells(ring - 1);  // 0 .. 8 ring - 1
   const int side = m / (2 * ring);
   const int along = m % (2 * ring);
   switch (side) {
-    case 0: return {ring, -ring + 1 + along};  // right side, downwards in y
-    case 1: return {ring - 1 - along, ring};   // bottom, leftwards
-    case 2: return {-ring, ring - 1 - along};  // left side, upwards
+    case 0: return {ring, -ring + 1 + along};    // right side, downwards in y
+    case 1: return {ring - 1 - along, ring};     // bottom, leftwards
+    case 2: return {-ring, ring - 1 - along};    // left side, upwards
     default: return {-ring + 1 + along, -ring};  // top, rightwards
   }
 }
