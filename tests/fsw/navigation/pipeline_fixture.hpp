@@ -110,6 +110,16 @@ class PipelineTest : public ::testing::Test {
     }
     run.allocations = test::allocationCount() - before;
   }
+
+  /// A run whose acquisition found the plate again within 8 frames of its reappearance, valid from then on
+  /// but for a frame.
+  static void expectFoundByAcquisitionSoon(const HiddenRun& run, int valid_after) {
+    ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
+    EXPECT_TRUE(run.found_by_acquisition);
+    EXPECT_LE(run.found_at, kHiddenUntil + 8);
+    EXPECT_GE(valid_after, 30 - run.found_at - 1);
+  }
+
   /// Every valid pose once the target reappears is within 2 % of 12 m and 2 deg of the truth (modulo the
   /// plate's half-turn symmetry about its normal); returns how many there were.
   int checkValidAfterHidden(const std::vector<test::RenderedFrame>& seq, const NavigationPipeline& pipeline,
