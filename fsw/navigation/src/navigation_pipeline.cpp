@@ -237,8 +237,9 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   const bool measured = r.status != TrackStatus::kLost;
   check.evidence_good = measured && imageEvidenceGood(r, m_params.navigation);
   bool accepted = false;
-  const double predicted_range_m = predictedPose().t_c_m.norm();  // before a disputed fit restarts the filter
+  double predicted_range_m = 0.0;
   if (measured) {
+    predicted_range_m = predictedPose().t_c_m.norm();  // before a disputed fit restarts the filter
     check.centre_in_image = centreInImage(r.pose);
     accepted = fuseNearRange(r, check);
   }

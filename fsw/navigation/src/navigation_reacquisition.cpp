@@ -162,6 +162,7 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
       const Vec3 direction = m_params.navigation.reacquire_acquisition_tiles
                                  ? nextAcquisitionTile(predicted_direction, spacing_px, step.search_radius_px)
                                  : predicted_direction;
+      // At the prediction its own depth (as with tiles off), on a tile the range along it.
       m_acquisition.start(direction,
                           direction == predicted_direction ? predicted.t_c_m.z() : range_m * direction.z(),
                           margin_deg);
