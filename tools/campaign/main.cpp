@@ -102,6 +102,8 @@ int main(int argc, char** argv) {
         if (LoadError e = drawScene(f, sceneSeed(options.seed, i), models, options.max_frames, run.scene);
             !e.ok)
           return fail(e.message);
+        const SceneKind kind = run.scene.approach ? SceneKind::kApproach : SceneKind::kNear;
+        if (options.kind != SceneKind::kAny && options.kind != kind) continue;
         runs.push_back(std::move(run));
       }
     }

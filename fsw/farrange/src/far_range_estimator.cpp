@@ -67,6 +67,16 @@ void FarRangeEstimator::reset() {
   m_has_prediction = false;
 }
 
+void FarRangeEstimator::skipFrames(int frames) {
+  if (!m_track.active || frames <= 0) return;
+  if (frames > m_params.max_coast_frames - m_track.misses) {
+    m_track = Track{};
+  } else {
+    m_track.misses += frames;
+  }
+  m_has_prediction = false;
+}
+
 bool FarRangeEstimator::refuteLastFix() {
   if (m_params.refuted_fix_frames <= 0 || !m_has_last_fix) return false;
   // The slot that expires first (a free one has 0 frames left).

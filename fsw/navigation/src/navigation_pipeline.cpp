@@ -126,6 +126,7 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
                                         ModeInputs& in) {
   acq::AcquisitionResult& result = m_acquisition_result;
   m_acquisition.step(image, frame_number, result);
+  ++m_acquisition_frames;
   if (result.state == acq::AcquisitionState::kFailed) {
     in.acquisition_failed = true;
     m_fdir.raise(kFaultAcquisitionFailed);
@@ -137,9 +138,12 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
                              result.failure == acq::AcquisitionFailure::kNotConfirmed ||
                              result.failure == acq::AcquisitionFailure::kAmbiguous;
     in.acquisition_unconfirmed = unconfirmed;
-    if (result.failure == acq::AcquisitionFailure::kNoTarget ||
-        (unconfirmed && m_params.navigation.refute_unconfirmed_cue))
-      m_far.refuteLastFix();
+    const bool refuted = result.failure == acq::AcquisitionFailure::kNoTarget ||
+                         (unconfirmed && m_params.navigation.refute_unconfirmed_cue);
+    if (refuted) m_far.refuteLastFix();
+    // Not refuted: what far range tracked is still the best lead, and a fresh start would take the largest
+    // plausible cluster, clutter as often as not (campaign octagon/164).
+    m_far_track_kept = unconfirmed && !refuted && m_params.navigation.far_track_survives_unconfirmed;
     return;
   }
   if (result.state != acq::AcquisitionState::kSucceeded) return;
@@ -281,13 +285,22 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
 void NavigationPipeline::enterMode(NavMode mode) {
   m_fdir.resetPersistence();
   m_coasted = 0;
+  const bool far_track_kept = m_far_track_kept;
+  m_far_track_kept = false;
   switch (mode) {
     case NavMode::kStandby: break;
     case NavMode::kFarRange:
-      m_far.reset();
+      if (far_track_kept) {
+        m_far.skipFrames(m_acquisition_frames);
+      } else {
+        m_far.reset();
+      }
       m_reacquisition.stop();
       break;
-    case NavMode::kAcquisition: m_acquisition.start(m_last_far_fix); break;
+    case NavMode::kAcquisition:
+      m_acquisition.start(m_last_far_fix);
+      m_acquisition_frames = 0;
+      break;
     case NavMode::kNearRange:
       m_near.reset();
       m_reacquisition.stop();

@@ -122,5 +122,44 @@ TEST(RefutedFix, AtMostFourRegionsTheOldestGoesFirst) {
   EXPECT_FALSE(estimate(e, frames[1]).valid) << "the second is still refuted";
 }
 
+// An acquisition that saw edges at the cue but confirmed nothing does not refute it: far range goes on with
+// its track over the frames the acquisition took (skipFrames), so a larger glow that appeared meanwhile does
+// not take the fix (campaign octagon/164). A fresh start (reset) takes the larger cluster, as does a track
+// that coasted past max_coast_frames.
+TEST(SkippedFrames, TheTrackCoastsOverFramesItDidNotSeeAndEndsPastItsCoastLimit) {
+  synthetic::RenderOptions o = test::farRender();
+  const Vec2 glow_px(150.0, 360.0);
+  synthetic::Glint glow = glowAt(glow_px);
+  glow.first_frame = 2;  // not on the frame that starts the track
+  o.glints.push_back(glow);
+  Scene s(o);
+  const test::FarFrame before = s.frame(kSatellite, 3, 0);
+  const test::FarFrame after = s.frame(kSatellite, 4, 3);
+  const Vec3 truth = after.truth.t_c_m.normalized();
+  const FarRangeParams params;
+  ASSERT_GE(params.max_coast_frames, 2);
+  for (const int skipped : {0, 2, params.max_coast_frames + 1}) {
+    for (const bool restart : {false, true}) {
+      FarRangeEstimator e;
+      ASSERT_TRUE(e.init(s.camera, params).ok);
+      const FarRangeResult first = estimate(e, before);
+      ASSERT_TRUE(first.valid);
+      ASSERT_LT(test::angleDeg(first.direction_c, before.truth.t_c_m.normalized()), 0.1) << "no glow yet";
+      if (restart) {
+        e.reset();
+      } else {
+        e.skipFrames(skipped);
+      }
+      const FarRangeResult r = estimate(e, after);
+      ASSERT_TRUE(r.valid) << skipped << " " << restart;
+      const bool on_target = test::angleDeg(r.direction_c, truth) < 0.1;
+      const bool on_glow = (r.centroid_px - glow_px).norm() < 3.0;
+      const bool tracked = !restart && skipped <= params.max_coast_frames;
+      EXPECT_EQ(on_target, tracked) << "skipped " << skipped << ", restart " << restart;
+      EXPECT_EQ(on_glow, !tracked) << "skipped " << skipped << ", restart " << restart;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace visnav::far

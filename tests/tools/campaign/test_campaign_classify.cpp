@@ -305,6 +305,11 @@ TEST(CampaignOptionsTest, Parsing) {
           .ok);
   EXPECT_TRUE(o.gates.tracked_fraction && o.gates.no_confident_wrong && o.gates.recovery &&
               o.gates.mode_changes);
+  EXPECT_EQ(o.kind, SceneKind::kAny);
+  EXPECT_TRUE(parseArguments({"--runs", "4", "--kind", "approach"}, o).ok);
+  EXPECT_EQ(o.kind, SceneKind::kApproach);
+  EXPECT_TRUE(parseArguments({"--runs", "4", "--kind", "near"}, o).ok);
+  EXPECT_EQ(o.kind, SceneKind::kNear);
   EXPECT_FALSE(o.trace);
   EXPECT_TRUE(parseArguments({"--runs", "1", "--trace"}, o).ok);
   EXPECT_TRUE(o.trace);
@@ -318,6 +323,9 @@ TEST(CampaignOptionsTest, Parsing) {
                                              {"--runs", "2", "--seed", "-1"},
                                              {"--case", "nope"},
                                              {"--case", "slew_box", "--runs", "2"},
+                                             {"--case", "slew_box", "--kind", "near"},
+                                             {"--runs", "2", "--kind", "far"},
+                                             {"--runs", "2", "--kind"},
                                              {"--runs", "2", "--bogus"},
                                              {"--runs"}}) {
     CampaignOptions x;

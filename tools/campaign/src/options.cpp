@@ -8,7 +8,8 @@ namespace visnav::campaign {
 
 std::string usageText() {
   return "usage: visnav-campaign --runs N [--seed S] [--families plate,octagon,box,smallsat,cao]\n"
-         "                       [--model FILE.cao|.toml] [--config FILE] [--jobs J] [--out DIR]\n"
+         "                       [--kind near|approach] [--model FILE.cao|.toml] [--config FILE]\n"
+         "                       [--jobs J] [--out DIR]\n"
          "                       [--max-frames N] [--no-timing] [--quiet] [--frames] [--trace]\n"
          "                       [--require-tracked-fraction F] [--require-no-confident-wrong]\n"
          "                       [--require-recovery-frames K] [--require-max-mode-changes M]\n"
@@ -100,6 +101,11 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
         start = comma + 1;
       }
       o.families_given = true;
+    } else if (a == "--kind") {
+      if (!value(v) || (v != "near" && v != "approach"))
+        return LoadError::failure("--kind: expected near or approach" +
+                                  (v.empty() ? "" : ", got '" + v + "'"));
+      o.kind = v == "near" ? SceneKind::kNear : SceneKind::kApproach;
     } else if (a == "--model" || a == "--config" || a == "--out" || a == "--case") {
       if (!value(v) || v.empty()) return LoadError::failure(a + ": needs a value");
       if (a == "--model") o.model_path = v;
@@ -130,9 +136,9 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
     return LoadError::success();
   }
   if (o.cases.empty() && o.runs <= 0) return LoadError::failure("--runs N (or --case NAME) is required");
-  if (!o.cases.empty() && (o.runs > 0 || o.families_given))
+  if (!o.cases.empty() && (o.runs > 0 || o.families_given || o.kind != SceneKind::kAny))
     return LoadError::failure(
-        "--case runs the named scenes only: do not combine it with --runs or --families");
+        "--case runs the named scenes only: do not combine it with --runs, --families or --kind");
   if (o.families.empty())
     for (int f = 0; f < kFamilyCount; ++f) o.families.push_back(static_cast<Family>(f));
   out = o;

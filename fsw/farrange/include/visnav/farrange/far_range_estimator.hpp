@@ -91,6 +91,9 @@ class FarRangeEstimator {
   void setTargetRadius(double radius_m) { m_target_radius_m = radius_m > 0.0 ? radius_m : 0.0; }
   /// Forget the track (after a mode change or a ground command). Refuted regions stay.
   void reset();
+  /// `frames` frames passed without estimate() (another mode looked at them): the track coasts over them,
+  /// its gate widening as for frames without a target, and ends past max_coast_frames.
+  void skipFrames(int frames);
   /// The last valid fix was looked at and holds no target (acquisition found no edge structure at its cue):
   /// its region is passed over for refuted_fix_frames frames (see FarRangeParams). Returns false when there
   /// is no fix to refute or the feature is off. At most kMaxRefuted regions; a new one replaces the oldest.

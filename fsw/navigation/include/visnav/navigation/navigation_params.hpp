@@ -70,6 +70,7 @@ struct NavigationParams {
   bool reacquire_twin_continuity = true;     ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
   bool refute_unconfirmed_cue = false;  ///< an acquisition that confirmed nothing at its cue refutes it too
+  bool far_track_survives_unconfirmed = true;  ///< far range keeps tracking a cue acquisition could not confirm
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
 
   template <typename Visitor>
@@ -369,6 +370,14 @@ struct NavigationParams {
                "tracked 0.621 -> 0.619, wrong frames 36 -> 32; it passed over a satellite acquisition could "
                "not yet confirm at 80 m and handed over clutter instead (campaign smallsat/6: 1.0 -> 0)"},
               refute_unconfirmed_cue);
+    v.boolean({"navigation", "far_track_survives_unconfirmed", "-", 0, 1,
+               "after an acquisition that failed at far range's cue with edges there (no_candidate, "
+               "not_confirmed, ambiguous; not refuted), far range goes on tracking the cluster it handed "
+               "over, its gate widened by the frames the acquisition took ([farrange] max_coast_frames "
+               "still ends it). false: far range starts afresh and takes the largest plausible cluster, "
+               "which may be clutter (campaign octagon/164: a satellite-sized glow 20 deg off, picked after "
+               "an attempt at 32 m, held for the rest of the approach)"},
+              far_track_survives_unconfirmed);
     v.integer(
         {"navigation", "reacquire_cue_starts", "count", 0, LocalSearchLimits::kMaxCueStarts,
          "close-range reacquisition: of the starts of a frame, this many go where the predicted outline, "

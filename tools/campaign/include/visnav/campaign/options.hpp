@@ -20,11 +20,15 @@ struct Gates {
   int max_mode_changes = 0;
 };
 
+/// Which of the drawn scenes run (--kind): a scene's kind is drawn from its seed with the rest of it.
+enum class SceneKind { kAny, kNear, kApproach };
+
 struct CampaignOptions {
   int runs = 0;  ///< scenes per family (0 with --case)
   std::uint64_t seed = 1;
   std::vector<Family> families;  ///< default: all five
   bool families_given = false;
+  SceneKind kind = SceneKind::kAny;  ///< --kind: run only the near or only the approach scenes of the seeds
   std::string model_path;   ///< the "cao" family's model (empty: config/models/plate_2300x1800.cao)
   std::string config_path;  ///< visnavd whole config (empty: built-in defaults)
   int jobs = 1;
