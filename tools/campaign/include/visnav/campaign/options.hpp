@@ -29,8 +29,8 @@ struct CampaignOptions {
   std::vector<Family> families;  ///< default: all five
   bool families_given = false;
   SceneKind kind = SceneKind::kAny;  ///< --kind: run only the near or only the approach scenes of the seeds
-  std::string model_path;   ///< the "cao" family's model (empty: config/models/plate_2300x1800.cao)
-  std::string config_path;  ///< visnavd whole config (empty: built-in defaults)
+  std::string model_path;            ///< the "cao" family's model (empty: config/models/plate_2300x1800.cao)
+  std::string config_path;           ///< visnavd whole config (empty: built-in defaults)
   int jobs = 1;
   std::string out_dir = "out/campaign";
   std::vector<std::string> cases;  ///< --case NAME|all (instead of random scenes)
