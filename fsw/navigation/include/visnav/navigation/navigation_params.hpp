@@ -70,8 +70,7 @@ struct NavigationParams {
   bool reacquire_twin_continuity = true;     ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
   bool refute_unconfirmed_cue = false;  ///< an acquisition that confirmed nothing at its cue refutes it too
-  bool far_track_survives_unconfirmed =
-      true;                      ///< far range keeps tracking a cue acquisition could not confirm
+  bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
 
   template <typename Visitor>
