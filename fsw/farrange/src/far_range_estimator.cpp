@@ -29,6 +29,7 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   m_histogram.init(params.beta);
   // Robust: a region of interest is judged with the whole frame's histogram (eq. 11 is over the image).
   m_histogram.setCountOutsideRoi(m_robust);
+  m_histogram.setBackgroundBlock(m_robust ? params.background_block_px : 0, w, h);
   m_sum.init(w);
   m_edge_response.init(w, h);
   m_histogram_response.init(w, h);

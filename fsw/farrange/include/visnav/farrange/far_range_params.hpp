@@ -38,6 +38,7 @@ struct FarRangeParams {
   double max_size_ratio = 2.0;
   int max_coast_frames = 5;
   bool use_roi = true;
+  int background_block_px = 64;  ///< eq. 11 over the deviation from the smooth background (0: off)
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
   double extended_min_half_px = 12.0;
@@ -119,6 +120,12 @@ struct FarRangeParams {
                "robust: frames without an accepted target before the track is dropped (then full-frame "
                "search without gating)"},
               max_coast_frames);
+    v.integer({"farrange", "background_block_px", "px", 0, 4096,
+               "robust: the histogram filter (eqs. 11-12) counts each pixel's deviation from the frame's "
+               "smooth background (means of blocks this size, bilinear between their centres) instead of "
+               "its grey level, so a target whose grey levels lie inside a gradient's or a planet limb's "
+               "spread is still rare; 0: the grey level, as printed"},
+              background_block_px);
     v.boolean({"farrange", "use_roi", "-", 0, 1,
                "robust: filter only a region around the predicted target (sec. V); full frame when lost or "
                "when the region yields no target"},

@@ -20,6 +20,12 @@ class HistogramFilter final : public ResponseFilter {
   /// are still counted, on a sparse grid (every 4th row and column, weight 16), so G inside the region
   /// is the full frame's G (a smaller population would make the target's bins look less rare).
   void setCountOutsideRoi(bool on) { m_count_outside = on; }
+  /// Init-time (allocates): when block_px > 0, eq. 11 bins each sample's deviation from the frame's smooth
+  /// background instead of the sample: 128 + bin - background, clamped to 0..255. The background is the mean
+  /// bin of block_px x block_px blocks (from every 4th row and column), bilinear between block centres. A
+  /// target whose grey levels lie inside a gradient's or a limb's spread is then rare against the flat
+  /// residual where it was common against the frame. 0: eq. 11 as printed.
+  void setBackgroundBlock(int block_px, int width, int height);
   const char* name() const override { return "histogram"; }
   void apply(const MonoImage& image, const Roi& roi, ResponseImage& out) override;
 
@@ -34,6 +40,14 @@ class HistogramFilter final : public ResponseFilter {
   void countBins8(const ImageView8& view, const Roi& roi);
   void countOutside(const MonoImage& image, const Roi& roi);
   void countBins16(const ImageView16& view, const Roi& roi);
+  int sampleBin(const MonoImage& image, int x, int y) const;
+  void measureBackground(const MonoImage& image);
+  /// The background bin (x 256) along row y, at every column of [x0, x0 + width), into m_background_row.
+  void backgroundRow(int y, int x0, int width);
+  void countFlattened(const MonoImage& image, const Roi& roi);
+  void flattenRow(const MonoImage& image, int y, int x0, int width, std::uint8_t* out) const;
+  void buildTable();
+  void countOutsideFlattened(const MonoImage& image, const Roi& roi);
 
   double m_beta = 100.0;
   bool m_count_outside = false;
@@ -41,6 +55,14 @@ class HistogramFilter final : public ResponseFilter {
   std::array<std::uint8_t, 256> m_table{};
   BoundedBuffer<std::uint8_t> m_bin16;  ///< 16-bit sample -> bin, for m_bin16_max_code
   std::uint32_t m_bin16_max_code = 0;
+  // Background flattening (setBackgroundBlock).
+  int m_block_px = 0;
+  int m_blocks_x = 0;
+  int m_blocks_y = 0;
+  BoundedBuffer<std::int32_t> m_block_mean;      ///< mean bin x 256 per block, row-major
+  BoundedBuffer<std::int32_t> m_block_row;       ///< block means interpolated to one image row, x 256
+  BoundedBuffer<std::int32_t> m_background_row;  ///< background bin x 256 per column of the current row
+  BoundedBuffer<std::uint8_t> m_flat_row;        ///< flattened bins of the current row
 };
 
 }  // namespace visnav::far

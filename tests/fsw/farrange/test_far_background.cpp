@@ -1,0 +1,79 @@
+// The histogram filter over the deviation from the smooth background ([farrange] background_block_px): a
+// target whose grey level lies inside a bright gradient's spread is rare against the flattened frame and
+// common against the frame itself (fsw/farrange/README.md, "Background").
+#include <gtest/gtest.h>
+
+#include "far_fixture.hpp"
+#include "visnav/farrange/histogram_filter.hpp"
+
+namespace visnav::far {
+namespace {
+
+/// The satellite (grey 0.35, no shading) in the centre of a 640x480 frame, in front of a soft ramp (a planet's
+/// limb far out of focus) from 0.03 at the top to 0.42 at the bottom, 0.16 behind the target; noise 0.015.
+/// The target stands out from the ramp behind it by 0.19 (12 sigma), but its grey level is one the ramp has
+/// lower down.
+test::FarFrame rampFrame(double range_m) {
+  const PinholeCamera camera = test::farCamera(640, 480, false);
+  synthetic::RenderOptions o = test::farRender();
+  o.shading.enabled = false;
+  o.target_brightness = 0.35;
+  o.limb.enabled = true;
+  o.limb.radius_px = 4000.0;
+  o.limb.center_x_px = 320.0;
+  o.limb.center_y_px = 240.0 + 4150.0;  // the boundary runs horizontally 150 px below the centre row
+  o.limb.softness_px = 120.0;
+  o.limb.brightness_limb = 0.6;
+  o.limb.brightness_centre = 0.6;
+  synthetic::Renderer renderer;
+  EXPECT_TRUE(renderer.init(camera, test::smallsat(), o).ok);
+  return test::renderFar(renderer, test::satAt(range_m, 0.0, 0.0), 7U);
+}
+
+FarRangeResult estimate(const test::FarFrame& frame, int block_px) {
+  FarRangeParams p;
+  p.background_block_px = block_px;
+  FarRangeEstimator far;
+  EXPECT_TRUE(far.init(test::farCamera(640, 480, false), p).ok);
+  FarRangeResult out;
+  EXPECT_EQ(far.estimate(frame.image(), out), Status::kOk);
+  return out;
+}
+
+TEST(FarRangeBackground, ATargetInsideABrightRampsSpreadIsFoundOnceTheRampIsTakenOut) {
+  const test::FarFrame frame = rampFrame(60.0);
+  const Vec3 truth = frame.truth.t_c_m.normalized();
+  const FarRangeResult flat = estimate(frame, 64);
+  ASSERT_TRUE(flat.valid);
+  EXPECT_LT(test::angleDeg(flat.direction_c, truth), 0.2) << "the fix is on the target";
+  // Its n is the target's area (5 468 px covered more than half): no halo from the background estimate.
+  EXPECT_NEAR(flat.cluster_pixels / 5468.0, 1.0, 0.05);
+  const FarRangeResult raw = estimate(frame, 0);
+  EXPECT_FALSE(raw.valid && test::angleDeg(raw.direction_c, truth) < 0.2)
+      << "against the frame's own histogram the body's grey level is common: no fix on it";
+}
+
+TEST(FarRangeBackground, OnAFlatBackgroundTheFlattenedHistogramIsTheSameHistogramShifted) {
+  // A uniform frame of grey 40 with one 3x3 patch of 200 off the sampling grid (the background is taken
+  // from every 4th row and column): the background is 40 everywhere, so the flattened bins are 128 and
+  // 128 + 160 -> 255, with the counts of the raw bins 40 and 200 (the patch's response exp(-9 / 4087 x 100)
+  // = 0.80, the background's 0).
+  std::vector<std::uint8_t> pixels(64U * 64U, 40U);
+  for (int y = 29; y < 32; ++y)
+    for (int x = 29; x < 32; ++x) pixels[static_cast<std::size_t>(y * 64 + x)] = 200U;
+  const MonoImage image = MonoImage::from8(ImageView8(pixels.data(), 64, 64));
+  HistogramFilter filter;
+  filter.init(100.0);
+  filter.setBackgroundBlock(32, 64, 64);
+  ResponseImage out;
+  out.init(64, 64);
+  out.setRoi(Roi::full(64, 64));
+  filter.apply(image, Roi::full(64, 64), out);
+  EXPECT_EQ(filter.histogram()[128], 64U * 64U - 9U);
+  EXPECT_EQ(filter.histogram()[255], 9U);
+  EXPECT_EQ(out.row(30)[30], 205) << "the patch is rare";
+  EXPECT_EQ(out.row(0)[0], 0) << "the background is not";
+}
+
+}  // namespace
+}  // namespace visnav::far
