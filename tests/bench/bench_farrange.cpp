@@ -91,10 +91,12 @@ void BM_EdgeFilter(benchmark::State& state) {
 }
 BENCHMARK(BM_EdgeFilter)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Unit(benchmark::kMicrosecond);
 
+// Arg: [farrange] background_block_px (0: eq. 11 over the grey level as printed).
 void BM_HistogramFilter(benchmark::State& state) {
   const Scene& s = scene(640);
   far::HistogramFilter filter;
   filter.init(100.0);
+  filter.setBackgroundBlock(static_cast<int>(state.range(0)), 640, 480);
   far::ResponseImage out;
   out.init(640, 480);
   const far::Roi roi = far::Roi::full(640, 480);
@@ -104,7 +106,7 @@ void BM_HistogramFilter(benchmark::State& state) {
     benchmark::DoNotOptimize(out.row(0));
   }
 }
-BENCHMARK(BM_HistogramFilter)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_HistogramFilter)->Arg(0)->Arg(128)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace visnav

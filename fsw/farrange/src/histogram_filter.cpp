@@ -1,6 +1,7 @@
 #include "visnav/farrange/histogram_filter.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace visnav::far {
@@ -75,43 +76,50 @@ void HistogramFilter::setBackgroundBlock(int block_px, int width, int height) {
   if (m_block_px == 0) return;
   m_blocks_x = (width + m_block_px - 1) / m_block_px;
   m_blocks_y = (height + m_block_px - 1) / m_block_px;
-  m_block_mean.reserve(static_cast<std::size_t>(m_blocks_x) * static_cast<std::size_t>(m_blocks_y));
+  m_block_median.reserve(static_cast<std::size_t>(m_blocks_x) * static_cast<std::size_t>(m_blocks_y));
   m_block_row.reserve(static_cast<std::size_t>(m_blocks_x));
   m_background_row.reserve(static_cast<std::size_t>(width));
-  m_flat_row.reserve(static_cast<std::size_t>(width));
-}
-
-int HistogramFilter::sampleBin(const MonoImage& image, int x, int y) const {
-  return image.depth == MonoImage::Depth::kU8 ? image.u8.row(y)[x] : m_bin16[image.u16.row(y)[x]];
 }
 
 void HistogramFilter::measureBackground(const MonoImage& image) {
-  // Every 4th row and column of each block (a sixteenth of the frame): the background is smooth by
-  // definition, and a small target moves a block's mean by its share of the block.
+  // The median of each block's samples on every 4th row and column (a sixteenth of the frame). A target or
+  // a glint covering less than half a block leaves the median at the background's level; a mean would
+  // rise by the target's share and ring it with a halo of rare deviations, which grew a bright bar into a
+  // round cluster and added a ring to a target's n (eq. 16).
   constexpr int kStep = 4;
+  const bool eight_bit = image.depth == MonoImage::Depth::kU8;
   const int w = image.width();
   const int h = image.height();
+  std::array<std::uint32_t, 256> counts{};
   for (int by = 0; by < m_blocks_y; ++by) {
     const int y1 = std::min(h, (by + 1) * m_block_px);
     for (int bx = 0; bx < m_blocks_x; ++bx) {
       const int x1 = std::min(w, (bx + 1) * m_block_px);
-      std::int64_t sum = 0;
-      std::int64_t count = 0;
+      counts.fill(0U);
+      std::uint32_t n = 0;
       for (int y = by * m_block_px; y < y1; y += kStep) {
-        for (int x = bx * m_block_px; x < x1; x += kStep) {
-          sum += sampleBin(image, x, y);
-          ++count;
+        if (eight_bit) {
+          const std::uint8_t* row = image.u8.row(y);
+          for (int x = bx * m_block_px; x < x1; x += kStep) ++counts[row[x]];
+        } else {
+          const std::uint16_t* row = image.u16.row(y);
+          for (int x = bx * m_block_px; x < x1; x += kStep) ++counts[m_bin16[row[x]]];
         }
+        n += static_cast<std::uint32_t>((x1 - 1 - bx * m_block_px) / kStep + 1);
       }
-      m_block_mean[static_cast<std::size_t>(by * m_blocks_x + bx)] =
-          count > 0 ? static_cast<std::int32_t>((sum * 256 + count / 2) / count) : 128 * 256;
+      int median = 0;
+      for (std::uint32_t below = 0; median < 255; ++median) {
+        below += counts[static_cast<std::size_t>(median)];
+        if (2U * below >= n) break;
+      }
+      m_block_median[static_cast<std::size_t>(by * m_blocks_x + bx)] = median * 256;
     }
   }
 }
 
 void HistogramFilter::backgroundRow(int y, int x0, int width) {
-  // Bilinear between block centres (block index + 1/2), held flat beyond the outer centres. Integer, with
-  // 8 fractional bits; the column position is stepped, not divided, per pixel.
+  // Bilinear between block centres (block index + 1/2), held flat beyond the outer centres. Integer: the
+  // block row in 8 fractional bits, the columns in 16, stepped along each span between two centres.
   const int half = m_block_px / 2;
   int j0 = 0;
   int wy = 0;  // weight of block row j0 + 1, of 256
@@ -124,49 +132,45 @@ void HistogramFilter::backgroundRow(int y, int x0, int width) {
     wy = 0;
   }
   const int j1 = std::min(j0 + 1, m_blocks_y - 1);
-  const std::int32_t* upper = m_block_mean.data() + static_cast<std::ptrdiff_t>(j0) * m_blocks_x;
-  const std::int32_t* lower = m_block_mean.data() + static_cast<std::ptrdiff_t>(j1) * m_blocks_x;
-  for (int i = 0; i < m_blocks_x; ++i)
-    m_block_row[static_cast<std::size_t>(i)] = (upper[i] * (256 - wy) + lower[i] * wy) >> 8;
-  const std::int32_t* row = m_block_row.data();
-  int i0 = 0;
-  int r = 0;  // x - half - i0 * block, in [0, block)
-  const int d0 = x0 - half;
-  if (d0 > 0) {
-    i0 = d0 / m_block_px;
-    r = d0 - i0 * m_block_px;
-  }
+  const std::int32_t* upper = m_block_median.data() + static_cast<std::ptrdiff_t>(j0) * m_blocks_x;
+  const std::int32_t* lower = m_block_median.data() + static_cast<std::ptrdiff_t>(j1) * m_blocks_x;
+  std::int32_t* row = m_block_row.data();
+  for (int i = 0; i < m_blocks_x; ++i) row[i] = (upper[i] * (256 - wy) + lower[i] * wy) >> 8;
   std::int32_t* out = m_background_row.data();
-  for (int k = 0; k < width; ++k) {
-    const int x = x0 + k;
-    if (x <= half || i0 >= m_blocks_x - 1) {
-      out[k] = row[std::min(i0, m_blocks_x - 1)];
-    } else {
-      const int wx = (r * 256) / m_block_px;
-      out[k] = (row[i0] * (256 - wx) + row[i0 + 1] * wx) >> 8;
+  const int last = m_blocks_x - 1;
+  const int x_end = x0 + width;
+  int x = x0;
+  for (; x < std::min(x_end, half + 1); ++x) out[x - x0] = row[0] << 8;  // left of the first centre
+  while (x < x_end) {
+    const int i = (x - half) / m_block_px;
+    if (i >= last) {
+      for (; x < x_end; ++x) out[x - x0] = row[last] << 8;  // right of the last centre
+      break;
     }
-    if (x >= half && ++r == m_block_px) {
-      r = 0;
-      ++i0;
-    }
-  }
-}
-
-void HistogramFilter::countFlattened(const MonoImage& image, const Roi& roi) {
-  m_histogram.fill(0U);
-  std::uint8_t* flat = m_flat_row.data();
-  for (int y = roi.y0; y < roi.y0 + roi.height; ++y) {
-    backgroundRow(y, roi.x0, roi.width);
-    flattenRow(image, y, roi.x0, roi.width, flat);
-    for (int k = 0; k < roi.width; ++k) ++m_histogram[flat[k]];
+    const int span_start = half + i * m_block_px;
+    const int span_end = std::min(x_end, span_start + m_block_px);
+    const std::int32_t step = ((row[i + 1] - row[i]) * 256) / m_block_px;
+    std::int32_t value = (row[i] << 8) + step * (x - span_start);
+    for (; x < span_end; ++x, value += step) out[x - x0] = value;
   }
 }
 
 void HistogramFilter::flattenRow(const MonoImage& image, int y, int x0, int width, std::uint8_t* out) const {
   const std::int32_t* background = m_background_row.data();
-  for (int k = 0; k < width; ++k) {
-    const int deviation = sampleBin(image, x0 + k, y) - ((background[k] + 128) >> 8);
-    out[k] = static_cast<std::uint8_t>(std::clamp(128 + deviation, 0, 255));
+  constexpr std::int32_t kRound = 1 << 15;
+  if (image.depth == MonoImage::Depth::kU8) {
+    const std::uint8_t* row = image.u8.row(y) + x0;
+    for (int k = 0; k < width; ++k) {
+      const int deviation = static_cast<int>(row[k]) - ((background[k] + kRound) >> 16);
+      out[k] = static_cast<std::uint8_t>(std::clamp(128 + deviation, 0, 255));
+    }
+  } else {
+    const std::uint16_t* row = image.u16.row(y) + x0;
+    const std::uint8_t* bins = m_bin16.data();
+    for (int k = 0; k < width; ++k) {
+      const int deviation = static_cast<int>(bins[row[k]]) - ((background[k] + kRound) >> 16);
+      out[k] = static_cast<std::uint8_t>(std::clamp(128 + deviation, 0, 255));
+    }
   }
 }
 
@@ -175,6 +179,8 @@ void HistogramFilter::countOutsideFlattened(const MonoImage& image, const Roi& r
   constexpr int kRowStep = 4;
   constexpr int kColumnStep = 4;
   constexpr std::uint32_t kWeight = kRowStep * kColumnStep;
+  constexpr std::int32_t kRound = 1 << 15;
+  const bool eight_bit = image.depth == MonoImage::Depth::kU8;
   const int w = image.width();
   const int x1 = roi.x0 + roi.width;
   for (int y = 0; y < image.height(); y += kRowStep) {
@@ -186,9 +192,31 @@ void HistogramFilter::countOutsideFlattened(const MonoImage& image, const Roi& r
         x = x1 - 1 - (x1 - 1) % kColumnStep;
         continue;
       }
-      const int deviation = sampleBin(image, x, y) - ((background[x] + 128) >> 8);
+      const int bin = eight_bit ? image.u8.row(y)[x] : m_bin16[image.u16.row(y)[x]];
+      const int deviation = bin - ((background[x] + kRound) >> 16);
       m_histogram[static_cast<std::size_t>(std::clamp(128 + deviation, 0, 255))] += kWeight;
     }
+  }
+}
+
+void HistogramFilter::applyFlattened(const MonoImage& image, const Roi& roi, ResponseImage& out) {
+  // The flattened bins go straight into the response rows, are counted there, and are replaced by their
+  // eq. 12 response in place: no frame-sized buffer of their own.
+  if (image.depth != MonoImage::Depth::kU8) buildBins16(image.max_code);
+  measureBackground(image);
+  m_histogram.fill(0U);
+  for (int y = 0; y < roi.height; ++y) {
+    backgroundRow(roi.y0 + y, roi.x0, roi.width);
+    std::uint8_t* flat = out.row(y);
+    flattenRow(image, roi.y0 + y, roi.x0, roi.width, flat);
+    for (int x = 0; x < roi.width; ++x) ++m_histogram[flat[x]];
+  }
+  if (m_count_outside) countOutsideFlattened(image, roi);
+  buildTable();
+  const std::uint8_t* table = m_table.data();
+  for (int y = 0; y < roi.height; ++y) {
+    std::uint8_t* row = out.row(y);
+    for (int x = 0; x < roi.width; ++x) row[x] = table[row[x]];
   }
 }
 
@@ -204,18 +232,7 @@ void HistogramFilter::buildTable() {
 void HistogramFilter::apply(const MonoImage& image, const Roi& roi, ResponseImage& out) {
   const bool eight_bit = image.depth == MonoImage::Depth::kU8;
   if (m_block_px > 0) {
-    if (!eight_bit) buildBins16(image.max_code);
-    measureBackground(image);
-    countFlattened(image, roi);
-    if (m_count_outside) countOutsideFlattened(image, roi);
-    buildTable();
-    std::uint8_t* flat = m_flat_row.data();
-    for (int y = 0; y < roi.height; ++y) {
-      backgroundRow(roi.y0 + y, roi.x0, roi.width);
-      flattenRow(image, roi.y0 + y, roi.x0, roi.width, flat);
-      std::uint8_t* g_row = out.row(y);
-      for (int x = 0; x < roi.width; ++x) g_row[x] = m_table[flat[x]];
-    }
+    applyFlattened(image, roi, out);
     return;
   }
   if (eight_bit) {

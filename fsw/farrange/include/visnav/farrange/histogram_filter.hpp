@@ -21,10 +21,10 @@ class HistogramFilter final : public ResponseFilter {
   /// is the full frame's G (a smaller population would make the target's bins look less rare).
   void setCountOutsideRoi(bool on) { m_count_outside = on; }
   /// Init-time (allocates): when block_px > 0, eq. 11 bins each sample's deviation from the frame's smooth
-  /// background instead of the sample: 128 + bin - background, clamped to 0..255. The background is the mean
-  /// bin of block_px x block_px blocks (from every 4th row and column), bilinear between block centres. A
-  /// target whose grey levels lie inside a gradient's or a limb's spread is then rare against the flat
-  /// residual where it was common against the frame. 0: eq. 11 as printed.
+  /// background instead of the sample: 128 + bin - background, clamped to 0..255. The background is the
+  /// median bin of block_px x block_px blocks (from every 4th row and column), bilinear between block
+  /// centres. A target whose grey levels lie inside a gradient's or a limb's spread is then rare against the
+  /// flat residual where it was common against the frame. 0: eq. 11 as printed.
   void setBackgroundBlock(int block_px, int width, int height);
   const char* name() const override { return "histogram"; }
   void apply(const MonoImage& image, const Roi& roi, ResponseImage& out) override;
@@ -40,14 +40,13 @@ class HistogramFilter final : public ResponseFilter {
   void countBins8(const ImageView8& view, const Roi& roi);
   void countOutside(const MonoImage& image, const Roi& roi);
   void countBins16(const ImageView16& view, const Roi& roi);
-  int sampleBin(const MonoImage& image, int x, int y) const;
   void measureBackground(const MonoImage& image);
-  /// The background bin (x 256) along row y, at every column of [x0, x0 + width), into m_background_row.
+  /// The background bin (x 65536) along row y, at every column of [x0, x0 + width), into m_background_row.
   void backgroundRow(int y, int x0, int width);
-  void countFlattened(const MonoImage& image, const Roi& roi);
   void flattenRow(const MonoImage& image, int y, int x0, int width, std::uint8_t* out) const;
   void buildTable();
   void countOutsideFlattened(const MonoImage& image, const Roi& roi);
+  void applyFlattened(const MonoImage& image, const Roi& roi, ResponseImage& out);
 
   double m_beta = 100.0;
   bool m_count_outside = false;
@@ -59,10 +58,9 @@ class HistogramFilter final : public ResponseFilter {
   int m_block_px = 0;
   int m_blocks_x = 0;
   int m_blocks_y = 0;
-  BoundedBuffer<std::int32_t> m_block_mean;      ///< mean bin x 256 per block, row-major
-  BoundedBuffer<std::int32_t> m_block_row;       ///< block means interpolated to one image row, x 256
-  BoundedBuffer<std::int32_t> m_background_row;  ///< background bin x 256 per column of the current row
-  BoundedBuffer<std::uint8_t> m_flat_row;        ///< flattened bins of the current row
+  BoundedBuffer<std::int32_t> m_block_median;    ///< median bin x 256 per block, row-major
+  BoundedBuffer<std::int32_t> m_block_row;       ///< block medians interpolated to one image row, x 256
+  BoundedBuffer<std::int32_t> m_background_row;  ///< background bin x 65536 per column of the current row
 };
 
 }  // namespace visnav::far
