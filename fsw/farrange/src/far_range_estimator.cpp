@@ -30,6 +30,8 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   // Robust: a region of interest is judged with the whole frame's histogram (eq. 11 is over the image).
   m_histogram.setCountOutsideRoi(m_robust);
   m_histogram.setBackgroundBlock(m_robust ? params.background_block_px : 0, w, h);
+  m_flatten_as_fallback = m_robust && params.background_block_px > 0 && params.background_fallback_only;
+  m_histogram.setFlattening(!m_flatten_as_fallback);
   m_sum.init(w);
   m_edge_response.init(w, h);
   m_histogram_response.init(w, h);
@@ -65,6 +67,7 @@ LoadError FarRangeEstimator::setExtraFilters(ResponseFilter* const* filters, int
 
 void FarRangeEstimator::reset() {
   m_track = Track{};
+  m_track_flattened = false;
   m_has_prediction = false;
 }
 
@@ -179,11 +182,16 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
                         .clipped(full.width, full.height);
     if (!roi.empty() && roi.area() < full.area()) {
       out.flags |= kFlagRoi;
+      // A target tracked over the flattened background is looked for the same way in its region.
+      const bool flatten = m_flatten_as_fallback && m_track_flattened;
+      if (flatten) m_histogram.setFlattening(true);
       searchRegion(image, roi, out);
+      if (flatten) m_histogram.setFlattening(false);
       std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
       selected = selectRobust(gate, out.flags);
       if (selected < 0) selected = searchExtended(gate, out.flags);
       out.timing.select_us += elapsedUs(stamp);
+      if (selected >= 0 && flatten) out.flags |= kFlagFlattened;
       if (selected < 0) out.flags |= kFlagRoiFallback;
     }
   }
@@ -193,6 +201,18 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     selected = m_robust ? selectRobust(gate, out.flags) : selectPaper();
     if (selected < 0 && m_robust) selected = searchExtended(gate, out.flags);
     out.timing.select_us += elapsedUs(stamp);
+  }
+  if (selected < 0 && m_flatten_as_fallback) {
+    // Nothing in the whole frame: a target inside a gradient's or a limb's grey levels is rare only
+    // against the flattened background (background_fallback_only).
+    m_histogram.setFlattening(true);
+    searchRegion(image, full, out);
+    m_histogram.setFlattening(false);
+    std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
+    selected = selectRobust(gate, out.flags);
+    if (selected < 0) selected = searchExtended(gate, out.flags);
+    out.timing.select_us += elapsedUs(stamp);
+    if (selected >= 0) out.flags |= kFlagFlattened;
   }
   if (selected >= 0 && m_robust && (out.flags & kFlagExtended) == 0U)
     selected = preferEnclosingOutline(gate, selected, out.flags);
@@ -204,6 +224,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     out.flags |= m_finder.clusters().empty() ? kFlagNoCluster : kFlagNoCandidate;
   }
   if (m_robust) updateTrack(out);
+  if (out.valid) m_track_flattened = (out.flags & kFlagFlattened) != 0U;
   if (!out.valid && m_track.active) out.flags |= kFlagCoasting;
   if (out.valid) {
     m_has_last_fix = true;

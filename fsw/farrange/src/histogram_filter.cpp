@@ -231,7 +231,7 @@ void HistogramFilter::buildTable() {
 
 void HistogramFilter::apply(const MonoImage& image, const Roi& roi, ResponseImage& out) {
   const bool eight_bit = image.depth == MonoImage::Depth::kU8;
-  if (m_block_px > 0) {
+  if (m_block_px > 0 && m_flatten) {
     applyFlattened(image, roi, out);
     return;
   }

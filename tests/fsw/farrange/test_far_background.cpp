@@ -33,9 +33,10 @@ test::FarFrame rampFrame(double range_m) {
 /// The block size measured on the campaign (fsw/farrange/README.md); the parameter's default is 0 (off).
 constexpr int kBlockPx = 128;
 
-FarRangeResult estimate(const test::FarFrame& frame, int block_px) {
+FarRangeResult estimate(const test::FarFrame& frame, int block_px, bool fallback_only = false) {
   FarRangeParams p;
   p.background_block_px = block_px;
+  p.background_fallback_only = fallback_only;
   FarRangeEstimator far;
   EXPECT_TRUE(far.init(test::farCamera(640, 480, false), p).ok);
   FarRangeResult out;
@@ -58,6 +59,28 @@ TEST(FarRangeBackground, ATargetInsideABrightRampsSpreadIsFoundOnceTheRampIsTake
   const FarRangeResult raw = estimate(frame, 0);
   EXPECT_FALSE(raw.valid && test::angleDeg(raw.direction_c, truth) < 0.2)
       << "against the frame's own histogram the body's grey level is common: no fix on it";
+}
+
+TEST(FarRangeBackground, AsAFallbackTheFlattenedSearchRunsOnlyWhereThePrintedOneFindsNothing) {
+  // background_fallback_only: on the ramp the printed eq. 11 finds nothing in the whole frame, so the
+  // flattened search runs and finds the target (flag flattened); on a dark sky the printed one finds the
+  // target itself and its answer stands, exactly as without the fallback.
+  const test::FarFrame ramp = rampFrame(60.0);
+  const FarRangeResult on_ramp = estimate(ramp, kBlockPx, true);
+  ASSERT_TRUE(on_ramp.valid);
+  EXPECT_NE(on_ramp.flags & kFlagFlattened, 0U);
+  EXPECT_LT(test::angleDeg(on_ramp.direction_c, ramp.truth.t_c_m.normalized()), 0.2);
+  EXPECT_EQ(on_ramp.cluster_pixels, estimate(ramp, kBlockPx).cluster_pixels) << "the same search as always on";
+
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::farCamera(640, 480, false), test::smallsat(), test::farRender()).ok);
+  const test::FarFrame sky = test::renderFar(renderer, test::satAt(200.0, 1.0, -0.5), 7U);
+  const FarRangeResult fallback = estimate(sky, kBlockPx, true);
+  const FarRangeResult printed = estimate(sky, 0);
+  ASSERT_TRUE(fallback.valid && printed.valid);
+  EXPECT_EQ(fallback.flags & kFlagFlattened, 0U);
+  EXPECT_EQ(fallback.cluster_pixels, printed.cluster_pixels);
+  EXPECT_EQ(fallback.centroid_px, printed.centroid_px);
 }
 
 TEST(FarRangeBackground, OnAFlatBackgroundTheFlattenedHistogramIsTheSameHistogramShifted) {

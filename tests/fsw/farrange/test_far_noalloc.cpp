@@ -62,16 +62,18 @@ TEST(FarRangeNoAlloc, EveryPathOverManyFrames) {
   const std::vector<test::FarFrame> f = frames();
   for (const FarRangeMethod m : {FarRangeMethod::kRobust, FarRangeMethod::kPaper}) {
     for (const bool sixteen_bit : {false, true}) {
-      for (const int block_px : {0, 128}) {  // eq. 11 as printed, and over the flattened background
-        if (m == FarRangeMethod::kPaper && block_px > 0) continue;  // robust only
+      // eq. 11 as printed, over the flattened background, and that only as a fallback (robust only)
+      for (const int flattening : {0, 1, 2}) {
+        if (m == FarRangeMethod::kPaper && flattening > 0) continue;
         FarRangeParams p;
         p.method = static_cast<int>(m);
-        p.background_block_px = block_px;
+        p.background_block_px = flattening > 0 ? 128 : 0;
+        p.background_fallback_only = flattening == 2;
         FarRangeEstimator e;
         ASSERT_TRUE(e.init(test::farCamera(), p).ok);
         int valid = 0;
         EXPECT_EQ(countOver(e, f, sixteen_bit, valid), 0U)
-            << "method " << p.method << " 16 bit " << sixteen_bit << " block " << block_px
+            << "method " << p.method << " 16 bit " << sixteen_bit << " flattening " << flattening
             << " (malloc counted: " << test::countsMalloc() << ")";
         EXPECT_GT(valid, 30);  // the frames really exercised the full pipeline
       }

@@ -39,6 +39,7 @@ enum FarRangeFlag : std::uint32_t {
   kFlagExtended = 1U << 11,        ///< found by its outline on the edge response alone (extended target)
   kFlagExtentDistance = 1U << 12,  ///< distance_m from the cluster's extent and the target's radius
   kFlagRefutedSkipped = 1U << 13,  ///< a cluster inside a refuted region was passed over (refuteLastFix)
+  kFlagFlattened = 1U << 14,       ///< found over the flattened background (background_fallback_only)
 };
 
 /// Execution time of one estimate() per stage [us] (zeros when no clock is set).
@@ -157,6 +158,8 @@ class FarRangeEstimator {
 
   PinholeCamera m_camera;
   FarRangeParams m_params;
+  bool m_flatten_as_fallback = false;  ///< background_fallback_only
+  bool m_track_flattened = false;      ///< the last fix was found over the flattened background
   bool m_robust = true;
   double m_target_radius_m = 0.0;
   MonotonicClockNs m_clock = nullptr;

@@ -26,6 +26,8 @@ class HistogramFilter final : public ResponseFilter {
   /// centres. A target whose grey levels lie inside a gradient's or a limb's spread is then rare against the
   /// flat residual where it was common against the frame. 0: eq. 11 as printed.
   void setBackgroundBlock(int block_px, int width, int height);
+  /// Whether apply() flattens (default: whenever setBackgroundBlock gave a block size).
+  void setFlattening(bool on) { m_flatten = on; }
   const char* name() const override { return "histogram"; }
   void apply(const MonoImage& image, const Roi& roi, ResponseImage& out) override;
 
@@ -56,6 +58,7 @@ class HistogramFilter final : public ResponseFilter {
   std::uint32_t m_bin16_max_code = 0;
   // Background flattening (setBackgroundBlock).
   int m_block_px = 0;
+  bool m_flatten = true;
   int m_blocks_x = 0;
   int m_blocks_y = 0;
   BoundedBuffer<std::int32_t> m_block_median;    ///< median bin x 256 per block, row-major
