@@ -70,7 +70,8 @@ TEST(FarRangeBackground, AsAFallbackTheFlattenedSearchRunsOnlyWhereThePrintedOne
   ASSERT_TRUE(on_ramp.valid);
   EXPECT_NE(on_ramp.flags & kFlagFlattened, 0U);
   EXPECT_LT(test::angleDeg(on_ramp.direction_c, ramp.truth.t_c_m.normalized()), 0.2);
-  EXPECT_EQ(on_ramp.cluster_pixels, estimate(ramp, kBlockPx).cluster_pixels) << "the same search as always on";
+  EXPECT_EQ(on_ramp.cluster_pixels, estimate(ramp, kBlockPx).cluster_pixels)
+      << "the same search as always on";
 
   synthetic::Renderer renderer;
   ASSERT_TRUE(renderer.init(test::farCamera(640, 480, false), test::smallsat(), test::farRender()).ok);
