@@ -112,7 +112,9 @@ void HistogramFilter::measureBackground(const MonoImage& image) {
         below += counts[static_cast<std::size_t>(median)];
         if (2U * below >= n) break;
       }
-      m_block_median[static_cast<std::size_t>(by * m_blocks_x + bx)] = median * 256;
+      const std::size_t block =
+          static_cast<std::size_t>(by) * static_cast<std::size_t>(m_blocks_x) + static_cast<std::size_t>(bx);
+      m_block_median[block] = median * 256;
     }
   }
 }
