@@ -53,9 +53,13 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
       if (!value(v)) return LoadError::failure(a + ": needs a value");
       const long long lo = a == "--runs" || a == "--jobs" ? 1 : 0;
       const long long hi = a == "--jobs" ? 64 : 1000000;
-      if (!cli::parseInteger(v, lo, hi, n))
-        return LoadError::failure(a + ": expected an integer in [" + std::to_string(lo) + ", " +
-                                  std::to_string(hi) + "], got '" + v + "'");
+      if (!cli::parseInteger(v, lo, hi, n)) {
+        std::string message = a;
+        message += ": expected an integer in [" + std::to_string(lo);
+        message += ", " + std::to_string(hi);
+        message += "], got '" + v + "'";
+        return LoadError::failure(message);
+      }
       const int k = static_cast<int>(n);
       if (a == "--runs") o.runs = k;
       if (a == "--jobs") o.jobs = k;
@@ -120,7 +124,9 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
           if (!known) {
             std::string list;
             for (const std::string& c : caseNames()) list += c + ", ";
-            return LoadError::failure("--case: unknown case '" + v + "' (" + list + "all)");
+            std::string message = "--case: unknown case '" + v;
+            message += "' (" + list + "all)";
+            return LoadError::failure(message);
           }
           bool dup = false;
           for (const std::string& c : o.cases) dup = dup || c == v;
