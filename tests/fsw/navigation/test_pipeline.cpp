@@ -144,6 +144,51 @@ TEST_F(PipelineTest, AnAcquisitionThatConfirmsNothingAtTheCueRefutesItUntilTheGr
   }
 }
 
+TEST_F(PipelineTest, FarRangeGoesOnWithItsTrackAfterAnAcquisitionThatConfirmedNothing) {
+  // The bar looked for on the plate again: the acquisition sees edges at the cue and confirms nothing after
+  // 7 frames (the box grid takes 3 search frames). With far_track_survives_unconfirmed the next far-range
+  // frame continues the track it handed over (the fix is gated by it) if those frames fit within
+  // [farrange] max_coast_frames; otherwise, or without the option, far range starts afresh and takes the
+  // largest plausible cluster unconfirmed, which in a cluttered scene may be anything (campaign
+  // octagon/164, whose acquisition took 2 frames).
+  const PolygonModel bar = makeBox(1.4, 0.15, 0.15);
+  struct Case {
+    bool keep;
+    int coast_frames;
+    bool gated;
+  };
+  for (const Case c : {Case{true, 10, true}, Case{false, 10, false}, Case{true, 5, false}}) {
+    SCOPED_TRACE(testing::Message() << "keep " << c.keep << ", coast " << c.coast_frames);
+    PipelineParams p = params;
+    p.navigation.refute_unconfirmed_cue = false;
+    p.navigation.far_track_survives_unconfirmed = c.keep;
+    p.farrange.max_coast_frames = c.coast_frames;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), bar, p).ok);
+    int failed_at = -1;
+    int acquisition_frames = 0;
+    for (int i = 0; i < kFrames && failed_at < 0; ++i) {
+      const Frame f = frameAt(i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      acquisition_frames += out.mode == NavMode::kAcquisition ? 1 : 0;
+      if (pipeline.lastAcquisition().state == acq::AcquisitionState::kFailed) failed_at = i;
+    }
+    ASSERT_GE(failed_at, 0) << "the scene must reach a failed acquisition";
+    ASSERT_NE(pipeline.lastAcquisition().failure, acq::AcquisitionFailure::kNoTarget);
+    ASSERT_EQ(acquisition_frames, 7);
+    ASSERT_EQ(pipeline.mode(), NavMode::kFarRange);
+    const Frame next = frameAt(failed_at + 1);
+    NavSolution out;
+    ASSERT_EQ(pipeline.process(&next, next.exposure_time_ns, out), Status::kOk);
+    ASSERT_TRUE(out.far.valid);
+    const std::uint32_t flags = pipeline.lastFarRange().flags;
+    EXPECT_EQ((flags & far::kFlagGated) != 0U, c.gated) << "flags " << flags;
+    EXPECT_EQ((flags & far::kFlagUnconfirmed) != 0U, !c.gated) << "flags " << flags;
+    EXPECT_NEAR(out.far.distance_m, 25.0, 2.5) << "the plate either way: there is nothing else to take";
+  }
+}
+
 TEST_F(PipelineTest, CommandsAndFallbackAllocateNothingAfterInit) {
   NavigationPipeline pipeline;
   ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
