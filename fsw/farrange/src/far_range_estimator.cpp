@@ -132,12 +132,13 @@ double FarRangeEstimator::elapsedUs(std::int64_t& since) const {
   return us;
 }
 
-void FarRangeEstimator::searchRegion(const MonoImage& image, const Roi& roi, FarRangeResult& out) {
+void FarRangeEstimator::searchRegion(const MonoImage& image, const Roi& roi, FarRangeResult& out,
+                                     bool edges_ready) {
   std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
   m_edge_response.setRoi(roi);
   m_histogram_response.setRoi(roi);
   m_combined.setRoi(roi);
-  m_edge.apply(image, roi, m_edge_response);
+  if (!edges_ready) m_edge.apply(image, roi, m_edge_response);
   out.timing.edge_us += elapsedUs(stamp);
   m_histogram.apply(image, roi, m_histogram_response);
   out.timing.histogram_us += elapsedUs(stamp);
@@ -145,7 +146,7 @@ void FarRangeEstimator::searchRegion(const MonoImage& image, const Roi& roi, Far
   for (int i = 0; i < m_extra_count; ++i) {
     ResponseImage& response = m_extra_responses[static_cast<std::size_t>(i)];
     response.setRoi(roi);
-    m_extra_filters[static_cast<std::size_t>(i)]->apply(image, roi, response);
+    if (!edges_ready) m_extra_filters[static_cast<std::size_t>(i)]->apply(image, roi, response);
     inputs[2 + i] = &response;
   }
   out.timing.extra_us += m_extra_count > 0 ? elapsedUs(stamp) : 0.0;
@@ -206,7 +207,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     // Nothing in the whole frame: a target inside a gradient's or a limb's grey levels is rare only
     // against the flattened background (background_fallback_only).
     m_histogram.setFlattening(true);
-    searchRegion(image, full, out);
+    searchRegion(image, full, out, true);  // the full frame's edge responses are this frame's already
     m_histogram.setFlattening(false);
     std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
     selected = selectRobust(gate, out.flags);

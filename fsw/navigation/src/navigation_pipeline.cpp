@@ -126,7 +126,6 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
                                         ModeInputs& in) {
   acq::AcquisitionResult& result = m_acquisition_result;
   m_acquisition.step(image, frame_number, result);
-  ++m_acquisition_frames;
   if (result.state == acq::AcquisitionState::kFailed) {
     in.acquisition_failed = true;
     m_fdir.raise(kFaultAcquisitionFailed);
@@ -291,16 +290,13 @@ void NavigationPipeline::enterMode(NavMode mode) {
     case NavMode::kStandby: break;
     case NavMode::kFarRange:
       if (far_track_kept) {
-        m_far.skipFrames(m_acquisition_frames);
+        m_far.skipFrames(m_acquisition_result.frames);  // the failed acquisition's frames
       } else {
         m_far.reset();
       }
       m_reacquisition.stop();
       break;
-    case NavMode::kAcquisition:
-      m_acquisition.start(m_last_far_fix);
-      m_acquisition_frames = 0;
-      break;
+    case NavMode::kAcquisition: m_acquisition.start(m_last_far_fix); break;
     case NavMode::kNearRange:
       m_near.reset();
       m_reacquisition.stop();

@@ -143,7 +143,9 @@ class FarRangeEstimator {
   };
 
   double elapsedUs(std::int64_t& since) const;
-  void searchRegion(const MonoImage& image, const Roi& roi, FarRangeResult& out);
+  /// Filters, combines and clusters `roi`. `edges_ready`: the edge and extra responses already hold this
+  /// region of this image (only the histogram filter changed), so they are not computed again.
+  void searchRegion(const MonoImage& image, const Roi& roi, FarRangeResult& out, bool edges_ready = false);
   int selectPaper() const;
   int selectRobust(const Gate& gate, std::uint32_t& flags);
   void prepareCandidates();

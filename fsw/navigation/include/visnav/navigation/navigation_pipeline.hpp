@@ -123,7 +123,6 @@ class NavigationPipeline {
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
   bool m_track_twin_by_continuity = false;
   bool m_acquisition_awaits_near = false;  ///< acquisition_awaits_near_range: the next frame may confirm it
-  int m_acquisition_frames = 0;            ///< frames the running acquisition has looked at
   bool m_far_track_kept = false;           ///< far_track_survives_unconfirmed: the next far range goes on
   MonotonicClockNs m_clock = nullptr;
   ModeManager m_modes;
