@@ -50,6 +50,7 @@ LoadError Acquisition::init(const PinholeCamera& camera, const PolygonModel& mod
   if (!e.ok) return e;
   m_symmetries.find(model);
   m_symmetries.findNear(model, params.near_twin_max_rel);
+  m_symmetries.findMirrors(model);
   m_candidates.reserve(static_cast<std::size_t>(params.search_candidates));
   m_refined.reserve(static_cast<std::size_t>(params.candidates));
   m_verified.reserve(static_cast<std::size_t>(params.candidates));
@@ -67,6 +68,8 @@ void Acquisition::reset() {
   m_frames = 0;
   m_best_score = 0.0;
   m_has_near_twin = false;
+  m_mirror = -1;
+  m_mirror_alive = false;
   m_has_look_reference = false;
   m_twin_by_continuity = false;
 }
@@ -267,7 +270,7 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
   m_confirmed = 0;
   m_confirm_frames_run = 0;
   chooseRival();
-  if (m_params.confirm_frames == 0 && !m_rival_alive) {
+  if (m_params.confirm_frames == 0 && !m_rival_alive && !m_mirror_alive) {
     m_last.pose = m_verified[0].pose;
     m_last.covariance = m_verified[0].covariance;
     m_last.quality = m_verified[0].quality;

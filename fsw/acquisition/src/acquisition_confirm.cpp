@@ -70,11 +70,59 @@ void Acquisition::chooseRival() {
   if (m_has_near_twin && !twin_refused && (rival == nullptr || m_near_twin.score > rival->score) &&
       !m_symmetries.equivalent(m_near_twin.pose, best.pose, same))
     rival = &m_near_twin;
+  // The depth-reversed twin competes on its own, beside the rival above: each has to fall behind.
+  m_mirror_alive = m_mirror >= 0 && m_mirror_score >= best.score - m_params.rival_margin &&
+                   !(best_continuous && !looksContinuous(m_symmetries.mirrorTwin(best.pose, m_mirror)));
+  if (m_mirror_alive) m_mirror_pose = m_symmetries.mirrorTwin(best.pose, m_mirror);
   if (rival != nullptr && rival->score >= best.score - m_params.rival_margin) {
     m_rival_alive = true;
     m_rival_pose = rival->pose;
     m_rival_confirmer.reset();
   }
+}
+
+void Acquisition::challengeByMirrorTwin(const MonoImage& image, std::uint64_t frame_number,
+                                        const Verified& candidate, AcquisitionResult& out) {
+  // Scored by its agreement as it stands, less the residual of its refit: at weak perspective the tracker
+  // slides the twin along the line of sight (campaign box/120 at 66 m: the truth, 3.4 deg from the wrong
+  // candidate's twin, refitted 13.7 m off in range with 0.09 px rms against the candidate's 0.18, and its
+  // agreement there fell from 0.91 to 0.60), so the refit's agreement would put the truth behind. A twin
+  // the tracker loses, or pulls back onto the candidate, is no rival: the image chose.
+  m_mirror = -1;
+  if (!m_params.mirror_twin_checks) return;
+  for (int i = 0; i < m_symmetries.mirrorCount(); ++i) {
+    double score = 0.0;
+    if (!mirrorTwinScore(m_verifier, image, frame_number, candidate, i, score, out)) continue;
+    if (m_mirror < 0 || score > m_mirror_score) {
+      m_mirror = i;
+      m_mirror_score = score;
+    }
+  }
+}
+
+bool Acquisition::mirrorTwinScore(NearRangeTracker& tracker, const MonoImage& image,
+                                  std::uint64_t frame_number, const Verified& candidate, int mirror,
+                                  double& score, AcquisitionResult& out) {
+  const PoseTolerance same =
+      PoseTolerance::widened(m_params.confirm_max_motion_rel * candidate.pose.t_c_m.z(),
+                             m_params.confirm_max_rotation_deg * kRadPerDeg, candidate.covariance);
+  const Pose twin = m_symmetries.mirrorTwin(candidate.pose, mirror);
+  if (m_symmetries.equivalent(twin, candidate.pose, same)) return false;  // a face-on plate's twin is itself
+  Pose refit = twin;
+  NearRangeResult r;
+  if (!trackCandidate(tracker, image, frame_number, m_params.tracker_iterations, refit, r, out)) {
+    // A twin that shows no face is none; one the tracker merely lost is not refuted by that (campaign-like
+    // box at 65 m: the truth, the wrong candidate's twin within 1.7 deg, lost by the verifier): it stands
+    // as it is, with the candidate's residual.
+    if ((r.flags & kFlagNoSurface) != 0U) return false;
+    score = agreementF1(twin) - m_params.rms_weight * candidate.rms_px;
+    ++out.score_evaluations;
+    return true;
+  }
+  if (m_symmetries.equivalent(r.pose, candidate.pose, same)) return false;  // the image chose the candidate
+  score = agreementF1(twin) - m_params.rms_weight * r.rms_px;
+  out.score_evaluations += 2;
+  return true;
 }
 
 double Acquisition::agreementF1(const Pose& pose) {
@@ -120,6 +168,7 @@ void Acquisition::challengeByNearTwin(const MonoImage& image, std::uint64_t fram
   // The current candidate's best near twin, for chooseRival(). It may block the candidate, never replace it:
   // a twin that scored higher was confirmed 75 deg off in campaign box/49 where the candidate was right.
   m_has_near_twin = false;
+  challengeByMirrorTwin(image, frame_number, m_verified[static_cast<std::size_t>(m_current)], out);
   if (m_symmetries.nearCount() == 0 || m_params.near_twin_checks == 0) return;
   m_has_near_twin = bestNearTwin(image, frame_number, m_verified[static_cast<std::size_t>(m_current)].pose,
                                  m_near_twin, out);
@@ -175,6 +224,16 @@ void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, Ac
   }
   m_last = r;
   ++m_confirmed;
+  const double score = agreement - m_params.rms_weight * r.rms_px;
+  if (m_mirror_alive) {
+    // Re-made from this frame's pose and judged as at verification (mirrorTwinScore): it keeps up while
+    // the tracker holds it apart from the pose and the window's edges cannot tell the two apart.
+    double mirror_score = 0.0;
+    const Verified current{score, r.rms_px, r.quality, r.pose, r.covariance};
+    m_mirror_pose = m_symmetries.mirrorTwin(m_pose, m_mirror);
+    m_mirror_alive = mirrorTwinScore(m_verifier, image, frame_number, current, m_mirror, mirror_score, out) &&
+                     mirror_score >= score - m_params.rival_margin;
+  }
   if (m_rival_alive) {
     NearRangeResult rival;
     double rival_agreement = 0.0;
@@ -182,11 +241,10 @@ void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, Ac
     const bool rival_tracks =
         confirmStep(m_rival_confirmer, image, frame_number, m_rival_pose, rival, rival_agreement);
     const double rival_score = rival_agreement - m_params.rms_weight * rival.rms_px;
-    const double score = agreement - m_params.rms_weight * r.rms_px;
     m_rival_alive = rival_tracks && rival_score >= score - m_params.rival_margin;
   }
   if (m_confirmed < m_params.confirm_frames) return;
-  if (!m_rival_alive) {
+  if (!m_rival_alive && !m_mirror_alive) {
     m_state = AcquisitionState::kSucceeded;
   } else if (m_confirm_frames_run >= m_params.max_confirm_frames) {
     fail(AcquisitionFailure::kAmbiguous);  // never a coin toss between two poses: status lost, retry later

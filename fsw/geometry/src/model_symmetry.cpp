@@ -121,6 +121,39 @@ void ModelSymmetries::findNear(const PolygonModel& model, double max_rel) {
   });
 }
 
+void ModelSymmetries::findMirrors(const PolygonModel& model, double tolerance_rel) {
+  m_mirror_count = 0;
+  m_mirror_centre_m = Vec3::Zero();
+  const auto& vertices = model.vertices();
+  if (vertices.empty()) return;
+  for (const Vec3& v : vertices) m_mirror_centre_m += v;
+  m_mirror_centre_m /= static_cast<double>(vertices.size());
+  const double tol_m = tolerance_rel * std::max(1.0, model.boundingRadius());
+  const std::array<Mat3, 4> reflections = {
+      Vec3(-1.0, 1.0, 1.0).asDiagonal(), Vec3(1.0, -1.0, 1.0).asDiagonal(), Vec3(1.0, 1.0, -1.0).asDiagonal(),
+      Vec3(-1.0, -1.0, -1.0).asDiagonal()};
+  for (const Mat3& m : reflections) {
+    if (vertexSeparationM(model, m, m_mirror_centre_m) > tol_m) continue;
+    // R' M_a and R' M_b differ by the rotation M_a M_b: when that maps the model onto itself, one twin.
+    bool same_class = false;
+    for (int k = 0; k < m_mirror_count && !same_class; ++k)
+      same_class = isSymmetry(model, m_mirrors[static_cast<std::size_t>(k)] * m, tol_m, m_mirror_centre_m);
+    if (!same_class) m_mirrors[static_cast<std::size_t>(m_mirror_count++)] = m;
+  }
+}
+
+Pose ModelSymmetries::mirrorTwin(const Pose& pose, int i) const {
+  const Vec3 centre_c = pose.transform(m_mirror_centre_m);
+  const double distance = centre_c.norm();
+  if (!(distance > 0.0)) return pose;
+  const Vec3 u = centre_c / distance;
+  const Mat3 along = Mat3::Identity() - 2.0 * u * u.transpose();
+  Pose twin;
+  twin.R_c_m = along * pose.R_c_m * m_mirrors[static_cast<std::size_t>(i)];
+  twin.t_c_m = centre_c - twin.R_c_m * m_mirror_centre_m;
+  return twin;
+}
+
 int ModelSymmetries::indistinguishableTwins(double px_per_m, double min_separation_px) const {
   int twins = m_count > 0 ? m_count - 1 : 0;
   if (!(min_separation_px > 0.0) || !(px_per_m > 0.0)) return twins;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "visnav/geometry/model_symmetry.hpp"
@@ -191,6 +192,80 @@ TEST(ModelSymmetries, TwinIsEquivalentRivalIsNot) {
   Pose moved = a;
   moved.t_c_m.x() += 1.0;
   EXPECT_FALSE(s.equivalent(moved, a, tol));
+}
+
+/// Largest distance [px, f = 1000] of a projected vertex of `a` from the nearest projected vertex of `b`.
+double projectedVertexGapPx(const PolygonModel& model, const Pose& a, const Pose& b) {
+  double worst = 0.0;
+  for (const Vec3& v : model.vertices()) {
+    const Vec3 p = a.transform(v);
+    double nearest = 1e9;
+    for (const Vec3& u : model.vertices()) {
+      const Vec3 q = b.transform(u);
+      nearest = std::min(nearest, 1000.0 * (p.head<2>() / p.z() - q.head<2>() / q.z()).norm());
+    }
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
+TEST(ModelSymmetries, ADepthReversedTwinShowsTheSameOutlineUntilPerspectiveTellsThemApart) {
+  // Campaign box/120: at 66 m the acquisition confirmed a box 79 deg off whose depth-reversed twin was the
+  // truth within 3.4 deg. A box's three mirrors differ by its half turns: one twin. A one-sided plate has
+  // two: mirrored in its own plane (the face still towards the camera: the planar tilt ambiguity) and
+  // across it (the face away, which the tracker never fits).
+  ModelSymmetries box_mirrors;
+  const PolygonModel box = makeBox(0.684, 0.846, 0.406);
+  box_mirrors.findMirrors(box);
+  ASSERT_EQ(box_mirrors.mirrorCount(), 1);
+  ModelSymmetries plate_mirrors;
+  const PolygonModel plate = makeRectanglePlate(2.3, 1.8);
+  plate_mirrors.findMirrors(plate);
+  ASSERT_EQ(plate_mirrors.mirrorCount(), 2);
+  // A scalene tetrahedron: no mirror maps its vertices onto themselves.
+  const std::vector<Vec3> corners = {Vec3(0.0, 0.0, 0.0), Vec3(1.0, 0.0, 0.0), Vec3(0.2, 0.9, 0.0),
+                                     Vec3(0.3, 0.2, 0.7)};
+  std::vector<ModelSurface> faces(4);
+  faces[0].vertex_indices = {0, 2, 1};
+  faces[1].vertex_indices = {0, 1, 3};
+  faces[2].vertex_indices = {1, 2, 3};
+  faces[3].vertex_indices = {0, 3, 2};
+  for (std::size_t i = 0; i < faces.size(); ++i) faces[i].name = "f" + std::to_string(i);
+  PolygonModel tetrahedron;
+  ASSERT_TRUE(PolygonModel::build(corners, faces, tetrahedron).ok);
+  ModelSymmetries none;
+  none.findMirrors(tetrahedron);
+  EXPECT_EQ(none.mirrorCount(), 0);
+
+  ModelSymmetries box_turns;
+  box_turns.find(box);
+  Pose pose;
+  pose.R_c_m = expSo3(Vec3(0.5, -0.7, 0.3)) * expSo3(Vec3::UnitX() * kPi);
+  for (const double range_m : {1000.0, 66.0, 8.0}) {
+    pose.t_c_m = Vec3(0.1, -0.05, 1.0).normalized() * range_m;
+    const Pose twin = box_mirrors.mirrorTwin(pose, 0);
+    EXPECT_NEAR((twin.transform(Vec3::Zero()) - pose.transform(Vec3::Zero())).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((twin.R_c_m * twin.R_c_m.transpose() - Mat3::Identity()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(twin.R_c_m.determinant(), 1.0, 1e-12) << "a rotation, not a reflection";
+    EXPECT_GT(box_turns.attitudeDistanceRad(twin.R_c_m, pose.R_c_m), 30.0 * kRadPerDeg) << "a rival";
+    const double gap_px = projectedVertexGapPx(box, twin, pose);
+    if (range_m == 1000.0) {
+      EXPECT_LT(gap_px, 0.01);
+    } else if (range_m == 66.0) {
+      EXPECT_LT(gap_px, 2.0) << "within the agreement's tolerance";
+    } else {
+      EXPECT_GT(gap_px, 2.0) << "perspective tells them apart";
+    }
+  }
+  pose.t_c_m = Vec3(0.0, 0.0, 50.0);
+  int facing = 0;
+  for (int i = 0; i < plate_mirrors.mirrorCount(); ++i) {
+    const Pose twin = plate_mirrors.mirrorTwin(pose, i);
+    EXPECT_LT(projectedVertexGapPx(plate, twin, pose), 2.0);
+    const Vec3 normal_c = twin.R_c_m * Vec3::UnitZ();
+    facing += normal_c.dot(twin.transform(Vec3::Zero())) < 0.0 ? 1 : 0;
+  }
+  EXPECT_EQ(facing, (pose.R_c_m * Vec3::UnitZ()).dot(pose.t_c_m) < 0.0 ? 1 : 0);
 }
 
 TEST(PoseTolerance, WidenedByThreeSigmasOfTheCovariance) {

@@ -245,6 +245,35 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
                       static_cast<int>(a.state), acq::toString(a.failure), a.hypotheses_done,
                       a.hypotheses_total, a.candidates_verified, a.best_score, a.edge_snr);
         res.trace += buf;
+        if (a.state == acq::AcquisitionState::kConfirming || a.state == acq::AcquisitionState::kSucceeded) {
+          // The candidate against the truth, and its rival and depth-reversed twins: which one was right.
+          const acq::Acquisition& acquisition = pipeline->acquisition();
+          const ModelSymmetries& sym = acquisition.symmetries();
+          std::snprintf(buf, sizeof buf, "       candidate: dp=%.3f da=%.2f",
+                        (a.pose.t_c_m - truth.t_c_m).norm(),
+                        attitudeErrorModuloDeg(a.pose.R_c_m, truth.R_c_m, scene.symmetries));
+          res.trace += buf;
+          if (acquisition.rivalAlive()) {
+            std::snprintf(
+                buf, sizeof buf, " rival: dp=%.3f da=%.2f",
+                (acquisition.rivalPose().t_c_m - truth.t_c_m).norm(),
+                attitudeErrorModuloDeg(acquisition.rivalPose().R_c_m, truth.R_c_m, scene.symmetries));
+            res.trace += buf;
+          }
+          if (acquisition.mirrorAlive()) {
+            std::snprintf(
+                buf, sizeof buf, " twin rival: da=%.2f",
+                attitudeErrorModuloDeg(acquisition.mirrorPose().R_c_m, truth.R_c_m, scene.symmetries));
+            res.trace += buf;
+          }
+          for (int m = 0; m < sym.mirrorCount(); ++m) {
+            const Pose twin = sym.mirrorTwin(a.pose, m);
+            std::snprintf(buf, sizeof buf, " mirror%d: da=%.2f", m,
+                          attitudeErrorModuloDeg(twin.R_c_m, truth.R_c_m, scene.symmetries));
+            res.trace += buf;
+          }
+          res.trace += "\n";
+        }
       }
       if (f.mode == nav::NavMode::kFarRange) {
         const far::FarRangeResult& fr = pipeline->lastFarRange();

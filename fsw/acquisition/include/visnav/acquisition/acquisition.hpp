@@ -118,6 +118,12 @@ class Acquisition {
   const WorkingImage& window() const { return m_window; }
   int hypothesisCount() const { return m_grid.size() * m_params.range_steps; }
   const AcquisitionParams& params() const { return m_params; }
+  /// While confirming: whether a rival is tracked alongside the candidate, and where it is (diagnostics);
+  /// the same for the candidate's depth-reversed twin.
+  bool rivalAlive() const { return m_state == AcquisitionState::kConfirming && m_rival_alive; }
+  const Pose& rivalPose() const { return m_rival_pose; }
+  bool mirrorAlive() const { return m_state == AcquisitionState::kConfirming && m_mirror_alive; }
+  const Pose& mirrorPose() const { return m_mirror_pose; }
 
  private:
   using Candidate = AcquisitionCandidate;
@@ -147,6 +153,14 @@ class Acquisition {
   bool bestNearTwin(const MonoImage& image, std::uint64_t frame_number, const Pose& pose, Verified& twin,
                     AcquisitionResult& out);
   void challengeByNearTwin(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
+  /// The candidate's best depth-reversed twin (m_mirror, m_mirror_score), for chooseRival().
+  void challengeByMirrorTwin(const MonoImage& image, std::uint64_t frame_number, const Verified& candidate,
+                             AcquisitionResult& out);
+  /// The depth-reversed twin mirror of `candidate`, refitted by `tracker`: false when it is the candidate
+  /// itself, the tracker loses it or pulls it back onto the candidate; else its score (its agreement as it
+  /// stands less the refit's residual).
+  bool mirrorTwinScore(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
+                       const Verified& candidate, int mirror, double& score, AcquisitionResult& out);
   bool nextCandidate(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
   template <typename T>
   static void sortBestFirst(BoundedBuffer<T>& list, std::size_t from);
@@ -179,6 +193,10 @@ class Acquisition {
   Pose m_rival_pose;
   bool m_has_near_twin = false;  ///< m_near_twin is a near-symmetric twin of the current candidate
   Verified m_near_twin;
+  int m_mirror = -1;  ///< the current candidate's best depth-reversed twin (mirrorTwin index), -1: none
+  double m_mirror_score = 0.0;        ///< its score: agreement as it stands, the candidate's residual
+  bool m_mirror_alive = false;        ///< m_mirror's twin of the candidate keeps up (re-made every frame)
+  Pose m_mirror_pose;                 ///< that twin on the last frame
   bool m_has_look_reference = false;  ///< setLookReference since start()
   Pose m_look_reference;
   double m_look_tolerance_rad = 0.0;

@@ -80,6 +80,18 @@ class ModelSymmetries {
   /// R S and t + R c - R S c, so the centroid stays where it was.
   Pose nearTwin(const Pose& pose, int i) const;
 
+  /// Lists the reflections (diagonal, det -1) that map the model's vertex set onto itself about its vertex
+  /// centroid, one per class (two whose product is a symmetry give the same twin). Their normals need not
+  /// match: a one-sided plate mirrored through its own plane is one. find() and findNear() do not change it.
+  void findMirrors(const PolygonModel& model, double tolerance_rel = kIndistinguishableRel);
+  int mirrorCount() const { return m_mirror_count; }
+  /// The depth-reversed ("Necker") twin of `pose` by mirror(i): the model's vertices mirrored through the
+  /// plane through its centroid across the line of sight, R' = D_u R M_i (D_u the reflection along the line
+  /// of sight u, M_i the model's reflection), the centroid kept. Seen along the line of sight it has the
+  /// same outline, so an image without perspective, shading or internal edges does not tell the two apart:
+  /// a rival to test, not a symmetry to assume away.
+  Pose mirrorTwin(const Pose& pose, int i) const;
+
  private:
   /// Calls offer(S) for every candidate rotation, in a fixed order.
   template <typename Offer>
@@ -91,6 +103,9 @@ class ModelSymmetries {
   std::array<double, kCapacity> m_near_separation_m{};
   int m_near_count = 0;
   Vec3 m_centre_m = Vec3::Zero();
+  std::array<Mat3, 4> m_mirrors{};
+  int m_mirror_count = 0;
+  Vec3 m_mirror_centre_m = Vec3::Zero();
 };
 
 /// Angle [rad] of the rotation a^T b.

@@ -70,6 +70,7 @@ class NavigationPipeline {
   const ReacquisitionStep& lastReacquisition() const { return m_reacquisition_step; }
   /// The acquisition mode's step of the last frame (state kIdle when the frame was not in that mode).
   const acq::AcquisitionResult& lastAcquisition() const { return m_acquisition_result; }
+  const acq::Acquisition& acquisition() const { return m_acquisition; }
   /// Whether this frame's 6-DOF pose, delivered or withheld, showed a face (max_valid_view_angle_deg); true
   /// when there was none. For the campaign's offline gate replay.
   bool lastPoseShowedAFace() const { return m_pose_showed_face; }
