@@ -5,6 +5,7 @@
 // continuous with the track and flag the ambiguity.
 #include <gtest/gtest.h>
 
+#include "../../support/alloc_counter.hpp"
 #include "acquisition_fixture.hpp"
 
 namespace visnav {
@@ -113,13 +114,20 @@ class MirrorTwinAcquisitionTest : public ::testing::Test {
     ASSERT_EQ(mirrors.mirrorCount(), 1);
     ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
   }
-  test::AcquisitionRun acquire(bool mirror_twin_checks, const Pose& truth, std::uint64_t seed) {
+  /// One acquisition of a static `truth`, the checks on or off; with `allocations`, what it allocated after
+  /// init (the twin's refits on the verify and confirmation frames included).
+  test::AcquisitionRun acquire(bool mirror_twin_checks, const Pose& truth, std::uint64_t seed,
+                               std::uint64_t* allocations = nullptr) {
     acq::AcquisitionParams params;
     params.mirror_twin_checks = mirror_twin_checks;
     acq::Acquisition acquisition;
     EXPECT_TRUE(acquisition.init(test::vgaCamera(), scene.model, params, NearRangeParams{}).ok);
     const auto frames = test::renderStatic(renderer, truth, 2, seed);
-    return test::runAcquisition(acquisition, scene, frames, test::perturbedCue(truth, 0.5, 30.0, 0.1));
+    const auto cue = test::perturbedCue(truth, 0.5, 30.0, 0.1);
+    const std::uint64_t before = test::allocationCount();
+    const test::AcquisitionRun run = test::runAcquisition(acquisition, scene, frames, cue);
+    if (allocations != nullptr) *allocations = test::allocationCount() - before;
+    return run;
   }
   /// Attitude error [deg] of `pose` from the truth's depth-reversed twin.
   double fromTwinDeg(const Pose& truth, const Pose& pose) const {
@@ -136,7 +144,9 @@ TEST_F(MirrorTwinAcquisitionTest, FarOutTheTwinBlocksWhatWouldBeConfirmedAsTheTw
   ASSERT_TRUE(unchecked.succeeded()) << acq::toString(unchecked.last.failure);
   EXPECT_GT(unchecked.attitude_error_deg, 30.0);
   EXPECT_LT(fromTwinDeg(truth, unchecked.last.pose), 5.0) << "confirmed as the truth's twin";
-  const test::AcquisitionRun checked = acquire(true, truth, 305);
+  std::uint64_t allocations = 1;
+  const test::AcquisitionRun checked = acquire(true, truth, 305, &allocations);
+  EXPECT_EQ(allocations, 0U) << "malloc counted: " << test::countsMalloc();
   EXPECT_EQ(checked.last.state, acq::AcquisitionState::kFailed);
   EXPECT_EQ(checked.last.failure, acq::AcquisitionFailure::kAmbiguous) << acq::toString(checked.last.failure);
 }
