@@ -87,7 +87,7 @@ void Acquisition::challengeByMirrorTwin(const MonoImage& image, std::uint64_t fr
   // slides the twin along the line of sight (campaign box/120 at 66 m: the truth, 3.4 deg from the wrong
   // candidate's twin, refitted 13.7 m off in range with 0.09 px rms against the candidate's 0.18, and its
   // agreement there fell from 0.91 to 0.60), so the refit's agreement would put the truth behind. A twin
-  // the tracker loses, or pulls back onto the candidate, is no rival: the image chose.
+  // the tracker pulls back onto the candidate is no rival (the image chose); mirrorTwinScore says the rest.
   m_mirror = -1;
   if (!m_params.mirror_twin_checks) return;
   for (int i = 0; i < m_symmetries.mirrorCount(); ++i) {
@@ -111,9 +111,9 @@ bool Acquisition::mirrorTwinScore(NearRangeTracker& tracker, const MonoImage& im
   Pose refit = twin;
   NearRangeResult r;
   if (!trackCandidate(tracker, image, frame_number, m_params.tracker_iterations, refit, r, out)) {
-    // A twin that shows no face is none; one the tracker merely lost is not refuted by that (campaign-like
-    // box at 65 m: the truth, the wrong candidate's twin within 1.7 deg, lost by the verifier): it stands
-    // as it is, with the candidate's residual.
+    // A twin that shows no face is none; one the tracker merely lost is not refuted by that (test
+    // MirrorTwinAcquisitionTest, box/120's box at 65 m: the truth, within 1.7 deg of the wrong candidate's
+    // twin, lost by the verifier): it stands as it is, with the candidate's residual.
     if ((r.flags & kFlagNoSurface) != 0U) return false;
     score = agreementF1(twin) - m_params.rms_weight * candidate.rms_px;
     ++out.score_evaluations;

@@ -156,9 +156,9 @@ class Acquisition {
   /// The candidate's best depth-reversed twin (m_mirror, m_mirror_score), for chooseRival().
   void challengeByMirrorTwin(const MonoImage& image, std::uint64_t frame_number, const Verified& candidate,
                              AcquisitionResult& out);
-  /// The depth-reversed twin mirror of `candidate`, refitted by `tracker`: false when it is the candidate
-  /// itself, the tracker loses it or pulls it back onto the candidate; else its score (its agreement as it
-  /// stands less the refit's residual).
+  /// The depth-reversed twin `mirror` of `candidate`, refitted by `tracker`: false when it is the candidate
+  /// itself, shows no face, or the tracker pulls it back onto the candidate; else its score: its agreement
+  /// as it stands less the refit's residual (the candidate's when the tracker lost it).
   bool mirrorTwinScore(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
                        const Verified& candidate, int mirror, double& score, AcquisitionResult& out);
   bool nextCandidate(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
@@ -194,7 +194,7 @@ class Acquisition {
   bool m_has_near_twin = false;  ///< m_near_twin is a near-symmetric twin of the current candidate
   Verified m_near_twin;
   int m_mirror = -1;  ///< the current candidate's best depth-reversed twin (mirrorTwin index), -1: none
-  double m_mirror_score = 0.0;        ///< its score: agreement as it stands, the candidate's residual
+  double m_mirror_score = 0.0;        ///< its score (mirrorTwinScore)
   bool m_mirror_alive = false;        ///< m_mirror's twin of the candidate keeps up (re-made every frame)
   Pose m_mirror_pose;                 ///< that twin on the last frame
   bool m_has_look_reference = false;  ///< setLookReference since start()
