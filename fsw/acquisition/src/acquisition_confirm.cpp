@@ -71,9 +71,9 @@ void Acquisition::chooseRival() {
       !m_symmetries.equivalent(m_near_twin.pose, best.pose, same))
     rival = &m_near_twin;
   // The depth-reversed twin competes on its own, beside the rival above: each has to fall behind.
+  if (m_mirror >= 0) m_mirror_pose = m_symmetries.mirrorTwin(best.pose, m_mirror);
   m_mirror_alive = m_mirror >= 0 && m_mirror_score >= best.score - m_params.rival_margin &&
-                   !(best_continuous && !looksContinuous(m_symmetries.mirrorTwin(best.pose, m_mirror)));
-  if (m_mirror_alive) m_mirror_pose = m_symmetries.mirrorTwin(best.pose, m_mirror);
+                   !(best_continuous && !looksContinuous(m_mirror_pose));
   if (rival != nullptr && rival->score >= best.score - m_params.rival_margin) {
     m_rival_alive = true;
     m_rival_pose = rival->pose;
@@ -84,7 +84,7 @@ void Acquisition::chooseRival() {
 void Acquisition::challengeByMirrorTwin(const MonoImage& image, std::uint64_t frame_number,
                                         const Verified& candidate, AcquisitionResult& out) {
   // Scored by its agreement as it stands, less the residual of its refit: at weak perspective the tracker
-  // slides the twin along the line of sight (campaign box/120 at 66 m: the truth, 3.4 deg from the wrong
+  // slides the twin along the line of sight (campaign box/120 at 62 m: the truth, 3.4 deg from the wrong
   // candidate's twin, refitted 13.7 m off in range with 0.09 px rms against the candidate's 0.18, and its
   // agreement there fell from 0.91 to 0.60), so the refit's agreement would put the truth behind. A twin
   // the tracker pulls back onto the candidate is no rival (the image chose); mirrorTwinScore says the rest.
@@ -92,7 +92,9 @@ void Acquisition::challengeByMirrorTwin(const MonoImage& image, std::uint64_t fr
   if (!m_params.mirror_twin_checks) return;
   for (int i = 0; i < m_symmetries.mirrorCount(); ++i) {
     double score = 0.0;
-    if (!mirrorTwinScore(m_verifier, image, frame_number, candidate, i, score, out)) continue;
+    if (!mirrorTwinScore(m_verifier, image, frame_number, candidate,
+                         m_symmetries.mirrorTwin(candidate.pose, i), score, out))
+      continue;
     if (m_mirror < 0 || score > m_mirror_score) {
       m_mirror = i;
       m_mirror_score = score;
@@ -101,12 +103,11 @@ void Acquisition::challengeByMirrorTwin(const MonoImage& image, std::uint64_t fr
 }
 
 bool Acquisition::mirrorTwinScore(NearRangeTracker& tracker, const MonoImage& image,
-                                  std::uint64_t frame_number, const Verified& candidate, int mirror,
+                                  std::uint64_t frame_number, const Verified& candidate, const Pose& twin,
                                   double& score, AcquisitionResult& out) {
   const PoseTolerance same =
       PoseTolerance::widened(m_params.confirm_max_motion_rel * candidate.pose.t_c_m.z(),
                              m_params.confirm_max_rotation_deg * kRadPerDeg, candidate.covariance);
-  const Pose twin = m_symmetries.mirrorTwin(candidate.pose, mirror);
   if (m_symmetries.equivalent(twin, candidate.pose, same)) return false;  // a face-on plate's twin is itself
   Pose refit = twin;
   NearRangeResult r;
@@ -231,8 +232,9 @@ void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, Ac
     double mirror_score = 0.0;
     const Verified current{score, r.rms_px, r.quality, r.pose, r.covariance};
     m_mirror_pose = m_symmetries.mirrorTwin(m_pose, m_mirror);
-    m_mirror_alive = mirrorTwinScore(m_verifier, image, frame_number, current, m_mirror, mirror_score, out) &&
-                     mirror_score >= score - m_params.rival_margin;
+    m_mirror_alive =
+        mirrorTwinScore(m_verifier, image, frame_number, current, m_mirror_pose, mirror_score, out) &&
+        mirror_score >= score - m_params.rival_margin;
   }
   if (m_rival_alive) {
     NearRangeResult rival;

@@ -98,7 +98,7 @@ TEST_F(NearTwinAcquisitionTest, AReferenceThatKeepsNeitherChangesNothing) {
 
 // A flat-lit box (no shading: every face the same brightness) shows its outline only, and its depth-reversed
 // twin (ModelSymmetries::mirrorTwin) the same outline to within the agreement's tolerance: campaign box/120
-// was confirmed 79-88 deg off at 60 m with the truth 0.1-3.4 deg from the confirmed pose's twin. With the
+// was confirmed 88-90 deg off at 49 m with the truth 0.02-0.12 deg from the confirmed pose's twin. With the
 // twin challenged ([acquisition] mirror_twin_checks) such a candidate is not confirmed while the twin keeps
 // up; close in, perspective tells the two apart. Measured on 8 views of this box at each of 30, 45, 65 and 8
 // m (fsw/acquisition/README.md): without the check 18 of 32 confirmed right, 1 as the twin, 3 otherwise

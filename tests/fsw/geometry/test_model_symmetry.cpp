@@ -210,7 +210,7 @@ double projectedVertexGapPx(const PolygonModel& model, const Pose& a, const Pose
 }
 
 TEST(ModelSymmetries, ADepthReversedTwinShowsTheSameOutlineUntilPerspectiveTellsThemApart) {
-  // Campaign box/120: at 66 m the acquisition confirmed a box 79 deg off whose depth-reversed twin was the
+  // Campaign box/120: at 62 m the acquisition verified a box 79 deg off whose depth-reversed twin was the
   // truth within 3.4 deg. A box's three mirrors differ by its half turns: one twin. A one-sided plate has
   // two: mirrored in its own plane (the face still towards the camera: the planar tilt ambiguity) and
   // across it (the face away, which the tracker never fits).

@@ -156,11 +156,12 @@ class Acquisition {
   /// The candidate's best depth-reversed twin (m_mirror, m_mirror_score), for chooseRival().
   void challengeByMirrorTwin(const MonoImage& image, std::uint64_t frame_number, const Verified& candidate,
                              AcquisitionResult& out);
-  /// The depth-reversed twin `mirror` of `candidate`, refitted by `tracker`: false when it is the candidate
-  /// itself, shows no face, or the tracker pulls it back onto the candidate; else its score: its agreement
-  /// as it stands less the refit's residual (the candidate's when the tracker lost it).
+  /// `twin`, a depth-reversed twin of `candidate` (ModelSymmetries::mirrorTwin), refitted by `tracker`: false
+  /// when it is the candidate itself, shows no face, or the tracker pulls it back onto the candidate; else
+  /// its score: its agreement as it stands less the refit's residual (the candidate's when the tracker lost
+  /// it).
   bool mirrorTwinScore(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
-                       const Verified& candidate, int mirror, double& score, AcquisitionResult& out);
+                       const Verified& candidate, const Pose& twin, double& score, AcquisitionResult& out);
   bool nextCandidate(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
   template <typename T>
   static void sortBestFirst(BoundedBuffer<T>& list, std::size_t from);

@@ -168,8 +168,8 @@ struct AcquisitionParams {
          "mirrored across the line of sight through its centroid, the same outline) competes beside the "
          "rival, re-made and refitted on every confirmation frame; scoring within rival_margin (its "
          "agreement as it stands less its refit's residual) it must fall behind before the candidate is "
-         "confirmed. Campaign box/120 (flat-lit box at 60 m) was confirmed 79-88 deg off with the truth "
-         "0.1-3.4 deg from the twin: 28 wrong frames -> 0. On the 257 approaches of seeds 1-200 with "
+         "confirmed. Campaign box/120 (flat-lit box at 49 m) was confirmed 88-90 deg off with the truth "
+         "0.02-0.12 deg from its twin: 28 wrong frames -> 0. On the 257 approaches of seeds 1-200 with "
          "[farrange] background_block_px 128: tracked 0.316 -> 0.297, wrong frames 44 -> 16; with the "
          "defaults, which leave no wrong frame there to remove: tracked 0.286 -> 0.254 and 0 -> 1 wrong "
          "frame. Off because with the defaults it only costs; true: the twin is challenged"},
