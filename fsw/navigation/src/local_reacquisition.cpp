@@ -98,6 +98,10 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   const double separation_px = std::max(2.0 * kCueShiftStepPx, 0.5 * target_radius_px / used);
   const int peaks = m_cue_scorer.bestShifts(predicted, m_cue_window, radius_px / used, kCueShiftStepPx,
                                             separation_px, m_cue_peaks.data(), capacity);
+  if (peaks > 0) {
+    m_best_cue_found = true;
+    m_best_cue_offset_px = m_cue_peaks[0].shift * static_cast<double>(used);
+  }
   int count = 0;
   for (int k = 0; k < peaks; ++k) {
     const Vec2 offset_px = m_cue_peaks[static_cast<std::size_t>(k)].shift * static_cast<double>(used);
@@ -105,6 +109,13 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
     m_cue_peaks[static_cast<std::size_t>(count++)].shift = offset_px;
   }
   return count;
+}
+
+bool LocalReacquisition::bestCueDirection(Vec3& direction) const {
+  Vec2 centre_px;
+  if (!m_best_cue_found || !m_camera.project(m_predicted.t_c_m, centre_px)) return false;
+  direction = m_camera.bearing(centre_px + m_best_cue_offset_px);
+  return true;
 }
 
 bool LocalReacquisition::agrees(const Pose& reference, const Pose& candidate, std::uint64_t frames,
@@ -252,6 +263,7 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
 void LocalReacquisition::step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
                               ReacquisitionStep& out) {
   out = ReacquisitionStep{};
+  m_best_cue_found = false;
   if (!m_active) return;
   m_predicted = predicted;
   if (m_confirming) {

@@ -87,6 +87,7 @@ class PipelineTest : public ::testing::Test {
     int found_at = -1;
     bool found_by_acquisition = false;
     bool far_cued = false;          ///< an acquisition attempt was cued by far range (reacquire_far_cue)
+    bool outline_cued = false;  ///< or by the outline cue (reacquire_acquisition_outline_cue)
     std::uint64_t allocations = 0;  ///< over the frames, after init
   };
   void runHidden(const std::vector<test::RenderedFrame>& seq, const PipelineParams& p,
@@ -103,6 +104,7 @@ class PipelineTest : public ::testing::Test {
       run.out.push_back(out);
       run.tracked.push_back(pipeline.lastNearRange().status != TrackStatus::kLost);
       run.far_cued = run.far_cued || pipeline.lastReacquisition().far_cue;
+      run.outline_cued = run.outline_cued || pipeline.lastReacquisition().outline_cue;
       if (run.found_at < 0 && i >= kHiddenUntil && pipeline.lastReacquisition().found) {
         run.found_at = i;
         run.found_by_acquisition = pipeline.lastReacquisition().by_acquisition;

@@ -296,13 +296,13 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         // The search is centred on the prediction: how far it is from the truth says whether the grid can
         // reach the target at all.
         const Pose predicted = pipeline->predictedPose();
-        char buf[340];
+        char buf[360];
         std::snprintf(
             buf, sizeof buf,
             "       reacq: starts=%d cue=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
             "candidate=%d found=%d best_q=%.2f pred_dp=%.3f pred_da=%.2f pred_lat=%.1fdeg pred_rng=%.3f "
             "last_dp=%.3f "
-            "last_da=%.2f acq=%d/%d snr=%.1f fcue=%d%s%s\n",
+            "last_da=%.2f acq=%d/%d snr=%.1f fcue=%d ocue=%d%s%s\n",
             rs.hypotheses, rs.cue_starts, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
             rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
             rs.best_quality, (predicted.t_c_m - truth.t_c_m).norm(),
@@ -313,7 +313,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             (pipeline->lastTrustedPose().t_c_m - truth.t_c_m).norm(),
             attitudeErrorModuloDeg(pipeline->lastTrustedPose().R_c_m, truth.R_c_m, scene.symmetries),
             rs.acquisition_state, rs.acquisition_failure, rs.acquisition_edge_snr, rs.far_cue ? 1 : 0,
-            rs.by_acquisition ? " (found by acquisition)" : "",
+            rs.outline_cue ? 1 : 0, rs.by_acquisition ? " (found by acquisition)" : "",
             rs.twin_by_continuity ? " (near twin told apart by continuity)" : "");
         res.trace += buf;
       }

@@ -46,6 +46,7 @@ struct ReacquisitionStep {
   int acquisition_failure = 0;        ///< and its AcquisitionFailure when it failed (0: none)
   double acquisition_edge_snr = 0.0;  ///< and its window's edge SNR (0: no window prepared)
   bool far_cue = false;  ///< that acquisition was cued by far range this frame (reacquire_far_cue)
+  bool outline_cue = false;  ///< or by the outline cue's best match (reacquire_acquisition_outline_cue)
   /// found by that acquisition with a near twin the image cannot resolve, told apart by the look of the
   /// last valid pose (acq::AcquisitionResult::twin_resolved_by_continuity)
   bool twin_by_continuity = false;
@@ -84,6 +85,10 @@ class LocalReacquisition {
   }
   /// The attitude tolerance of those tests after `frames` frames [rad].
   double lookToleranceRad(std::uint64_t frames) const;
+
+  /// The line of sight through this frame's best match of the predicted outline over the searched disc
+  /// (findCues; the prediction itself when it matched best); false when no cue ran this frame.
+  bool bestCueDirection(Vec3& direction) const;
 
   /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
   void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
@@ -129,6 +134,8 @@ class LocalReacquisition {
   acq::AcquisitionParams m_evidence;  ///< fine/coarse spread and cap of m_cue_window
   /// This frame's cue: bestShifts' peaks, then (findCues) their offsets in full-resolution px.
   std::array<acq::ShiftPeak, LocalSearchLimits::kMaxCueStarts> m_cue_peaks{};
+  bool m_best_cue_found = false;           ///< this frame's findCues had a peak
+  Vec2 m_best_cue_offset_px = Vec2::Zero();  ///< its best, from the prediction's centre (full px)
 };
 
 }  // namespace visnav::nav
