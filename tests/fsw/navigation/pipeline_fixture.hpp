@@ -87,7 +87,7 @@ class PipelineTest : public ::testing::Test {
     int found_at = -1;
     bool found_by_acquisition = false;
     bool far_cued = false;          ///< an acquisition attempt was cued by far range (reacquire_far_cue)
-    bool outline_cued = false;  ///< or by the outline cue (reacquire_acquisition_outline_cue)
+    bool outline_cued = false;      ///< or by the outline cue (reacquire_acquisition_outline_cue)
     std::uint64_t allocations = 0;  ///< over the frames, after init
   };
   void runHidden(const std::vector<test::RenderedFrame>& seq, const PipelineParams& p,

@@ -45,7 +45,7 @@ struct ReacquisitionStep {
   int acquisition_state = -1;         ///< that acquisition's AcquisitionState this frame (-1: not run)
   int acquisition_failure = 0;        ///< and its AcquisitionFailure when it failed (0: none)
   double acquisition_edge_snr = 0.0;  ///< and its window's edge SNR (0: no window prepared)
-  bool far_cue = false;  ///< that acquisition was cued by far range this frame (reacquire_far_cue)
+  bool far_cue = false;      ///< that acquisition was cued by far range this frame (reacquire_far_cue)
   bool outline_cue = false;  ///< or by the outline cue's best match (reacquire_acquisition_outline_cue)
   /// found by that acquisition with a near twin the image cannot resolve, told apart by the look of the
   /// last valid pose (acq::AcquisitionResult::twin_resolved_by_continuity)
@@ -134,7 +134,7 @@ class LocalReacquisition {
   acq::AcquisitionParams m_evidence;  ///< fine/coarse spread and cap of m_cue_window
   /// This frame's cue: bestShifts' peaks, then (findCues) their offsets in full-resolution px.
   std::array<acq::ShiftPeak, LocalSearchLimits::kMaxCueStarts> m_cue_peaks{};
-  bool m_best_cue_found = false;           ///< this frame's findCues had a peak
+  bool m_best_cue_found = false;             ///< this frame's findCues had a peak
   Vec2 m_best_cue_offset_px = Vec2::Zero();  ///< its best, from the prediction's centre (full px)
 };
 

@@ -68,7 +68,7 @@ struct NavigationParams {
   bool reacquire_far_cue = true;  ///< that acquisition looks where far range finds the target, if it does
   bool reacquire_acquisition_tiles = false;  ///< its prediction-cued attempts also walk tiles over the disc
   bool reacquire_acquisition_outline_cue = true;  ///< or look where the outline cue matched best
-  bool reacquire_twin_continuity = true;     ///< the last valid pose tells an unresolvable near twin apart
+  bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
   bool refute_unconfirmed_cue = false;  ///< an acquisition that confirmed nothing at its cue refutes it too
   bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
