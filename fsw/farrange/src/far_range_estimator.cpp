@@ -169,9 +169,25 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   for (Refuted& r : m_refuted) r.frames_left = r.frames_left > 0 ? r.frames_left - 1 : 0;
   const Roi full = Roi::full(m_camera.width(), m_camera.height());
-  const Gate gate = m_robust ? currentGate() : Gate{};
+  Gate gate = m_robust ? currentGate() : Gate{};
   int selected = -1;
-  if (m_robust && m_params.use_roi && gate.active) {
+  if (m_robust && m_flatten_as_fallback && m_params.printed_search_wins && m_track_flattened) {
+    // A fix over the flattened background is a fallback, and so is its track: once eq. 11 as printed finds
+    // a target in the whole frame again, that target is taken as it would be without flattening (campaign
+    // plate/114: a drifting blob found flattened on a frame without target was held 140 frames, 6-7 deg
+    // off the plate, which the printed search finds on its own).
+    searchRegion(image, full, out);
+    std::uint32_t printed_flags = 0U;
+    const int printed = selectRobust(Gate{}, printed_flags);
+    if (printed >= 0) {
+      m_track = Track{};
+      m_track_flattened = false;
+      gate = Gate{};
+      selected = printed;
+      out.flags |= printed_flags | kFlagPrintedWins;
+    }
+  }
+  if (selected < 0 && m_robust && m_params.use_roi && gate.active) {
     // The region holds the gate and the target's expected extent with a margin (sec. V).
     const double half =
         std::max(gate.radius_px + gate.half_extent_px, m_params.roi_extent_factor * gate.half_extent_px) +

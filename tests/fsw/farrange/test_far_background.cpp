@@ -84,6 +84,42 @@ TEST(FarRangeBackground, AsAFallbackTheFlattenedSearchRunsOnlyWhereThePrintedOne
   EXPECT_EQ(fallback.centroid_px, printed.centroid_px);
 }
 
+TEST(FarRangeBackground, ATrackFoundOverTheFlattenedBackgroundGivesWayToWhatThePrintedSearchFinds) {
+  // Frame 1, the ramp: only the flattened search finds the target, and a track starts on that fix. Frame 2,
+  // a dark sky with the satellite 10 deg away: eq. 11 as printed finds it. With printed_search_wins its fix
+  // ends the flattened track; without, the track's region is searched flattened, the target outside the
+  // gate is refused and far range coasts (campaign plate/114: a drifting blob held for 140 frames so).
+  const test::FarFrame ramp = rampFrame(60.0);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::farCamera(640, 480, false), test::smallsat(), test::farRender()).ok);
+  const test::FarFrame sky = test::renderFar(renderer, test::satAt(100.0, 8.0, 6.0), 7U);
+  for (const bool wins : {true, false}) {
+    FarRangeParams p;
+    p.background_block_px = kBlockPx;
+    p.background_fallback_only = true;
+    p.printed_search_wins = wins;
+    FarRangeEstimator far;
+    ASSERT_TRUE(far.init(test::farCamera(640, 480, false), p).ok);
+    FarRangeResult first;
+    ASSERT_EQ(far.estimate(ramp.image(), first), Status::kOk);
+    ASSERT_TRUE(first.valid);
+    ASSERT_NE(first.flags & kFlagFlattened, 0U);
+    FarRangeResult second;
+    ASSERT_EQ(far.estimate(sky.image(), second), Status::kOk);
+    const bool on_target =
+        second.valid && test::angleDeg(second.direction_c, sky.truth.t_c_m.normalized()) < 0.2;
+    if (wins) {
+      EXPECT_TRUE(on_target);
+      EXPECT_NE(second.flags & kFlagPrintedWins, 0U);
+      EXPECT_EQ(second.flags & kFlagFlattened, 0U);
+    } else {
+      EXPECT_FALSE(on_target)
+          << "the flattened track let the target outside its gate in: the test tests nothing";
+      EXPECT_EQ(second.flags & kFlagPrintedWins, 0U);
+    }
+  }
+}
+
 TEST(FarRangeBackground, OnAFlatBackgroundTheFlattenedHistogramIsTheSameHistogramShifted) {
   // A uniform frame of grey 40 with one 3x3 patch of 200 off the sampling grid (the background is taken
   // from every 4th row and column): the background is 40 everywhere, so the flattened bins are 128 and

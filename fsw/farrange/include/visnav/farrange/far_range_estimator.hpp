@@ -40,6 +40,7 @@ enum FarRangeFlag : std::uint32_t {
   kFlagExtentDistance = 1U << 12,  ///< distance_m from the cluster's extent and the target's radius
   kFlagRefutedSkipped = 1U << 13,  ///< a cluster inside a refuted region was passed over (refuteLastFix)
   kFlagFlattened = 1U << 14,       ///< found over the flattened background (background_fallback_only)
+  kFlagPrintedWins = 1U << 15,     ///< the printed search ended a flattened track (printed_search_wins)
 };
 
 /// Execution time of one estimate() per stage [us] (zeros when no clock is set).

@@ -39,7 +39,8 @@ struct FarRangeParams {
   int max_coast_frames = 5;
   bool use_roi = true;
   bool background_fallback_only = false;
-  int background_block_px = 0;  ///< eq. 11 over the deviation from the smooth background (0: off)
+  bool printed_search_wins = true;  ///< with it, a target the printed search finds ends a flattened track
+  int background_block_px = 0;      ///< eq. 11 over the deviation from the smooth background (0: off)
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
   double extended_min_half_px = 12.0;
@@ -141,6 +142,15 @@ struct FarRangeParams {
                "/114, /125 lost: flattened fixes on clutter where the printed search had a frame without "
                "target). false: always flattened"},
               background_fallback_only);
+    v.boolean({"farrange", "printed_search_wins", "-", 0, 1,
+               "robust, with background_fallback_only: while the track is a fix found over the flattened "
+               "background, eq. 11 as printed is also run over the whole frame, and a target it finds "
+               "(the largest plausible cluster, as without a track) ends that track and is taken: the "
+               "flattened search stays the fallback of a frame without target, never a track that holds on "
+               "against the printed one (campaign plate/114: a drifting blob found flattened on a frame "
+               "without target was held 140 frames, 6-7 deg off the plate). false: a flattened track keeps "
+               "its region"},
+              printed_search_wins);
     v.boolean({"farrange", "use_roi", "-", 0, 1,
                "robust: filter only a region around the predicted target (sec. V); full frame when lost or "
                "when the region yields no target"},

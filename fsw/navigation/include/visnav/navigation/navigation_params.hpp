@@ -67,7 +67,7 @@ struct NavigationParams {
   int reacquire_acquisition_after_frames = 5;  ///< then acquisition also searches (0: never)
   bool reacquire_far_cue = true;  ///< that acquisition looks where far range finds the target, if it does
   bool reacquire_acquisition_tiles = false;  ///< its prediction-cued attempts also walk tiles over the disc
-  bool reacquire_acquisition_outline_cue = true;  ///< or look where the outline cue matched best
+  bool reacquire_acquisition_outline_cue = false;  ///< or look where the outline cue matched best
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
   bool refute_unconfirmed_cue = false;  ///< an acquisition that confirmed nothing at its cue refutes it too
@@ -346,17 +346,18 @@ struct NavigationParams {
                "(box/172 +20, box/132 +9); true: every other attempt on a tile"},
               reacquire_acquisition_tiles);
     v.boolean({"navigation", "reacquire_acquisition_outline_cue", "-", 0, 1,
-               "close-range reacquisition: on far range's turn (every other attempt of that acquisition), "
-               "when far range gives no cue, the attempt looks where this frame's outline cue "
-               "(reacquire_cue_starts: the outline at the prediction's look and range slid over the "
+               "close-range reacquisition (experimental, off): on far range's turn (every other attempt of "
+               "that acquisition), when far range gives no cue, the attempt looks where this frame's outline "
+               "cue (reacquire_cue_starts: the outline at the prediction's look and range slid over the "
                "searched disc) matched best, if the prediction's window would not hold the whole target "
                "there. Far range sees nothing on a gradient or a limb, and the prediction drifts while "
                "nothing is measured (campaign octagon/19, gradient: 7.4 deg off the line of sight, never "
-               "re-found; with it found 3 frames after the cue first ran, 0 -> 50 of 108 tracked). The other "
-               "turn stays at the prediction (with the cue on every attempt box/36 lost 34 frames: a cue on "
-               "clutter held the attempt while the target reappeared in the prediction's window). Seeds "
-               "1-40 (200 scenes): tracked 0.6435 -> 0.6483, confidently wrong frames 18 -> 18. The find is "
-               "judged as before; false: not used"},
+               "re-found; with it 0 -> 50 of 108 tracked). The other turn stays at the prediction (with the "
+               "cue on every attempt box/36 lost 34 frames: a cue on clutter held the attempt while the "
+               "target reappeared in the prediction's window). Off because on the full campaign it took "
+               "tracked 0.6248 -> 0.6268 and confidently wrong frames 88 -> 99: box/132, never found "
+               "without it, was found and its track then drifted to 12 deg (1 -> 10 wrong frames); seeds "
+               "1-40 alone had shown 0.6435 -> 0.6483 and 18 -> 18. true: used"},
               reacquire_acquisition_outline_cue);
     v.boolean({"navigation", "reacquire_twin_continuity", "-", 0, 1,
                "close-range reacquisition: that acquisition does not refuse a candidate whose near twin "
