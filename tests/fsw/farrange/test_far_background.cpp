@@ -87,8 +87,9 @@ TEST(FarRangeBackground, AsAFallbackTheFlattenedSearchRunsOnlyWhereThePrintedOne
 TEST(FarRangeBackground, ATrackFoundOverTheFlattenedBackgroundGivesWayToWhatThePrintedSearchFinds) {
   // Frame 1, the ramp: only the flattened search finds the target, and a track starts on that fix. Frame 2,
   // a dark sky with the satellite 10 deg away: eq. 11 as printed finds it. With printed_search_wins its fix
-  // ends the flattened track; without, the track's region is searched flattened, the target outside the
-  // gate is refused and far range coasts (campaign plate/114: a drifting blob held for 140 frames so).
+  // ends the flattened track; without (the default), the track's region is searched flattened, the target
+  // outside the gate is refused and far range coasts (campaign plate/114: a drifting blob held for 140
+  // frames so).
   const test::FarFrame ramp = rampFrame(60.0);
   synthetic::Renderer renderer;
   ASSERT_TRUE(renderer.init(test::farCamera(640, 480, false), test::smallsat(), test::farRender()).ok);

@@ -39,7 +39,7 @@ struct FarRangeParams {
   int max_coast_frames = 5;
   bool use_roi = true;
   bool background_fallback_only = false;
-  bool printed_search_wins = true;  ///< with it, a target the printed search finds ends a flattened track
+  bool printed_search_wins = false;  ///< with it, a target the printed search finds ends a flattened track
   int background_block_px = 0;      ///< eq. 11 over the deviation from the smooth background (0: off)
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
@@ -148,8 +148,12 @@ struct FarRangeParams {
                "(the largest plausible cluster, as without a track) ends that track and is taken: the "
                "flattened search stays the fallback of a frame without target, never a track that holds on "
                "against the printed one (campaign plate/114: a drifting blob found flattened on a frame "
-               "without target was held 140 frames, 6-7 deg off the plate). false: a flattened track keeps "
-               "its region"},
+               "without target was held 140 frames, 6-7 deg off the plate). Measured, off: on the 257 "
+               "approaches of seeds 1-200 with background_block_px 128, background_fallback_only and "
+               "[acquisition] near_twin_max_rel 0.25 it gave back plate/114, /125, /41 and box/29, /40 but "
+               "tracked 0.3175 -> 0.2991 and confidently wrong frames 0 -> 10 (box/115: the acquisition, "
+               "handed over at another time, confirmed a wrong pose); false: a flattened track keeps its "
+               "region"},
               printed_search_wins);
     v.boolean({"farrange", "use_roi", "-", 0, 1,
                "robust: filter only a region around the predicted target (sec. V); full frame when lost or "
