@@ -115,11 +115,42 @@ class PipelineTest : public ::testing::Test {
 
   /// A run whose acquisition found the plate again within 8 frames of its reappearance, valid from then on
   /// but for a frame.
-  static void expectFoundByAcquisitionSoon(const HiddenRun& run, int valid_after) {
+  static void expectFoundByAcquisitionSoon(const HiddenRun& run, int valid_after, int within_frames = 8) {
     ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
     EXPECT_TRUE(run.found_by_acquisition);
-    EXPECT_LE(run.found_at, kHiddenUntil + 8);
+    EXPECT_LE(run.found_at, kHiddenUntil + within_frames);
     EXPECT_GE(valid_after, 30 - run.found_at - 1);
+  }
+
+  /// The plate that reappears 17 deg from the prediction's line of sight and 20 % closer, far range off
+  /// (its cue would find it), run with one way of looking beyond the prediction's window switched by `set`:
+  /// on, the acquisition finds it within `within_frames` of its reappearance and it stays valid; off, never
+  /// in the 17 frames after it. Nothing allocated either way.
+  template <typename Set>
+  void expectFoundOnlyWith(Set set, int within_frames, HiddenRun& with) {
+    const std::vector<test::RenderedFrame> seq =
+        hiddenApproach(test::plateAt(12.0, -2.4, 25.0, -15.0), test::plateAt(15.0, 1.5, 1.0, -1.0));
+    for (const bool on : {true, false}) {
+      PipelineParams p = params;
+      p.navigation.reacquire_far_cue = false;
+      p.navigation.reacquire_acquisition_tiles = false;
+      p.navigation.reacquire_acquisition_outline_cue = false;
+      set(p, on);
+      NavigationPipeline pipeline;
+      HiddenRun run;
+      runHidden(seq, p, pipeline, run);
+      EXPECT_EQ(run.allocations, 0U) << "switched " << (on ? "on" : "off");
+      EXPECT_FALSE(run.far_cued);
+      const int valid_after = checkValidAfterHidden(seq, pipeline, run);
+      if (on) {
+        expectFoundByAcquisitionSoon(run, valid_after, within_frames);
+        with = run;
+      } else {
+        EXPECT_LT(run.found_at, 0) << "found with it off: the test tests nothing";
+        EXPECT_EQ(valid_after, 0);
+        EXPECT_FALSE(run.outline_cued);
+      }
+    }
   }
 
   /// Every valid pose once the target reappears is within 2 % of 12 m and 2 deg of the truth (modulo the

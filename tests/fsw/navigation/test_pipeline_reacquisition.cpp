@@ -150,60 +150,22 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundByTheAcquisi
   // prediction-cued attempts walk windows over the disc the local search has grown to
   // (reacquire_acquisition_tiles), and one of them holds the plate. Without the tiles every attempt looks
   // at the prediction's line of sight, 17 deg from it.
-  const std::vector<test::RenderedFrame> seq =
-      hiddenApproach(test::plateAt(12.0, -2.4, 25.0, -15.0), test::plateAt(15.0, 1.5, 1.0, -1.0));
-  for (const bool tiles : {true, false}) {
-    PipelineParams p = params;
-    p.navigation.reacquire_far_cue = false;
-    p.navigation.reacquire_acquisition_tiles = tiles;
-    p.navigation.reacquire_acquisition_outline_cue = false;
-    NavigationPipeline pipeline;
-    HiddenRun run;
-    runHidden(seq, p, pipeline, run);
-    EXPECT_EQ(run.allocations, 0U) << "tiles " << tiles;
-    EXPECT_FALSE(run.far_cued);
-    const int valid_after = checkValidAfterHidden(seq, pipeline, run);
-    if (tiles) {
-      expectFoundByAcquisitionSoon(run, valid_after);
-    } else {
-      EXPECT_LT(run.found_at, 0) << "found without tiles: the test tests nothing";
-      EXPECT_EQ(valid_after, 0);
-    }
-  }
+  HiddenRun with;
+  expectFoundOnlyWith([](PipelineParams& p, bool on) { p.navigation.reacquire_acquisition_tiles = on; }, 8,
+                      with);
 }
 
 TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereTheOutlineCueMatches) {
   // The scene above, far range and tiles off: on far range's turn the acquisition looks where this frame's
   // outline cue (the predicted outline slid over the disc the local search has grown to) matched best,
   // outside the window the prediction's attempt covers. Without it every attempt looks 17 deg from the
-  // plate and never holds all of it.
-  const std::vector<test::RenderedFrame> seq =
-      hiddenApproach(test::plateAt(12.0, -2.4, 25.0, -15.0), test::plateAt(15.0, 1.5, 1.0, -1.0));
-  for (const bool outline_cue : {true, false}) {
-    PipelineParams p = params;
-    p.navigation.reacquire_far_cue = false;
-    p.navigation.reacquire_acquisition_tiles = false;
-    p.navigation.reacquire_acquisition_outline_cue = outline_cue;
-    NavigationPipeline pipeline;
-    HiddenRun run;
-    runHidden(seq, p, pipeline, run);
-    EXPECT_EQ(run.allocations, 0U) << "outline cue " << outline_cue;
-    EXPECT_FALSE(run.far_cued);
-    EXPECT_EQ(run.outline_cued, outline_cue);
-    const int valid_after = checkValidAfterHidden(seq, pipeline, run);
-    if (outline_cue) {
-      // The cue has every other attempt (far range's turn), and an attempt takes up to four frames: the
-      // first one at the cue (3 frames after the plate reappears) found it but did not confirm it, the
-      // second (8 frames after) did, 11 frames after it reappeared.
-      ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
-      EXPECT_TRUE(run.found_by_acquisition);
-      EXPECT_LE(run.found_at, kHiddenUntil + 12);
-      EXPECT_GE(valid_after, 30 - run.found_at - 1);
-    } else {
-      EXPECT_LT(run.found_at, 0) << "found without the outline cue: the test tests nothing";
-      EXPECT_EQ(valid_after, 0);
-    }
-  }
+  // plate and never holds all of it. The cue has every other attempt, and an attempt takes up to four
+  // frames: the first one at the cue (3 frames after the plate reappears) found it but did not confirm it,
+  // the second (8 frames after) did, 11 frames after it reappeared.
+  HiddenRun with;
+  expectFoundOnlyWith([](PipelineParams& p, bool on) { p.navigation.reacquire_acquisition_outline_cue = on; },
+                      12, with);
+  EXPECT_TRUE(with.outline_cued);
 }
 
 TEST_F(PipelineTest, AFallBackToFarRangeAtCloseRangeIsHandedBackByTheTargetsExtent) {
