@@ -40,7 +40,7 @@ struct FarRangeParams {
   bool use_roi = true;
   bool background_fallback_only = false;
   bool printed_search_wins = false;  ///< with it, a target the printed search finds ends a flattened track
-  int background_block_px = 0;      ///< eq. 11 over the deviation from the smooth background (0: off)
+  int background_block_px = 0;       ///< eq. 11 over the deviation from the smooth background (0: off)
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
   double extended_min_half_px = 12.0;
