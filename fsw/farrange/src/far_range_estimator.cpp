@@ -174,7 +174,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   if (m_robust && m_flatten_as_fallback && m_params.printed_search_wins && m_track_flattened) {
     // A fix over the flattened background is a fallback, and so is its track: once eq. 11 as printed finds
     // a target in the whole frame again, that target is taken as it would be without flattening (campaign
-    // plate/114: a drifting blob found flattened on a frame without target was held 140 frames, 6-7 deg
+    // plate/114: a drifting blob found flattened on a frame without target was held 140 frames, 6-8 deg
     // off the plate, which the printed search finds on its own).
     searchRegion(image, full, out);
     std::uint32_t printed_flags = 0U;

@@ -33,12 +33,16 @@ test::FarFrame rampFrame(double range_m) {
 /// The block size measured on the campaign (fsw/farrange/README.md); the parameter's default is 0 (off).
 constexpr int kBlockPx = 128;
 
-FarRangeResult estimate(const test::FarFrame& frame, int block_px, bool fallback_only = false) {
+FarRangeParams backgroundParams(int block_px, bool fallback_only) {
   FarRangeParams p;
   p.background_block_px = block_px;
   p.background_fallback_only = fallback_only;
+  return p;
+}
+
+FarRangeResult estimate(const test::FarFrame& frame, int block_px, bool fallback_only = false) {
   FarRangeEstimator far;
-  EXPECT_TRUE(far.init(test::farCamera(640, 480, false), p).ok);
+  EXPECT_TRUE(far.init(test::farCamera(640, 480, false), backgroundParams(block_px, fallback_only)).ok);
   FarRangeResult out;
   EXPECT_EQ(far.estimate(frame.image(), out), Status::kOk);
   return out;
@@ -95,9 +99,7 @@ TEST(FarRangeBackground, ATrackFoundOverTheFlattenedBackgroundGivesWayToWhatTheP
   ASSERT_TRUE(renderer.init(test::farCamera(640, 480, false), test::smallsat(), test::farRender()).ok);
   const test::FarFrame sky = test::renderFar(renderer, test::satAt(100.0, 8.0, 6.0), 7U);
   for (const bool wins : {true, false}) {
-    FarRangeParams p;
-    p.background_block_px = kBlockPx;
-    p.background_fallback_only = true;
+    FarRangeParams p = backgroundParams(kBlockPx, true);
     p.printed_search_wins = wins;
     FarRangeEstimator far;
     ASSERT_TRUE(far.init(test::farCamera(640, 480, false), p).ok);

@@ -148,7 +148,7 @@ struct FarRangeParams {
                "(the largest plausible cluster, as without a track) ends that track and is taken: the "
                "flattened search stays the fallback of a frame without target, never a track that holds on "
                "against the printed one (campaign plate/114: a drifting blob found flattened on a frame "
-               "without target was held 140 frames, 6-7 deg off the plate). Measured, off: on the 257 "
+               "without target was held 140 frames, 6-8 deg off the plate). Measured, off: on the 257 "
                "approaches of seeds 1-200 with background_block_px 128, background_fallback_only and "
                "[acquisition] near_twin_max_rel 0.25 it gave back plate/114, /125, /41 and box/29, /40 but "
                "tracked 0.3175 -> 0.2991 and confidently wrong frames 0 -> 10 (box/115: the acquisition, "
