@@ -111,13 +111,6 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   return count;
 }
 
-bool LocalReacquisition::bestCueDirection(Vec3& direction) const {
-  Vec2 centre_px;
-  if (!m_best_cue_found || !m_camera.project(m_predicted.t_c_m, centre_px)) return false;
-  direction = m_camera.bearing(centre_px + m_best_cue_offset_px);
-  return true;
-}
-
 bool LocalReacquisition::agrees(const Pose& reference, const Pose& candidate, std::uint64_t frames,
                                 bool check_range) const {
   const double range = reference.t_c_m.norm();

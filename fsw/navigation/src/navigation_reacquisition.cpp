@@ -166,14 +166,12 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
       // whole target there. The other turn stays at the prediction: a cue on clutter holds an attempt for
       // up to four frames, and a target reappearing in the prediction's window was found late behind it
       // (campaign box/36 with the cue on every attempt: 127 -> 93 tracked).
-      Vec3 cue_direction;
-      Vec2 cue_px;
+      Vec2 cue_offset_px;
       Vec2 centre_px;
       if (m_params.navigation.reacquire_acquisition_outline_cue && far_turn &&
-          m_reacquisition.bestCueDirection(cue_direction) && m_camera.project(cue_direction, cue_px) &&
-          m_camera.project(predicted_direction, centre_px) &&
-          (cue_px - centre_px).norm() > half_px - target_radius_px) {
-        direction = cue_direction;
+          m_reacquisition.bestCueOffset(cue_offset_px) && cue_offset_px.norm() > half_px - target_radius_px &&
+          m_camera.project(predicted_direction, centre_px)) {
+        direction = m_camera.bearing(centre_px + cue_offset_px);
         step.outline_cue = true;
       } else if (m_params.navigation.reacquire_acquisition_tiles) {
         direction = nextAcquisitionTile(predicted_direction, spacing_px, step.search_radius_px);

@@ -86,9 +86,12 @@ class LocalReacquisition {
   /// The attitude tolerance of those tests after `frames` frames [rad].
   double lookToleranceRad(std::uint64_t frames) const;
 
-  /// The line of sight through this frame's best match of the predicted outline over the searched disc
-  /// (findCues; the prediction itself when it matched best); false when no cue ran this frame.
-  bool bestCueDirection(Vec3& direction) const;
+  /// This frame's best match of the predicted outline over the searched disc (findCues): its image offset
+  /// from the prediction's centre [px] (zero when the prediction matched best); false when no cue ran.
+  bool bestCueOffset(Vec2& offset_px) const {
+    offset_px = m_best_cue_offset_px;
+    return m_best_cue_found;
+  }
 
   /// One frame; `predicted` is the filter's prediction for this exposure (or the last good pose).
   void step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
