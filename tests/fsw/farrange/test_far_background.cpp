@@ -30,7 +30,7 @@ test::FarFrame rampFrame(double range_m) {
   return test::renderFar(renderer, test::satAt(range_m, 0.0, 0.0), 7U);
 }
 
-/// The block size measured on the campaign (fsw/farrange/README.md); the parameter's default is 0 (off).
+/// The block size measured on the campaign (fsw/farrange/README.md), the parameter's default.
 constexpr int kBlockPx = 128;
 
 FarRangeParams backgroundParams(int block_px, bool fallback_only) {

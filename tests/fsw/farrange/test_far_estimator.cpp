@@ -29,7 +29,8 @@ TEST(FarRangeEstimator, DirectionGoesThroughTheDistortedCameraModel) {
 TEST(FarRangeEstimator, DistanceIsEq16AndTheRobustSizeFollowsInverseSquareDistance) {
   Scene s;
   // One calibration frame at 700 m, then the whole range with that gamma. The robust method also over the
-  // flattened background (background_block_px 128): the blocks' median adds no halo to n.
+  // flattened background on every frame (background_block_px 128, not only as the fallback): the blocks'
+  // median adds no halo to n.
   struct Case {
     FarRangeMethod method;
     int block_px;
@@ -40,6 +41,7 @@ TEST(FarRangeEstimator, DistanceIsEq16AndTheRobustSizeFollowsInverseSquareDistan
     const FarRangeMethod m = c.method;
     FarRangeParams p = method(m);
     p.background_block_px = c.block_px;
+    p.background_fallback_only = false;
     const FarRangeResult cal = estimateOnce(s.camera, p, s.frame(test::satAt(700.0, 1.0, 1.0, 15.0), 3));
     ASSERT_TRUE(cal.valid);
     p.gamma = 700.0 * std::sqrt(static_cast<double>(cal.cluster_pixels));
@@ -101,9 +103,11 @@ TEST(FarRangeEstimator, OneBrightEdgeHidesTheTargetUnderMaxNormalisation) {
   for (const Cluster& c : paper.clusters()) {
     EXPECT_GT((c.com_px - target_px).norm(), 20.0) << "no cluster spawned on the satellite";
   }
-  for (const int block_px : {0, 128}) {  // over the flattened background too: no halo grows the bar round
+  // Always over the flattened background too: no halo grows the bar round.
+  for (const int block_px : {0, 128}) {
     FarRangeParams robust_params = method(FarRangeMethod::kRobust);
     robust_params.background_block_px = block_px;
+    robust_params.background_fallback_only = false;
     const FarRangeResult robust = estimateOnce(s.camera, robust_params, f);
     ASSERT_TRUE(robust.valid) << block_px;
     EXPECT_LT(angleDeg(robust.direction_c, truth), 0.05) << block_px;
@@ -112,10 +116,11 @@ TEST(FarRangeEstimator, OneBrightEdgeHidesTheTargetUnderMaxNormalisation) {
 
 TEST(FarRangeEstimator, RegionOfInterestGivesTheFullFrameAnswerAndGatesTheTrack) {
   Scene s;
-  for (const int block_px : {0, 128}) {  // over the flattened background too
+  for (const int block_px : {0, 128}) {  // always over the flattened background too
     SCOPED_TRACE(block_px);
     FarRangeParams with_roi;
     with_roi.background_block_px = block_px;
+    with_roi.background_fallback_only = false;
     FarRangeParams without_roi = with_roi;
     without_roi.use_roi = false;
     FarRangeEstimator a;

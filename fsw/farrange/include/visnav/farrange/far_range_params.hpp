@@ -38,9 +38,9 @@ struct FarRangeParams {
   double max_size_ratio = 2.0;
   int max_coast_frames = 5;
   bool use_roi = true;
-  bool background_fallback_only = false;
+  bool background_fallback_only = true;
   bool printed_search_wins = false;  ///< with it, a target the printed search finds ends a flattened track
-  int background_block_px = 0;       ///< eq. 11 over the deviation from the smooth background (0: off)
+  int background_block_px = 128;     ///< eq. 11 over the deviation from the smooth background (0: off)
   double roi_extent_factor = 2.0;
   int roi_min_half_px = 48;
   double extended_min_half_px = 12.0;
@@ -123,15 +123,16 @@ struct FarRangeParams {
                "search without gating)"},
               max_coast_frames);
     v.integer({"farrange", "background_block_px", "px", 0, 4096,
-               "robust (experimental, off): the histogram filter (eqs. 11-12) counts each pixel's "
+               "robust: the histogram filter (eqs. 11-12) counts each pixel's "
                "deviation from the frame's smooth background (the median of blocks this size, sampled "
                "every 4th row and column, bilinear between their centres) instead of its grey level, so a "
                "target whose grey levels lie inside a gradient's or a planet limb's spread is still rare. "
                "At 128 on the campaign's 257 approaches (seeds 1-200): tracked mean 0.286 -> 0.316, "
                "approaches on a limb 0.207 -> 0.298, but confidently wrong frames 0 -> 44: more hand-overs "
                "on hard scenes, and the acquisition confirmed wrong box and plate poses on two of them "
-               "(box/120, cao/69; fsw/farrange/README.md). Step +240 us at VGA, full frame. 0: the grey "
-               "level, as printed"},
+               "(box/120, cao/69; fsw/farrange/README.md); hence the default searches flattened only as a "
+               "fallback (background_fallback_only). Step +240 us at VGA, full frame. 0: the grey level, as "
+               "printed"},
               background_block_px);
     v.boolean({"farrange", "background_fallback_only", "-", 0, 1,
                "robust, with background_block_px: eq. 11 as printed first, and over the flattened "
@@ -140,7 +141,8 @@ struct FarRangeParams {
                "approaches of seeds 1-200: tracked mean 0.286 -> 0.315 and confidently wrong frames 0 -> "
                "13 (cao/69 alone, against 44 in 5 scenes always flattened), plate 0.431 -> 0.351 (plate/41, "
                "/114, /125 lost: flattened fixes on clutter where the printed search had a frame without "
-               "target). false: always flattened"},
+               "target). With [acquisition] near_twin_max_rel 0.25 (the defaults), on the full run of seeds "
+               "1-200: tracked 0.6248 -> 0.6323, confidently wrong frames 88 -> 88. false: always flattened"},
               background_fallback_only);
     v.boolean({"farrange", "printed_search_wins", "-", 0, 1,
                "robust, with background_fallback_only: while the track is a fix found over the flattened "
