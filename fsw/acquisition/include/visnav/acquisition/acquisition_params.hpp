@@ -172,9 +172,11 @@ struct AcquisitionParams {
          "agreement as it stands less its refit's residual) it must fall behind before the candidate is "
          "confirmed. Campaign box/120 (flat-lit box at 49 m) was confirmed 88-90 deg off with the truth "
          "0.02-0.12 deg from its twin: 28 wrong frames -> 0. On the 257 approaches of seeds 1-200 with "
-         "[farrange] background_block_px 128: tracked 0.316 -> 0.297, wrong frames 44 -> 16; with the "
-         "defaults, which leave no wrong frame there to remove: tracked 0.286 -> 0.254 and 0 -> 1 wrong "
-         "frame. Off because with the defaults it only costs; true: the twin is challenged"},
+         "[farrange] background_block_px 128 on every frame: tracked 0.316 -> 0.297, wrong frames 44 -> 16; "
+         "with far range as printed, which leaves no wrong frame there to remove: tracked 0.286 -> 0.254 "
+         "and 0 -> 1 wrong frame. Off: the defaults since stop 40 (the flattened search as a fallback, "
+         "near_twin_max_rel 0.25) leave no wrong frame on the approaches either; true: the twin is "
+         "challenged"},
         mirror_twin_checks);
     v.real({"acquisition", "near_twin_min_separation_px", "px", 0.0, 1000.0,
             "a near twin that moves the model's vertices less than this in the image is a rival whatever "
