@@ -49,6 +49,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_delivered = {};  // given, not measured on a frame
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
+  m_find_confirms_branch = false;
   m_track_twin_by_continuity = false;
   m_acquisition_awaits_near = false;
   m_filter.reset();

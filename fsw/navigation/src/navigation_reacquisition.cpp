@@ -38,6 +38,8 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     // (campaign plate/135: re-found 13.8 deg off with a 1.7 deg 1-sigma; replayed on the full run
     // before the close-range acquisition was on: wrong frames 165 -> 160 for 0.001 of tracked mean).
     m_track_doubted = true;
+    m_doubt_clear_run = 0;
+    m_find_confirms_branch = m_params.navigation.doubt_clear_frames > 1;
     m_track_twin_by_continuity = step.twin_by_continuity;
     deliver(step.pose, step.covariance, step.quality, out, true);
   } else {

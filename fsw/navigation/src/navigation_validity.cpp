@@ -61,10 +61,19 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
   // filter has restarted from it (campaign box/25: re-found 17.7 deg off, then 20 frames valid at 17-20 deg
   // with a 1.1-2.3 deg 1-sigma). Replayed on the full run: wrong frames 210 -> 193, tracked mean 0.549 ->
   // 0.547.
+  // doubt_clear_frames: the find's doubt ends only after that many such poses in a row, and its poses are
+  // withheld until then (campaign box/191: a find 12 deg off met the limit on every other frame).
+  bool find_still_doubted = false;
+  if (m_track_doubted && nav.doubted_max_attitude_sigma_deg > 0.0) {
+    m_doubt_clear_run = sigma.attitude_deg <= nav.doubted_max_attitude_sigma_deg ? m_doubt_clear_run + 1 : 0;
+    find_still_doubted = m_doubt_clear_run < std::max(1, nav.doubt_clear_frames);
+  } else {
+    m_doubt_clear_run = 0;
+  }
   if (doubted && nav.doubted_max_attitude_sigma_deg > 0.0 &&
-      sigma.attitude_deg <= nav.doubted_max_attitude_sigma_deg)
+      sigma.attitude_deg <= nav.doubted_max_attitude_sigma_deg && !find_still_doubted)
     m_track_doubted = false;
-  out.pose_valid = certain && m_pose_showed_face;
+  out.pose_valid = certain && !find_still_doubted && m_pose_showed_face;
   out.pose = pose;
   out.covariance = covariance;
   out.quality = quality;
@@ -82,8 +91,14 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // Evaluated whatever the branch's state, for the campaign's gate replay (lastFitKeptTheBranch).
   m_fit_kept_the_branch =
       processed_in == NavMode::kNearRange && out.pose_valid && keptTheBranch(out.pose, out.covariance);
+  // With doubt_clear_frames > 1 the find's own frame is withheld: its confirmation of the branch (the twin
+  // chosen by continuity with the last valid pose) passes to the track's first valid pose after it.
+  const bool find_confirms =
+      m_reacquisition_step.found ||
+      (m_find_confirms_branch && processed_in == NavMode::kNearRange && out.pose_valid);
+  m_find_confirms_branch = m_find_confirms_branch && m_track_doubted && !out.pose_valid;
   const bool confirmed = (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) ||
-                         m_reacquisition_step.found || awaited || m_fit_kept_the_branch;
+                         find_confirms || awaited || m_fit_kept_the_branch;
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
 }
 

@@ -258,5 +258,39 @@ TEST_F(PipelineTest, AReacquiredTrackIsDoubtedUntilOneOfItsPosesMeetsTheDoubtedL
   }
 }
 
+TEST_F(PipelineTest, AReacquiredTrackStaysDoubtedUntilDoubtClearFramesPosesInARowMeetTheLimit) {
+  // doubt_clear_frames 3: the find and the poses after it are withheld until three in a row have an attitude
+  // 1-sigma within the doubted limit (1 deg); the third is the first valid one. With 1 (the default) the
+  // find itself is valid (the plate re-found at 12 m meets the limit at once).
+  const std::vector<test::RenderedFrame> seq = hiddenApproach();
+  const double limit_deg = params.navigation.doubted_max_attitude_sigma_deg;
+  for (const int clear_frames : {1, 3}) {
+    PipelineParams p = params;
+    p.navigation.doubt_clear_frames = clear_frames;
+    NavigationPipeline pipeline;
+    HiddenRun run;
+    runHidden(seq, p, pipeline, run);
+    EXPECT_EQ(run.allocations, 0U) << "malloc counted: " << test::countsMalloc();
+    ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
+    int first_valid = -1;
+    int third_in_a_row = -1;
+    int in_a_row = 0;
+    for (int i = run.found_at; i < static_cast<int>(run.out.size()); ++i) {
+      const NavSolution& o = run.out[static_cast<std::size_t>(i)];
+      in_a_row = poseSigmas(o.pose, o.covariance).attitude_deg <= limit_deg ? in_a_row + 1 : 0;
+      if (third_in_a_row < 0 && in_a_row >= clear_frames) third_in_a_row = i;
+      if (first_valid < 0 && o.pose_valid) first_valid = i;
+    }
+    SCOPED_TRACE(clear_frames);
+    ASSERT_GE(third_in_a_row, 0) << "the find never met the limit often enough: the test tests nothing";
+    EXPECT_EQ(first_valid, third_in_a_row);
+    if (clear_frames == 1) {
+      EXPECT_EQ(first_valid, run.found_at);
+    } else {
+      EXPECT_GE(first_valid, run.found_at + clear_frames - 1);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace visnav::nav

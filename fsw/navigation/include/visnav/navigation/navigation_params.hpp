@@ -41,6 +41,7 @@ struct NavigationParams {
   double max_valid_position_sigma_rel = 0.025;
   double doubted_max_attitude_sigma_deg = 1.0;  ///< the same for a near-range pose that is doubted (below)
   double doubt_min_line_fraction = 0.75;        ///< fewer used lines / selected lines: the pose is doubted
+  int doubt_clear_frames = 1;  ///< consecutive poses within the doubted limit that end a find's doubt
   double disputed_max_look_change_deg = 5.0;    ///< a disputed pose turned more than this is not valid
   double disputed_max_range_change_rel = 0.03;  ///< or its range this far (relative) from the prediction's
   double max_valid_view_angle_deg = 80.0;  ///< a pose showing no surface nearer facing than this is not valid
@@ -185,6 +186,14 @@ struct NavigationParams {
             "a near-range pose is doubted when fewer than this share of its selected lines were used (the "
             "others were not found or rejected): it rests on part of the outline"},
            doubt_min_line_fraction);
+    v.integer({"navigation", "doubt_clear_frames", "count", 1, 1000,
+               "a track that began with a reacquisition's find stays doubted, and none of its poses is "
+               "valid, until this many consecutive poses met doubted_max_attitude_sigma_deg (1: the first "
+               "such pose ends the doubt and is valid). A find the image does not pin down alternates "
+               "between certain and uncertain fits as its lines come and go (campaign box/191: found 1.6 m "
+               "and 12 deg off, 1-sigma 0.30, 1.99, 0.36, 1.84, 1.95, 0.98, 0.39, 2.10 deg on consecutive "
+               "frames)"},
+              doubt_clear_frames);
     v.real({"navigation", "disputed_max_look_change_deg", "deg", 0.0, 180.0,
             "a near-range pose the innovation gate rejects but the image supports (the measurement wins "
             "and the filter restarts from it) is not valid on that frame when its look (attitude along its "

@@ -158,7 +158,9 @@ class NavigationPipeline {
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
-  Pose m_last_valid_pose;                      ///< the last pose delivered as valid
+  int m_doubt_clear_run = 0;            ///< consecutive poses of a doubted track within the doubted limit
+  bool m_find_confirms_branch = false;  ///< doubt_clear_frames > 1: the find's branch waits for its doubt
+  Pose m_last_valid_pose;               ///< the last pose delivered as valid
   std::uint64_t m_frames_since_valid = ~0ULL;  ///< frames since then (~0: none yet)
   TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
