@@ -273,17 +273,17 @@ TEST_F(PipelineTest, AReacquiredTrackStaysDoubtedUntilDoubtClearFramesPosesInARo
     EXPECT_EQ(run.allocations, 0U) << "malloc counted: " << test::countsMalloc();
     ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
     int first_valid = -1;
-    int third_in_a_row = -1;
+    int doubt_cleared_at = -1;
     int in_a_row = 0;
     for (int i = run.found_at; i < static_cast<int>(run.out.size()); ++i) {
       const NavSolution& o = run.out[static_cast<std::size_t>(i)];
       in_a_row = poseSigmas(o.pose, o.covariance).attitude_deg <= limit_deg ? in_a_row + 1 : 0;
-      if (third_in_a_row < 0 && in_a_row >= clear_frames) third_in_a_row = i;
+      if (doubt_cleared_at < 0 && in_a_row >= clear_frames) doubt_cleared_at = i;
       if (first_valid < 0 && o.pose_valid) first_valid = i;
     }
     SCOPED_TRACE(clear_frames);
-    ASSERT_GE(third_in_a_row, 0) << "the find never met the limit often enough: the test tests nothing";
-    EXPECT_EQ(first_valid, third_in_a_row);
+    ASSERT_GE(doubt_cleared_at, 0) << "the find never met the limit often enough: the test tests nothing";
+    EXPECT_EQ(first_valid, doubt_cleared_at);
     if (clear_frames == 1) {
       EXPECT_EQ(first_valid, run.found_at);
     } else {
