@@ -6,32 +6,22 @@
 # tools/campaign/wrong_origins.py must pass its self-test and read it too (the cases have no wrong frame).
 # -DCAMPAIGN=<visnav-campaign> -DPYTHON=<python3> -DREPLAY=<gate_replay.py> -DFAR_DISTANCE=<far_distance.py>
 # -DWRONG_ORIGINS=<wrong_origins.py> -DOUT=<dir>
+# Runs the command after WHAT; fails unless it exits 0 and, when EXPECT is not empty, its output matches EXPECT.
+function(run_expecting what expect)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message(STATUS "${out}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} exited ${rc}:\n${out}\n${err}")
+  endif()
+  if(NOT expect STREQUAL "" AND NOT out MATCHES "${expect}")
+    message(FATAL_ERROR "${what} printed nothing matching ${expect}:\n${out}\n${err}")
+  endif()
+endfunction()
+
 file(REMOVE_RECURSE ${OUT})
-execute_process(COMMAND ${CAMPAIGN} --case all --jobs 2 --frames --no-timing --quiet --out ${OUT}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "visnav-campaign exited ${rc}:\n${out}\n${err}")
-endif()
-execute_process(COMMAND ${PYTHON} ${REPLAY} ${OUT}/frames.csv --check ${OUT}/scenes.csv
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "gate_replay.py --check exited ${rc}:\n${out}\n${err}")
-endif()
-execute_process(COMMAND ${PYTHON} ${FAR_DISTANCE} ${OUT}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "${out}")
-if(NOT rc EQUAL 0 OR NOT out MATCHES "\n +[0-9]+-[0-9inf]+ +[1-9][0-9]* ")
-  message(FATAL_ERROR "far_distance.py exited ${rc} or printed no size bin:\n${out}\n${err}")
-endif()
-execute_process(COMMAND ${PYTHON} ${WRONG_ORIGINS} --self-test
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "wrong_origins.py --self-test exited ${rc}:\n${out}\n${err}")
-endif()
-execute_process(COMMAND ${PYTHON} ${WRONG_ORIGINS} ${OUT}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "${out}")
-if(NOT rc EQUAL 0 OR NOT out MATCHES "^wrong frames: 0\n")
-  message(FATAL_ERROR "wrong_origins.py exited ${rc} or did not count the cases' 0 wrong frames:\n${out}\n${err}")
-endif()
+run_expecting("visnav-campaign" "" ${CAMPAIGN} --case all --jobs 2 --frames --no-timing --quiet --out ${OUT})
+run_expecting("gate_replay.py --check" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv --check ${OUT}/scenes.csv)
+# A size bin with at least one fix.
+run_expecting("far_distance.py" "\n +[0-9]+-[0-9inf]+ +[1-9][0-9]* " ${PYTHON} ${FAR_DISTANCE} ${OUT})
+run_expecting("wrong_origins.py --self-test" "" ${PYTHON} ${WRONG_ORIGINS} --self-test)
+run_expecting("wrong_origins.py" "^wrong frames: 0\n" ${PYTHON} ${WRONG_ORIGINS} ${OUT})
