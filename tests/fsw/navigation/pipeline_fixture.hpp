@@ -112,6 +112,13 @@ class PipelineTest : public ::testing::Test {
     }
     run.allocations = test::allocationCount() - before;
   }
+  /// runHidden, then what the doubt tests need of it: no allocation after init, and a find after the gap.
+  void runHiddenToAFind(const std::vector<test::RenderedFrame>& seq, const PipelineParams& p,
+                        NavigationPipeline& pipeline, HiddenRun& run) {
+    ASSERT_NO_FATAL_FAILURE(runHidden(seq, p, pipeline, run));
+    EXPECT_EQ(run.allocations, 0U) << "malloc counted: " << test::countsMalloc();
+    ASSERT_GE(run.found_at, kHiddenUntil) << "never found again";
+  }
 
   /// A run whose acquisition found the plate again within 8 frames of its reappearance, valid from then on
   /// but for a frame.
