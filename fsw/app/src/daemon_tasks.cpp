@@ -56,6 +56,10 @@ void Daemon::noteCameraResult(camera::AcquireResult result) {
   camera::CameraSource& source = *m_camera.source;
   switch (result) {
     case camera::AcquireResult::kFrame:
+      // The sequence span says whether the driver's gap count is whole: last - first + 1 = frames + dropped
+      // while the device is not reopened (the kernel-camera test checks it across the 32-bit wrap).
+      if (m_counters.frames == 0) m_counters.first_sequence = m_frame.sequence;
+      m_counters.last_sequence = m_frame.sequence;
       ++m_counters.frames;
       if (m_camera_lost) {
         m_camera_lost = false;

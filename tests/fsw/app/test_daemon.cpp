@@ -133,6 +133,13 @@ TEST(Daemon, PublishesWhatThePipelineComputesForEveryFrame) {
                       " frames=" + frames + " cycles_without_frame=0"),
             std::string::npos)
       << text;
+  // The delivered frames' sequence span: every frame of the replay, no gap (last - first + 1 = frames).
+  EXPECT_NE(text.find(" camera_dropped=0 camera_timeouts=0 camera_errors=0 first_sequence=" +
+                      std::to_string(expected.front().frame_number) +
+                      " last_sequence=" + std::to_string(expected.back().frame_number) + " "),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(expected.back().frame_number - expected.front().frame_number + 1, static_cast<std::uint64_t>(kFrames));
   const std::string samples = std::to_string(3 * kFrames);
   EXPECT_NE(text.find(" samples_queued=" + samples + " samples_dropped=0 samples_written=" + samples +
                       " write_failures=0 "),

@@ -50,6 +50,8 @@ struct DaemonOptions {
 
 struct DaemonCounters {
   std::uint64_t frames = 0;                ///< cycles with a frame
+  std::uint64_t first_sequence = 0;        ///< Frame::sequence of the first frame (0 before one)
+  std::uint64_t last_sequence = 0;         ///< Frame::sequence of the latest frame (0 before one)
   std::uint64_t cycles_without_frame = 0;  ///< timeouts, errors, lost device (not the end of a playback)
   std::uint64_t camera_errors = 0;
   std::uint64_t commands = 0;
