@@ -236,26 +236,26 @@ void Daemon::logStopSummary(exec::StopReason reason) {
     if (n < 0) break;
     used += static_cast<std::size_t>(n);
   }
-  m_log.event(LogLevel::kNotice, "stop",
-              "reason=%s cycles=%" PRIu64 " frames=%" PRIu64 " cycles_without_frame=%" PRIu64
-              " camera_dropped=%" PRIu64 " camera_timeouts=%" PRIu64 " camera_errors=%" PRIu64
-              " first_sequence=%" PRIu64 " last_sequence=%" PRIu64 " slips=%" PRIu64 " releases_skipped=%" PRIu64 " worst_overrun_ms=%.3f task_failures=%" PRIu64
-              " mode=%s transitions=%" PRIu64 " commands=%" PRIu64 " commands_accepted=%" PRIu64
-              " fault_onsets=%" PRIu64 " samples_queued=%" PRIu64 " samples_dropped=%" PRIu64
-              " samples_written=%" PRIu64 " write_failures=%" PRIu64 " sample_pool_misses=%" PRIu64
-              " watchdog_notifications=%" PRIu64 " watchdog_withheld=%" PRIu64
-              " heartbeat_misses=%s faults_injected=%" PRIu64 " log_suppressed=%" PRIu64
-              " log_dropped=%" PRIu64 " signal=%s elapsed_s=%.3f",
-              stopReasonName(reason, m_counters.end_of_stream), c.cycles, m_counters.frames,
-              m_counters.cycles_without_frame, cam.frames_dropped, cam.timeouts, cam.errors,
-              m_counters.first_sequence, m_counters.last_sequence, c.slips,
-              c.releases_skipped, static_cast<double>(c.worst_overrun_ns) * 1e-6, c.task_failures,
-              nav::toString(m_pipeline.mode()), m_pipeline.modes().transitionCount(), m_counters.commands,
-              m_counters.commands_accepted, m_counters.fault_onsets, w.samples_queued, w.samples_dropped,
-              w.samples_written, w.write_failures, m_writer.samplePoolMisses(), m_notifier.sent(),
-              m_counters.watchdog_withheld, misses.data(), m_counters.faults_injected,
-              m_counters.log_suppressed + c.events_suppressed, m_log.droppedLines(), signalName(),
-              m_log.elapsedS());
+  m_log.event(
+      LogLevel::kNotice, "stop",
+      "reason=%s cycles=%" PRIu64 " frames=%" PRIu64 " cycles_without_frame=%" PRIu64
+      " camera_dropped=%" PRIu64 " camera_timeouts=%" PRIu64 " camera_errors=%" PRIu64
+      " first_sequence=%" PRIu64 " last_sequence=%" PRIu64 " slips=%" PRIu64 " releases_skipped=%" PRIu64
+      " worst_overrun_ms=%.3f task_failures=%" PRIu64 " mode=%s transitions=%" PRIu64 " commands=%" PRIu64
+      " commands_accepted=%" PRIu64 " fault_onsets=%" PRIu64 " samples_queued=%" PRIu64
+      " samples_dropped=%" PRIu64 " samples_written=%" PRIu64 " write_failures=%" PRIu64
+      " sample_pool_misses=%" PRIu64 " watchdog_notifications=%" PRIu64 " watchdog_withheld=%" PRIu64
+      " heartbeat_misses=%s faults_injected=%" PRIu64 " log_suppressed=%" PRIu64 " log_dropped=%" PRIu64
+      " signal=%s elapsed_s=%.3f",
+      stopReasonName(reason, m_counters.end_of_stream), c.cycles, m_counters.frames,
+      m_counters.cycles_without_frame, cam.frames_dropped, cam.timeouts, cam.errors,
+      m_counters.first_sequence, m_counters.last_sequence, c.slips, c.releases_skipped,
+      static_cast<double>(c.worst_overrun_ns) * 1e-6, c.task_failures, nav::toString(m_pipeline.mode()),
+      m_pipeline.modes().transitionCount(), m_counters.commands, m_counters.commands_accepted,
+      m_counters.fault_onsets, w.samples_queued, w.samples_dropped, w.samples_written, w.write_failures,
+      m_writer.samplePoolMisses(), m_notifier.sent(), m_counters.watchdog_withheld, misses.data(),
+      m_counters.faults_injected, m_counters.log_suppressed + c.events_suppressed, m_log.droppedLines(),
+      signalName(), m_log.elapsedS());
   const exec::DurationStats& jitter = m_executive.releaseJitter();
   const exec::DurationStats& busy = m_executive.cycleBusy();
   const exec::DurationStats& acquire = m_executive.taskStats(taskId(CycleStage::kAcquire)).exec;

@@ -139,7 +139,8 @@ TEST(Daemon, PublishesWhatThePipelineComputesForEveryFrame) {
                       " last_sequence=" + std::to_string(expected.back().frame_number) + " "),
             std::string::npos)
       << text;
-  EXPECT_EQ(expected.back().frame_number - expected.front().frame_number + 1, static_cast<std::uint64_t>(kFrames));
+  EXPECT_EQ(expected.back().frame_number - expected.front().frame_number + 1,
+            static_cast<std::uint64_t>(kFrames));
   const std::string samples = std::to_string(3 * kFrames);
   EXPECT_NE(text.find(" samples_queued=" + samples + " samples_dropped=0 samples_written=" + samples +
                       " write_failures=0 "),
