@@ -124,7 +124,8 @@ int main(int argc, char** argv) {
   std::mutex print;
   auto worker = [&]() {
     for (std::size_t i = next++; i < runs.size(); i = next++) {
-      runs[i].result = runScene(runs[i].scene, params, options.timing, Thresholds{}, options.trace);
+      runs[i].result =
+          runScene(runs[i].scene, params, options.timing, Thresholds{}, options.trace, options.oracle);
       const std::size_t k = ++done;
       if (!options.quiet) {
         const std::lock_guard<std::mutex> lock(print);
@@ -147,6 +148,7 @@ int main(int argc, char** argv) {
   if (runs.size() <= 12)
     for (const SceneRun& r : runs) std::printf("%s\n", sceneLine(r).c_str());
   std::fputs(summaryTable(groups, runs, options.timing).c_str(), stdout);
+  if (options.oracle) std::fputs(oracleTable(runs).c_str(), stdout);
 
   {
     std::ofstream json(options.out_dir + "/campaign.json");

@@ -10,7 +10,7 @@ std::string usageText() {
   return "usage: visnav-campaign --runs N [--seed S] [--families plate,octagon,box,smallsat,cao]\n"
          "                       [--kind near|approach] [--model FILE.cao|.toml] [--config FILE]\n"
          "                       [--jobs J] [--out DIR]\n"
-         "                       [--max-frames N] [--no-timing] [--quiet] [--frames] [--trace]\n"
+         "                       [--max-frames N] [--no-timing] [--quiet] [--frames] [--trace] [--oracle]\n"
          "                       [--require-tracked-fraction F] [--require-no-confident-wrong]\n"
          "                       [--require-recovery-frames K] [--require-max-mode-changes M]\n"
          "       visnav-campaign --case NAME|all [same options]   (tumbling_box, eclipse_box, slew_box,\n"
@@ -46,6 +46,8 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
       o.frames_csv = true;
     } else if (a == "--trace") {
       o.trace = true;
+    } else if (a == "--oracle") {
+      o.oracle = true;
     } else if (a == "--require-no-confident-wrong") {
       o.gates.no_confident_wrong = true;
     } else if (a == "--runs" || a == "--jobs" || a == "--max-frames" || a == "--require-recovery-frames" ||
@@ -162,6 +164,7 @@ std::string rerunCommand(const Scene& scene, const CampaignOptions& o) {
   if (!o.config_path.empty()) cmd += " --config " + o.config_path;
   if (o.max_frames > 0) cmd += " --max-frames " + std::to_string(o.max_frames);
   if (o.trace) cmd += " --trace";
+  if (o.oracle) cmd += " --oracle";
   return cmd;
 }
 

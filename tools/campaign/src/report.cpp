@@ -65,6 +65,49 @@ std::string sceneLine(const SceneRun& run) {
   return buf;
 }
 
+std::string oracleTable(const std::vector<SceneRun>& runs) {
+  struct Counts {
+    std::string name;
+    long untracked = 0;
+    long verdict[3] = {0, 0, 0};  // FrameOutcome::oracle 0, 1, 2
+    long supported_in_near_range = 0;
+  };
+  std::vector<Counts> groups(1);
+  groups[0].name = "all";
+  for (const SceneRun& r : runs) {
+    const std::string family = toString(r.scene.family);
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const Counts& c) { return c.name == family; });
+    if (it == groups.end()) {
+      groups.push_back(Counts{});
+      groups.back().name = family;
+      it = groups.end() - 1;
+    }
+    for (const FrameOutcome& f : r.result.frames) {
+      if (!f.expected || f.tracked) continue;
+      for (Counts* c : {&groups[0], &*it}) {
+        ++c->untracked;
+        if (f.oracle >= 0 && f.oracle <= 2) ++c->verdict[f.oracle];
+        if (f.oracle == 2 && f.mode == nav::NavMode::kNearRange) ++c->supported_in_near_range;
+      }
+    }
+  }
+  std::ostringstream o;
+  o << "image support (--oracle): expected frames without a valid pose, and what a near-range tracker "
+       "started\n"
+       "at the truth made of each: a right, certain fit (lost by the search or the gates; of them in "
+       "near-range\n"
+       "mode), a wrong or uncertain fit, no fit\n";
+  char buf[200];
+  for (const Counts& c : groups) {
+    std::snprintf(
+        buf, sizeof(buf),
+        "%-8s untracked %6ld  right+certain %6ld (near range %6ld)  wrong/uncertain %6ld  no fit %6ld\n",
+        c.name.c_str(), c.untracked, c.verdict[2], c.supported_in_near_range, c.verdict[1], c.verdict[0]);
+    o << buf;
+  }
+  return o.str();
+}
+
 std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vector<SceneRun>& runs,
                          bool timing) {
   std::ostringstream o;
@@ -332,7 +375,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
        "extent_px,far_extent_distance_m,candidate,candidate_position_"
        "error_m,candidate_attitude_error_deg,attitude_sigma_deg,position_sigma_rel,near_flags,lines_used,"
        "lines_"
-       "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch,jumped\n";
+       "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch,jumped,"
+       "oracle\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
@@ -350,7 +394,7 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << (f.has_candidate ? num(f.position_sigma_rel) : "") << "," << f.near_flags << "," << f.lines_used
         << "," << f.lines_total << "," << f.reacquired << "," << num(f.process_us) << "," << f.symmetric_twins
         << "," << f.shows_face << "," << f.twin_by_continuity << "," << f.kept_branch << "," << f.jumped
-        << "\n";
+        << "," << f.oracle << "\n";
     }
   }
 }

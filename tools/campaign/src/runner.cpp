@@ -16,6 +16,23 @@ namespace {
 
 constexpr std::size_t kMaxTransitionRecords = 64;
 
+// FrameOutcome::oracle from the truth-started tracker's result: a fit the pipeline could deliver (not lost,
+// the image evidence good, certain by [navigation] max_valid_*_sigma) and right by the campaign's
+// confidently-wrong thresholds.
+int oracleVerdict(const NearRangeResult& o, const nav::PoseSigmas& sigma, const Pose& truth,
+                  const Scene& scene, const nav::NavigationParams& navigation, const Thresholds& th) {
+  if (o.status == TrackStatus::kLost || !nav::imageEvidenceGood(o, navigation)) return 0;
+  const double range_m = truth.t_c_m.norm();
+  const bool right =
+      (o.pose.t_c_m - truth.t_c_m).norm() <= th.wrong_position_rel * range_m &&
+      attitudeErrorModuloDeg(o.pose.R_c_m, truth.R_c_m, scene.symmetries) <= th.wrong_attitude_deg;
+  const bool certain = (navigation.max_valid_attitude_sigma_deg <= 0.0 ||
+                        sigma.attitude_deg <= navigation.max_valid_attitude_sigma_deg) &&
+                       (navigation.max_valid_position_sigma_rel <= 0.0 ||
+                        sigma.position_rel <= navigation.max_valid_position_sigma_rel);
+  return right && certain ? 2 : 1;
+}
+
 }  // namespace
 
 void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& r) {
@@ -114,7 +131,7 @@ std::string traceEdges(const NearRangeTracker& tracker, const Pose& truth) {
 }
 
 SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing, const Thresholds& th,
-                     bool trace) {
+                     bool trace, bool oracle_asked) {
   SceneResult res;
   const std::int64_t wall_start = timing ? exec::monotonicNowNs() : 0;
   const PinholeCamera camera(scene.camera);
@@ -131,10 +148,11 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     return res;
   }
   if (timing) pipeline->setClock(&exec::monotonicNowNs);
-  // --trace: on every visible frame without a valid pose, a tracker started at the truth says whether the
-  // image supports the pose at all (the frame is then a search's or a gate's loss, not the image's).
+  // --trace / --oracle: on every visible frame without a valid pose, a tracker started at the truth says
+  // whether the image supports the pose at all (the frame is then a search's or a gate's loss, not the
+  // image's).
   std::unique_ptr<NearRangeTracker> oracle;
-  if (trace) {
+  if (trace || oracle_asked) {
     oracle = std::make_unique<NearRangeTracker>();
     if (!oracle->init(camera, scene.model, params.nearrange).ok) oracle.reset();
   }
@@ -209,13 +227,18 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       f.far_extent_distance_m = pipeline->lastFarRange().extent_distance_m;
     }
     classifyFrame(f, th);
+    NearRangeResult o;
+    nav::PoseSigmas oracle_sigma;
+    if (oracle && f.visible && !f.pose_valid) {
+      oracle->reset();
+      oracle->track(frame.image, truth, static_cast<std::uint64_t>(i), o);
+      oracle_sigma = nav::poseSigmas(o.pose, o.covariance);
+      f.oracle = oracleVerdict(o, oracle_sigma, truth, scene, params.navigation, th);
+    }
     if (trace) {
       res.trace += traceLine(f, pipeline->lastNearRange(), u);
-      if (oracle && f.visible && !f.pose_valid) {
-        NearRangeResult o;
-        oracle->reset();
-        oracle->track(frame.image, truth, static_cast<std::uint64_t>(i), o);
-        const nav::PoseSigmas sigma = nav::poseSigmas(o.pose, o.covariance);
+      if (f.oracle >= 0) {
+        const nav::PoseSigmas& sigma = oracle_sigma;
         char buf[260];
         std::snprintf(
             buf, sizeof buf,

@@ -66,6 +66,12 @@ struct FrameOutcome {
   bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
   bool kept_branch = false;         ///< NavigationPipeline::lastFitKeptTheBranch
   bool jumped = false;              ///< NavigationPipeline::lastPoseJumped
+  /// --oracle (or --trace), on a visible frame without a valid pose: what a near-range tracker started at
+  /// the truth makes of this image. -1 not asked, 0 no fit the pipeline would take (lost, or image evidence
+  /// too weak: nav::imageEvidenceGood), 1 a fit, but wrong or not certain enough
+  /// to be valid, 2 a right and certain fit: the image supports the pose, the frame was lost by the search
+  /// or the gates. 0 and 1 are the image's (or the tracker's measurement's) limits.
+  int oracle = -1;
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;

@@ -39,6 +39,7 @@ struct CampaignOptions {
   bool quiet = false;              ///< --quiet: no per-scene progress lines on stderr
   bool frames_csv = false;         ///< --frames: also DIR/frames.csv (one row per frame)
   bool trace = false;              ///< --trace: one diagnostic line per frame on stderr (runner.hpp)
+  bool oracle = false;             ///< --oracle: image support of every untracked visible frame (runner.hpp)
   Gates gates;
   bool help = false;
 };

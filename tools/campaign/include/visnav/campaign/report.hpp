@@ -84,6 +84,11 @@ std::string sceneLine(const SceneRun& run);
 std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vector<SceneRun>& runs,
                          bool timing);
 
+/// --oracle: per family, the expected frames without a valid pose split by what a tracker started at the
+/// truth made of them (FrameOutcome::oracle): a right and certain fit (the search or the gates lost the
+/// frame), a wrong or uncertain fit, no fit (the image, as this tracker measures it).
+std::string oracleTable(const std::vector<SceneRun>& runs);
+
 void writeJson(std::ostream& out, const CampaignOptions& options, const std::vector<SceneRun>& runs,
                const std::vector<GroupSummary>& groups, const std::vector<GateResult>& gates);
 void writeCsv(std::ostream& out, const std::vector<SceneRun>& runs);

@@ -51,9 +51,10 @@ struct SceneResult {
 void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& result);
 
 /// Runs the scene. `base` is the pipeline configuration (defaults or --config); the scene sets its far-range
-/// gamma. `timing`: CLOCK_MONOTONIC step times (off: all timing fields 0).
+/// gamma. `timing`: CLOCK_MONOTONIC step times (off: all timing fields 0). `oracle`: FrameOutcome::oracle
+/// on every visible frame without a valid pose (`trace` computes it too).
 SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing,
-                     const Thresholds& th = {}, bool trace = false);
+                     const Thresholds& th = {}, bool trace = false, bool oracle = false);
 
 /// --trace's line for one frame: truth range, mode, near-range status, flags, line and point counts, rms,
 /// filter NIS, fault bits and the pose error; what a reader needs to see why a frame went wrong.
