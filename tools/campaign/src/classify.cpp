@@ -21,13 +21,19 @@ bool targetVisible(const PinholeCamera& camera, const PolygonModel& model, const
   return false;
 }
 
+bool poseErrorIsWrong(double position_error_m, double range_m, double attitude_error_deg,
+                      const Thresholds& th) {
+  const double rel = range_m > 0.0 ? position_error_m / range_m : 1e300;
+  return rel > th.wrong_position_rel || attitude_error_deg > th.wrong_attitude_deg;
+}
+
 void classifyFrame(FrameOutcome& f, const Thresholds& th) {
   f.wrong = false;
   f.tracked = false;
   f.accurate = false;
   if (!f.pose_valid) return;
   const double rel = f.range_m > 0.0 ? f.position_error_m / f.range_m : 1e300;
-  f.wrong = rel > th.wrong_position_rel || f.attitude_error_deg > th.wrong_attitude_deg;
+  f.wrong = poseErrorIsWrong(f.position_error_m, f.range_m, f.attitude_error_deg, th);
   const bool six_dof_mode = f.mode == nav::NavMode::kNearRange || f.mode == nav::NavMode::kAcquisition;
   f.tracked = six_dof_mode && !f.wrong;
   f.accurate =

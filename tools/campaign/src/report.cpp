@@ -92,11 +92,9 @@ std::string oracleTable(const std::vector<SceneRun>& runs) {
     }
   }
   std::ostringstream o;
-  o << "image support (--oracle): expected frames without a valid pose, and what a near-range tracker "
-       "started\n"
-       "at the truth made of each: a right, certain fit (lost by the search or the gates; of them in "
-       "near-range\n"
-       "mode), a wrong or uncertain fit, no fit\n";
+  o << "image support (--oracle): expected frames without a valid pose, and what a near-range tracker\n"
+    << "started at the truth made of each: a right, certain fit (lost by the search or the gates; of them\n"
+    << "in near-range mode), a wrong or uncertain fit, no fit\n";
   char buf[200];
   for (const Counts& c : groups) {
     std::snprintf(

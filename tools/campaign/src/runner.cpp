@@ -22,10 +22,9 @@ constexpr std::size_t kMaxTransitionRecords = 64;
 int oracleVerdict(const NearRangeResult& o, const nav::PoseSigmas& sigma, const Pose& truth,
                   const Scene& scene, const nav::NavigationParams& navigation, const Thresholds& th) {
   if (o.status == TrackStatus::kLost || !nav::imageEvidenceGood(o, navigation)) return 0;
-  const double range_m = truth.t_c_m.norm();
   const bool right =
-      (o.pose.t_c_m - truth.t_c_m).norm() <= th.wrong_position_rel * range_m &&
-      attitudeErrorModuloDeg(o.pose.R_c_m, truth.R_c_m, scene.symmetries) <= th.wrong_attitude_deg;
+      !poseErrorIsWrong((o.pose.t_c_m - truth.t_c_m).norm(), truth.t_c_m.norm(),
+                        attitudeErrorModuloDeg(o.pose.R_c_m, truth.R_c_m, scene.symmetries), th);
   const bool certain = (navigation.max_valid_attitude_sigma_deg <= 0.0 ||
                         sigma.attitude_deg <= navigation.max_valid_attitude_sigma_deg) &&
                        (navigation.max_valid_position_sigma_rel <= 0.0 ||

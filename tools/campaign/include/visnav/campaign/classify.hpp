@@ -78,6 +78,11 @@ struct FrameOutcome {
   bool accurate = false;
 };
 
+/// A pose this far off is wrong: position error > wrong_position_rel of the range (a range <= 0 counts as
+/// wrong) or attitude error > wrong_attitude_deg.
+bool poseErrorIsWrong(double position_error_m, double range_m, double attitude_error_deg,
+                      const Thresholds& th);
+
 /// Sets wrong / tracked / accurate from pose_valid, mode, range and the errors:
 ///   wrong    = pose_valid and (position error > 5 % of range or attitude error > 5 deg)
 ///   tracked  = pose_valid and mode near range or acquisition, and not wrong
