@@ -10,29 +10,25 @@
 namespace visnav::campaign {
 namespace {
 
-ModelLibrary noFileModels() { return ModelLibrary{}; }  // eclipse_box is a box: no model file needed
-
 TEST(CampaignOracle, JudgesEveryVisibleFrameWithoutAValidPoseAndSeesTheReappearedBox) {
   Scene scene;
-  ASSERT_TRUE(makeCase("eclipse_box", noFileModels(), 0, scene).ok);
+  ASSERT_TRUE(makeCase("eclipse_box", ModelLibrary{}, 0, scene).ok);  // a box: no model file
   const nav::PipelineParams params;
   const SceneResult with = runScene(scene, params, false, Thresholds{}, false, true);
   ASSERT_TRUE(with.error.ok) << with.error.message;
-  int judged = 0, supported = 0, supported_after_eclipse = 0;
+  int judged = 0, supported_after_eclipse = 0;
   const int eclipse_end = scene.events.eclipse_first + scene.events.eclipse_frames;
   for (const FrameOutcome& f : with.frames) {
     const bool due = f.visible && !f.pose_valid;
     EXPECT_EQ(f.oracle >= 0, due) << "frame " << f.frame;
     EXPECT_LE(f.oracle, 2);
     judged += f.oracle >= 0 ? 1 : 0;
-    supported += f.oracle == 2 ? 1 : 0;
     // The box is back in full view at 10 m while the pipeline is still finding it again: the truth's fit
     // is right and certain there.
     if (f.oracle == 2 && f.frame >= eclipse_end) ++supported_after_eclipse;
   }
   EXPECT_GT(judged, 0);
   EXPECT_GT(supported_after_eclipse, 0);
-  EXPECT_LE(supported, judged);
 
   const SceneResult without = runScene(scene, params, false, Thresholds{}, false, false);
   ASSERT_EQ(without.frames.size(), with.frames.size());
