@@ -4,15 +4,17 @@
 
 namespace visnav::nav {
 
-bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params) {
+bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
+                       bool continues_rival_free_fit) {
   if (r.status == TrackStatus::kLost || r.lines_used <= 0 || r.edge_points <= 0 || r.scanlines <= 0)
     return false;
   // Too few corners for eq. 7: a few outline lines of a small body fit a mirrored (Necker) pose as well as
   // the true one, with a residual just as low and a covariance just as tight (campaign box/1, 77 deg off).
   // Such a fit may continue a track the filter agrees with; it never overrules the filter.
   if ((r.flags & kFlagResidualFallback) != 0U) return false;
-  // A depth-mirrored pose fits as well (near_range_pose.cpp): the image cannot overrule anything.
-  if ((r.flags & kFlagAmbiguous) != 0U) return false;
+  // A depth-mirrored pose fits as well (near_range_pose.cpp): the image cannot overrule anything, unless
+  // the fit continues one without such a rival.
+  if ((r.flags & kFlagAmbiguous) != 0U && !continues_rival_free_fit) return false;
   const bool lines = r.lines_used >= params.min_usable_lines &&
                      r.lines_used >= params.evidence_min_line_fraction * r.lines_total;
   const bool inliers = r.inlier_points >= params.evidence_min_inlier_ratio * r.edge_points;

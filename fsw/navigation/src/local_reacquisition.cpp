@@ -133,7 +133,8 @@ double LocalReacquisition::lookToleranceRad(std::uint64_t frames) const {
 }
 
 bool LocalReacquisition::trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
-                                   std::uint64_t frame_number, int passes, NearRangeResult& result) const {
+                                   std::uint64_t frame_number, int passes, NearRangeResult& result,
+                                   bool continues_rival_free_fit) const {
   tracker.reset();
   Pose pose = start;
   for (int pass = 0; pass < passes; ++pass) {
@@ -142,7 +143,7 @@ bool LocalReacquisition::trackFrom(NearRangeTracker& tracker, const MonoImage& i
     pose = result.pose;
   }
   // Degraded is fine (a grazing face's line rejected): the evidence test judges what was used.
-  return imageEvidenceGood(result, m_params);
+  return imageEvidenceGood(result, m_params, continues_rival_free_fit);
 }
 
 void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
@@ -219,16 +220,22 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
   // in over that motion where the flight tracker alone loses it (a target moving 16 px a frame, campaign
   // cao/45); the flight tracker judges it as the hand-over will meet it. Flight first: among the many edges
   // of a satellite the wide scanlines may catch a neighbour the flight tracker would not.
+  // The candidate's own frame was rival-free (search): a confirming fit whose depth-mirrored rival fits as
+  // well continues it as a track continues through such frames (track_branch.hpp), and the motion
+  // tolerance below still holds it to the candidate. A flat target seen nearly face-on flags every other
+  // frame so (campaign octagon/167: re-found 2 frames after a 7.8 deg slew, then refused on the next,
+  // never found again; 13 -> 106 of 157 tracked).
   const Pose start = m_candidate_moving ? m_candidate.boxPlus(m_candidate_motion) : m_candidate;
   NearRangeResult r;
+  const bool continuity = m_params.reacquire_confirm_through_ambiguity;
   m_flight.track(image, start, frame_number, r);
-  bool good = imageEvidenceGood(r, m_params);
+  bool good = imageEvidenceGood(r, m_params, continuity);
   if (!good) {
     NearRangeResult wide;
-    good = trackFrom(m_wide, image, start, frame_number, kPassesPerStart, wide);
+    good = trackFrom(m_wide, image, start, frame_number, kPassesPerStart, wide, continuity);
     if (good) {
       m_flight.track(image, wide.pose, frame_number, r);
-      good = imageEvidenceGood(r, m_params);
+      good = imageEvidenceGood(r, m_params, continuity);
     }
   }
   const bool consistent = good && tolerance(r).holds(r.pose, start) && consistentWithPrediction(r.pose);

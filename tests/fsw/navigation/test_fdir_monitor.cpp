@@ -167,6 +167,22 @@ TEST(Fdir, EvidenceNeedsLinesInliersResidualAndSupport) {
   EXPECT_FALSE(imageEvidenceGood(r, p));
 }
 
+// A fit whose depth-mirrored rival fits as well overrules nothing on its own, but it may continue a fit
+// that had no such rival (a reacquisition's confirmation); everything else is asked of it still.
+TEST(Fdir, AnAmbiguousFitIsGoodEvidenceOnlyWhereItContinuesARivalFreeOne) {
+  const NavigationParams p;
+  NearRangeResult r = goodNear();
+  ASSERT_TRUE(imageEvidenceGood(r, p));
+  r.flags |= kFlagAmbiguous;
+  EXPECT_FALSE(imageEvidenceGood(r, p));
+  EXPECT_TRUE(imageEvidenceGood(r, p, true));
+  r.rms_px = 0.9;
+  EXPECT_FALSE(imageEvidenceGood(r, p, true));
+  r = goodNear();
+  r.flags |= kFlagAmbiguous | kFlagResidualFallback;  // no corners: continuity does not help
+  EXPECT_FALSE(imageEvidenceGood(r, p, true));
+}
+
 TEST(Fdir, EvidenceNeedsAPoseCertainEnoughToBeDelivered) {
   // Lines, inliers, residual and support all good, but the fit's own covariance is looser than a valid pose
   // may be: it may not overrule the filter (the limits are the delivery limits, so it is read from them).

@@ -29,7 +29,11 @@ struct NearRangeCheck {
 /// point-to-line fallback, and its own covariance is within the delivery limits
 /// (`max_valid_attitude_sigma_deg`, `max_valid_position_sigma_rel`). Such a measurement wins over a filter
 /// that rejects it; close-range reacquisition takes a start or a confirmation only on it.
-bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params);
+/// `continues_rival_free_fit`: the fit continues one that had no depth-mirrored rival (a confirmation of a
+/// reacquisition's candidate): a rival that fits as well (kFlagAmbiguous) is then told apart by that
+/// continuity, as a track's is (track_branch.hpp), and does not count against the evidence.
+bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
+                       bool continues_rival_free_fit = false);
 
 class FdirMonitor {
  public:

@@ -109,8 +109,11 @@ class LocalReacquisition {
   PoseTolerance tolerance(const NearRangeResult& r) const;
 
   static int hypothesesWithinRings(int rings) { return 1 + 3 * rings * (rings + 1); }
+  /// `passes` tracker steps from `start`; whether the result's image evidence is good
+  /// (imageEvidenceGood, with `continues_rival_free_fit`).
   bool trackFrom(NearRangeTracker& tracker, const MonoImage& image, const Pose& start,
-                 std::uint64_t frame_number, int passes, NearRangeResult& result) const;
+                 std::uint64_t frame_number, int passes, NearRangeResult& result,
+                 bool continues_rival_free_fit = false) const;
   void search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
               ReacquisitionStep& out);
   void confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out);
