@@ -59,9 +59,9 @@ struct NavigationParams {
   double reacquire_step_rel = 0.8;              ///< lateral grid step / the wide tracker's capture range
   double reacquire_growth_px_per_frame = 40.0;  ///< the searched radius widens this much per frame
   int reacquire_confirm_frames = 2;
-  bool reacquire_confirm_through_ambiguity = true;  ///< a confirming fit continues the rival-free candidate
-  double reacquire_range_tolerance_rel = 0.05;      ///< a candidate's range against the prediction's
-  double reacquire_attitude_tolerance_deg = 15.0;   ///< its attitude in the line-of-sight frame
+  bool reacquire_confirm_through_ambiguity = false;  ///< a confirming fit continues the rival-free candidate
+  double reacquire_range_tolerance_rel = 0.05;       ///< a candidate's range against the prediction's
+  double reacquire_attitude_tolerance_deg = 15.0;    ///< its attitude in the line-of-sight frame
   double reacquire_tolerance_growth_deg_per_frame = 1.0;
   double reacquire_max_motion_rel = 0.05;      ///< confirmation: position change / range per frame
   double reacquire_max_rotation_deg = 5.0;     ///< confirmation: attitude change per frame
@@ -295,16 +295,19 @@ struct NavigationParams {
     v.integer({"navigation", "reacquire_confirm_frames", "count", 1, 100,
                "close-range reacquisition: frames a found pose must keep tracking before it is delivered"},
               reacquire_confirm_frames);
-    v.boolean({"navigation", "reacquire_confirm_through_ambiguity", "-", 0, 1,
-               "close-range reacquisition: a confirming frame's fit whose depth-mirrored rival fits as well "
-               "(the tracker's ambiguity flag) still confirms the candidate when its evidence is otherwise "
-               "good and it continues the candidate (reacquire_max_motion_rel, reacquire_max_rotation_deg): "
-               "the candidate was found rival-free, and continuity tells the rival apart as it does for a "
-               "track. A flat target seen nearly face-on flags every other frame so (campaign octagon/167, "
-               "re-found 2 frames after a 7.8 deg slew and refused on the next: 13 -> 106 of 157 frames "
-               "tracked; seeds 1-40: 14 913 -> 14 961 tracked frames, confidently wrong 18 -> 18). false: "
-               "an ambiguous fit ends the confirmation"},
-              reacquire_confirm_through_ambiguity);
+    v.boolean(
+        {"navigation", "reacquire_confirm_through_ambiguity", "-", 0, 1,
+         "close-range reacquisition (experimental, off): a confirming frame's fit whose depth-mirrored "
+         "rival fits as well (the tracker's ambiguity flag) still confirms the candidate when its "
+         "evidence is otherwise good and it continues the candidate (reacquire_max_motion_rel, "
+         "reacquire_max_rotation_deg): the candidate was found rival-free, and continuity tells the "
+         "rival apart as it does for a track. A flat target seen nearly face-on flags every other frame "
+         "so (campaign octagon/167, re-found 2 frames after a 7.8 deg slew and refused on the next: 13 "
+         "-> 106 of 157 frames tracked). Off because on the full campaign it took tracked frames 75 407 "
+         "-> 75 533 (mean 0.6323 -> 0.6330) and confidently wrong frames 88 -> 89: box/95's find was "
+         "confirmed on a fit 5.5 deg off that the image supports as well as the truth. false: an "
+         "ambiguous fit ends the confirmation"},
+        reacquire_confirm_through_ambiguity);
     v.real(
         {"navigation", "reacquire_range_tolerance_rel", "-", 0.001, 10.0,
          "close-range reacquisition: a candidate whose range differs from the predicted range by more than "
