@@ -295,19 +295,14 @@ struct NavigationParams {
     v.integer({"navigation", "reacquire_confirm_frames", "count", 1, 100,
                "close-range reacquisition: frames a found pose must keep tracking before it is delivered"},
               reacquire_confirm_frames);
-    v.boolean(
-        {"navigation", "reacquire_confirm_through_ambiguity", "-", 0, 1,
-         "close-range reacquisition (experimental, off): a confirming frame's fit whose depth-mirrored "
-         "rival fits as well (the tracker's ambiguity flag) still confirms the candidate when its "
-         "evidence is otherwise good and it continues the candidate (reacquire_max_motion_rel, "
-         "reacquire_max_rotation_deg): the candidate was found rival-free, and continuity tells the "
-         "rival apart as it does for a track. A flat target seen nearly face-on flags every other frame "
-         "so (campaign octagon/167, re-found 2 frames after a 7.8 deg slew and refused on the next: 13 "
-         "-> 106 of 157 frames tracked). Off because on the full campaign it took tracked frames 75 407 "
-         "-> 75 533 (mean 0.6323 -> 0.6330) and confidently wrong frames 88 -> 89: box/95's find was "
-         "confirmed on a fit 5.5 deg off that the image supports as well as the truth. false: an "
-         "ambiguous fit ends the confirmation"},
-        reacquire_confirm_through_ambiguity);
+    v.boolean({"navigation", "reacquire_confirm_through_ambiguity", "-", 0, 1,
+               "close-range reacquisition (experimental, off): a confirming fit flagged ambiguous (its "
+               "depth-mirrored rival fits as well) confirms the rival-free candidate when its evidence is "
+               "otherwise good and it continues it (reacquire_max_motion_rel, reacquire_max_rotation_deg). "
+               "Campaign octagon/167: 13 -> 106 of 157 frames tracked. Off because on the full campaign it "
+               "took tracked frames 75 407 -> 75 533 and confidently wrong 88 -> 89 (box/95: a find 5.5 deg "
+               "off; fsw/navigation/README.md). false: an ambiguous fit ends the confirmation"},
+              reacquire_confirm_through_ambiguity);
     v.real(
         {"navigation", "reacquire_range_tolerance_rel", "-", 0.001, 10.0,
          "close-range reacquisition: a candidate whose range differs from the predicted range by more than "
