@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # arm64 CI step: the flight computer's build, tested under qemu-aarch64 on the x86-64 host.
 #  1. installs what is missing (scripts/install-cross-deps.sh: cross g++, qemu-user, arm64 -dev packages);
-#  2. configures the `aarch64` preset (Cortex-A53 flags, release -O2, warnings as errors) and builds what
-#     step 3 and 4 run (the executables its tests name, and visnav-replay);
-#  3. runs the unit tests under qemu-aarch64 and the instruction-count table once (`ctest --preset aarch64`:
+#  2. configures the `aarch64-ci` preset (the `aarch64` preset's Cortex-A53 flags, release -O2, warnings
+#     as errors, but no -g: GCC's debug info does not change the generated code and cost 20-28 % of the
+#     compile) and builds what step 3 and 4 run (the executables its tests name, and visnav-replay);
+#  3. runs the unit tests under qemu-aarch64 and the instruction-count table once (`ctest --preset aarch64-ci`:
 #     labels unit and armcost; exclusions and reasons in toolchains/README.md);
 #  4. renders the approach_ci sequence with the x86 release visnav-synth, replays it with the arm64
 #     visnav-replay under qemu-aarch64 and with the x86 visnav-replay (same sequence, both with the built-in
@@ -18,18 +19,18 @@ phase() { echo "test-arm64: $1 done at $(( $(date +%s) - t0 )) s"; }
 
 scripts/install-cross-deps.sh
 phase "install"
-cmake --preset aarch64 >/dev/null
+cmake --preset aarch64-ci >/dev/null
 # Only what runs here: the gtest executables labelled unit (target unit_test_executables: ctest lists their
 # tests only after they are built), the executables the preset's other tests name (their commands and the
 # tools passed to cmake -P checks), and visnav-replay for step 4. The integration tests, the daemon's, the
 # benchmarks and most tools are not built. A test whose executable were missing fails.
-mapfile -t arm_targets < <(ctest --preset aarch64 --show-only=json-v1 |
-  grep -o "$PWD/build/aarch64/bin/[A-Za-z0-9_.+-]*" | sed "s|^$PWD/build/aarch64/||" | sort -u)
-cmake --build --preset aarch64 --target unit_test_executables "${arm_targets[@]}" bin/visnav-replay
+mapfile -t arm_targets < <(ctest --preset aarch64-ci --show-only=json-v1 |
+  grep -o "$PWD/build/aarch64-ci/bin/[A-Za-z0-9_.+-]*" | sed "s|^$PWD/build/aarch64-ci/||" | sort -u)
+cmake --build --preset aarch64-ci --target unit_test_executables "${arm_targets[@]}" bin/visnav-replay
 phase "arm64 build (unit tests, ${#arm_targets[@]} more executables, visnav-replay)"
-tests=$(ctest --preset aarch64 -N | sed -n 's/^Total Tests: //p')
-[ "${tests:-0}" -ge 200 ] || { echo "test-arm64: the aarch64 preset lists ${tests:-no} tests, not hundreds" >&2; exit 1; }
-ctest --preset aarch64
+tests=$(ctest --preset aarch64-ci -N | sed -n 's/^Total Tests: //p')
+[ "${tests:-0}" -ge 200 ] || { echo "test-arm64: the aarch64-ci preset lists ${tests:-no} tests, not hundreds" >&2; exit 1; }
+ctest --preset aarch64-ci
 phase "arm64 unit tests under qemu"
 
 if [ ! -f "$x86_build/build.ninja" ]; then
@@ -38,7 +39,7 @@ if [ ! -f "$x86_build/build.ninja" ]; then
          -DVISNAV_WERROR=ON >/dev/null; fi
 fi
 ninja -C "$x86_build" -j2 visnav-synth visnav-replay visnav-csvdiff >/dev/null
-out=build/aarch64/replay_check
+out=build/aarch64-ci/replay_check
 rm -rf "$out" && mkdir -p "$out"
 "$x86_build/bin/visnav-synth" --scenario config/scenarios/approach_ci.toml --out "$out/sequence" >/dev/null
 replay() {  # replay LOG COMMAND...: the progress bar goes to LOG, shown when the replay fails
@@ -47,7 +48,7 @@ replay() {  # replay LOG COMMAND...: the progress bar goes to LOG, shown when th
   "$@" 2>"$log" >>"$log" || { cat "$log"; exit 1; }
 }
 replay "$out/x86_64.log" "$x86_build/bin/visnav-replay" --sequence "$out/sequence" --out "$out/x86_64.csv"
-replay "$out/aarch64.log" qemu-aarch64 build/aarch64/bin/visnav-replay --sequence "$out/sequence" \
+replay "$out/aarch64.log" qemu-aarch64 build/aarch64-ci/bin/visnav-replay --sequence "$out/sequence" \
   --out "$out/aarch64.csv"
 # Tolerance (README "ARM flight computer"): counts, flags and status exact (1e-9); the pose within a fifth of
 # the tracker's own p95 error on the approach (x 2.1, y 1.4, z 21 mm; yaw 0.07, pitch 1.5, roll 1.7 deg),

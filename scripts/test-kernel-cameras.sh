@@ -68,7 +68,7 @@ die() { echo "test-kernel-cameras: $*" >&2; exit 2; }
 cannot() { echo "test-kernel-cameras: cannot run here: $*" >&2; exit 3; }
 
 for b in visnavd visnav-monitor test_v4l2 test_libcamera; do
-  [ -x "$BIN/$b" ] || die "$BIN/$b is missing: build it first (cmake --build build/release), or pass --bin DIR"
+  [ -x "$BIN/$b" ] || die "$BIN/$b is missing: build it first (cmake --build build/release --target $b), or pass --bin DIR"
 done
 if [ "$INSTALL" = 1 ]; then
   "$REPO/scripts/install-deps.sh" --kernel-cameras || cannot "installing the VM tools failed"
