@@ -20,13 +20,14 @@ phase() { echo "test-arm64: $1 done at $(( $(date +%s) - t0 )) s"; }
 scripts/install-cross-deps.sh
 phase "install"
 cmake --preset aarch64-ci >/dev/null
-# Only what runs here: the gtest executables labelled unit (target unit_test_executables: ctest lists their
-# tests only after they are built), the executables the preset's other tests name (their commands and the
+# Only what runs here: the gtest executables labelled unit but not ground (target
+# flight_unit_test_executables: the flight code's; the ground tools' unit tests run in the debug preset;
+# ctest lists a gtest executable's tests only after it is built), the executables the preset's other tests name (their commands and the
 # tools passed to cmake -P checks), and visnav-replay for step 4. The integration tests, the daemon's, the
 # benchmarks and most tools are not built. A test whose executable were missing fails.
 mapfile -t arm_targets < <(ctest --preset aarch64-ci --show-only=json-v1 |
   grep -o "$PWD/build/aarch64-ci/bin/[A-Za-z0-9_.+-]*" | sed "s|^$PWD/build/aarch64-ci/||" | sort -u)
-cmake --build --preset aarch64-ci --target unit_test_executables "${arm_targets[@]}" bin/visnav-replay
+cmake --build --preset aarch64-ci --target flight_unit_test_executables "${arm_targets[@]}" bin/visnav-replay
 phase "arm64 build (unit tests, ${#arm_targets[@]} more executables, visnav-replay)"
 tests=$(ctest --preset aarch64-ci -N | sed -n 's/^Total Tests: //p')
 [ "${tests:-0}" -ge 200 ] || { echo "test-arm64: the aarch64-ci preset lists ${tests:-no} tests, not hundreds" >&2; exit 1; }

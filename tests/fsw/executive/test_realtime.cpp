@@ -20,7 +20,7 @@
 namespace visnav::exec {
 namespace {
 
-constexpr std::int64_t kMs = 1000000;
+constexpr std::int64_t kNsPerMs = 1000000;
 
 TEST(MonotonicClock, AbsoluteSleepNeverReturnsBeforeTheDeadline) {
   MonotonicClock clock;
@@ -30,7 +30,7 @@ TEST(MonotonicClock, AbsoluteSleepNeverReturnsBeforeTheDeadline) {
     }
     EXPECT_GE(clock.nowNs(), deadline);
   }
-  EXPECT_TRUE(clock.sleepUntilNs(clock.nowNs() - kMs));  // a past deadline returns at once
+  EXPECT_TRUE(clock.sleepUntilNs(clock.nowNs() - kNsPerMs));  // a past deadline returns at once
 }
 
 TEST(MonotonicClock, ExecutiveKeepsAbsolutePhaseAt100Hz) {
@@ -54,7 +54,7 @@ TEST(MonotonicClock, ExecutiveKeepsAbsolutePhaseAt100Hz) {
   // Functional checks only (timing figures come from visnav-jitter): no release before its ideal time.
   EXPECT_GE(executive.releaseJitter().minNs(), 0);
   for (int k = 1; k < 20 && executive.counters().slips == 0U; ++k)
-    EXPECT_EQ(releases[k] - releases[k - 1], 10 * kMs);
+    EXPECT_EQ(releases[k] - releases[k - 1], 10 * kNsPerMs);
 }
 
 std::atomic<Executive*> g_target{nullptr};
@@ -83,7 +83,7 @@ TEST(MonotonicClock, SignalInterruptsTheSleepAndStopsTheLoop) {
   sigaction(SIGUSR2, &previous, nullptr);
   EXPECT_EQ(reason, StopReason::kStopRequested);
   EXPECT_EQ(executive.counters().cycles, 1U);  // the first frame ran at once, the second never came
-  EXPECT_LT(elapsed, 1500 * kMs);
+  EXPECT_LT(elapsed, 1500 * kNsPerMs);
 }
 
 TEST(MonotonicClock, StopFromAnotherThreadWithinOnePeriod) {
@@ -103,7 +103,7 @@ TEST(MonotonicClock, StopFromAnotherThreadWithinOnePeriod) {
   executive.requestStop();
   loop.join();
   EXPECT_EQ(reason, StopReason::kStopRequested);
-  EXPECT_LE(stopped_at - requested_at, 200 * kMs + 100 * kMs);  // one period plus scheduling slack
+  EXPECT_LE(stopped_at - requested_at, 200 * kNsPerMs + 100 * kNsPerMs);  // one period plus scheduling slack
 }
 
 TEST(Realtime, NothingRequestedIsAppliedTrivially) {

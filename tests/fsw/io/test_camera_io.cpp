@@ -43,7 +43,7 @@ CameraIntrinsics sentinel() {
   return k;
 }
 
-struct BadCase {
+struct BadCameraCase {
   const char* name;
   int line;  // 0: the problem has no line
   const char* word;
@@ -141,7 +141,7 @@ TEST(CameraToml, WriterRejectsInvalidIntrinsics) {
 
 TEST(CameraToml, BadFilesNameFileLineAndProblem) {
   const std::string head = "[camera]\nwidth_px = 640\nheight_px = 480\n";  // lines 1..3
-  const std::vector<std::pair<std::string, BadCase>> cases = {
+  const std::vector<std::pair<std::string, BadCameraCase>> cases = {
       {"[camera]\nwidth_px = = 640\n", {"syntax", 2, "2:"}},
       {"[cam]\nwidth_px = 640\n", {"table", 1, "unknown key 'cam'"}},
       {"width_px = 640\n", {"no_table", 1, "unknown key"}},
@@ -263,7 +263,7 @@ TEST(CameraOpenCvYaml, AcceptsAllCoefficientCounts) {
 }
 
 TEST(CameraOpenCvYaml, BadFilesNameFileLineAndProblem) {
-  const std::vector<std::pair<std::string, BadCase>> cases = {
+  const std::vector<std::pair<std::string, BadCameraCase>> cases = {
       {"image_width: 800\n", {"header", 1, "missing header"}},
       {"%YAML:1.0\nimage_height: 600\n", {"no_width", 0, "missing key 'image_width'"}},
       {"%YAML:1.0\nimage_width: 0\n", {"width_zero", 2, "out of range"}},
