@@ -46,7 +46,34 @@ void NearRangeTracker::findModelMirrors() {
         break;
       }
     }
-    if (maps) m_mirrors[static_cast<std::size_t>(m_mirror_count++)] = mirror;
+    if (!maps) continue;
+    // Which vertex and which edge each one becomes (init only: found by position, then by vertex pair).
+    const auto slot = static_cast<std::size_t>(m_mirror_count);
+    const auto& vertices = m_model.vertices();
+    const auto& edges = m_model.edges();
+    BoundedBuffer<int>& to_vertex = m_mirror_vertex[slot];
+    BoundedBuffer<int>& to_edge = m_mirror_edge[slot];
+    to_vertex.reserve(vertices.size());
+    to_edge.reserve(edges.size());
+    to_vertex.clear();
+    to_edge.clear();
+    for (const Vec3& v : vertices) {
+      int image = -1;
+      for (std::size_t w = 0; w < vertices.size() && image < 0; ++w)
+        if ((mirror * v - vertices[w]).norm() <= tol_m) image = static_cast<int>(w);
+      to_vertex.push(image);
+    }
+    for (const ModelEdge& e : edges) {
+      const int a = to_vertex[static_cast<std::size_t>(e.v0)];
+      const int b = to_vertex[static_cast<std::size_t>(e.v1)];
+      int image = -1;
+      for (std::size_t f = 0; f < edges.size() && image < 0; ++f)
+        if ((edges[f].v0 == a && edges[f].v1 == b) || (edges[f].v0 == b && edges[f].v1 == a))
+          image = static_cast<int>(f);
+      to_edge.push(image);
+    }
+    m_mirrors[slot] = mirror;
+    ++m_mirror_count;
   }
 }
 
@@ -55,6 +82,10 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
   // along the line of sight and M a mirror symmetry of the model (so det = +1) is a pose the outline alone
   // cannot tell from R (a box's Necker reversal, a plate's second tilt). LM from there finds its exact
   // optimum under perspective; if that fits about as well and is a distinct pose, the frame is ambiguous.
+  // F R M puts model vertex M v where R puts v: the rival explains the corner measured for v as M v's (and
+  // the line of edge e as M e's). Fitted to the labels as measured, a box's Necker twin is pulled back
+  // towards R (campaign box/93, box/191: wrong twins held without the flag). mirrored_rival_relabel
+  // (experimental, off: it also flags plates far more often, fsw/nearrange/README.md) relabels them.
   const double range = pose.t_c_m.norm();
   if (!(range > 0.0)) return false;
   const Vec3 los = pose.t_c_m / range;
@@ -72,7 +103,10 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
     PoseFitResult rival_fit;
     int vertices = 0;
     std::uint32_t flags = 0;
-    if (!solvePose(start, -1, lines_used, rival, rival_fit, vertices, flags)) continue;
+    if (m_params.mirrored_rival_relabel) m_relabel_mirror = k;
+    const bool solved = solvePose(start, -1, lines_used, rival, rival_fit, vertices, flags);
+    m_relabel_mirror = -1;
+    if (!solved) continue;
     ambiguous = rival_fit.rms_px <= as_good && rival.t_c_m.z() > 0.0 &&
                 !m_symmetries.equivalent(rival, pose, distinct);
   }
@@ -159,7 +193,9 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
   for (std::size_t v = 0; v < m_vertex_best_sin.size(); ++v) {
     if (m_vertex_best_sin[v] <= 0.0) continue;
     VertexObservation obs;
-    obs.vertex = static_cast<int>(v);
+    obs.vertex = m_relabel_mirror < 0 ? static_cast<int>(v)
+                                      : m_mirror_vertex[static_cast<std::size_t>(m_relabel_mirror)][v];
+    if (obs.vertex < 0) continue;
     obs.px_ideal = m_vertex_best_px[v];
     obs.variance_px2 = m_vertex_best_var[v];
     m_vertex_obs.push(obs);
@@ -182,7 +218,9 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     const double sin_angle = std::fabs(std::sin(a.theta_rad - b.theta_rad));
     VertexObservation obs;
     if (!intersect(a, b, obs.px_ideal, kMinVertexSinAngle)) continue;
-    obs.point_m = c.point_m;
+    obs.point_m = m_relabel_mirror < 0
+                      ? c.point_m
+                      : Vec3(m_mirrors[static_cast<std::size_t>(m_relabel_mirror)] * c.point_m);
     obs.variance_px2 =
         0.5 * (m_edges[i].end_variance_px2 + m_edges[j].end_variance_px2) / (sin_angle * sin_angle);
     if (!m_vertex_obs.push(obs)) break;
@@ -195,9 +233,13 @@ int NearRangeTracker::collectEdgePoints(int excluded_slot) {
   for (int k = 0; k < static_cast<int>(m_edges.size()); ++k) {
     const EdgeMeasurement& slot = m_edges[k];
     if (!slot.line_ok || k == excluded_slot) continue;
+    const int edge = m_relabel_mirror < 0 ? slot.model_edge
+                                          : m_mirror_edge[static_cast<std::size_t>(m_relabel_mirror)]
+                                                         [static_cast<std::size_t>(slot.model_edge)];
+    if (edge < 0) continue;
     for (int i = 0; i < slot.point_count; ++i) {
       if (!m_scan_points[slot.first_point + i].inlier) continue;
-      m_edge_obs.push({slot.model_edge, m_points_ideal[slot.first_point + i]});
+      m_edge_obs.push({edge, m_points_ideal[slot.first_point + i]});
     }
   }
   return static_cast<int>(m_edge_obs.size());

@@ -43,6 +43,7 @@ struct NearRangeParams {
   double reject_line_rms_gain = 0.5;
   double reject_line_trigger_rms_px = 0.2;
   int max_rejected_lines = 3;
+  bool mirrored_rival_relabel = false;  ///< the rival's fit relabels lines through the model mirror
   // Surface switching (sec. II-H), viewing angle v of CONVENTIONS.md.
   double visibility_enter_low_deg = 45.0;
   double visibility_enter_high_deg = 135.0;
@@ -170,6 +171,14 @@ struct NearRangeParams {
            visibility_exit_low_deg);
     v.real({"nearrange", "visibility_exit_high_deg", "deg", 90.0, 180.0, "sec. II-H: stop tracking above"},
            visibility_exit_high_deg);
+    v.boolean(
+        {"nearrange", "mirrored_rival_relabel", "-", 0, 1,
+         "ambiguity test (experimental, off): the depth-mirrored rival's fit assigns each measured line "
+         "and corner to the model feature the model's mirror symmetry makes of it, as the rival pose "
+         "projects it (a box's Necker twin). Seeds 1-40: box confidently wrong 13 -> 7, but tracked "
+         "frames 14 913 -> 14 513 over all families (plates flagged far more often: plate/40 2 -> 103 "
+         "ambiguous frames; fsw/nearrange/README.md). false: the rival is fitted to the lines as measured"},
+        mirrored_rival_relabel);
     v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,
                "also measure the outline of the body (edges between a front and a back face, open edges of "
                "front faces) outside the sec. II-H gate: it has contrast against the background when a "

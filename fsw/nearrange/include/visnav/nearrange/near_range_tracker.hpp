@@ -224,7 +224,10 @@ class NearRangeTracker {
   BoundedBuffer<EdgePointObservation> m_edge_obs;
   ModelSymmetries m_symmetries;
   std::array<Mat3, 3> m_mirrors{};  ///< axis reflections of the model frame that map the model onto itself
+  std::array<BoundedBuffer<int>, 3> m_mirror_vertex;  ///< per mirror: model vertex -> its mirror image
+  std::array<BoundedBuffer<int>, 3> m_mirror_edge;    ///< per mirror: model edge -> its mirror image
   int m_mirror_count = 0;
+  int m_relabel_mirror = -1;  ///< the rival fit's mirror: observations relabelled to the mirrored features
   bool m_first_frame = true;
 };
 
