@@ -4,8 +4,9 @@
 #  2. configures the `aarch64-ci` preset (the `aarch64` preset's Cortex-A53 flags, release -O2, warnings
 #     as errors, but no -g: GCC's debug info does not change the generated code and cost 20-28 % of the
 #     compile) and builds what step 3 and 4 run (the executables its tests name, and visnav-replay);
-#  3. runs the unit tests under qemu-aarch64 and the instruction-count table once (`ctest --preset aarch64-ci`:
-#     labels unit and armcost; exclusions and reasons in toolchains/README.md);
+#  3. runs the flight code's unit tests under qemu-aarch64 and the instruction-count table once (`ctest
+#     --preset aarch64-ci`: labels unit and armcost, not ground; exclusions and reasons in
+#     toolchains/README.md);
 #  4. renders the approach_ci sequence with the x86 release visnav-synth, replays it with the arm64
 #     visnav-replay under qemu-aarch64 and with the x86 visnav-replay (same sequence, both with the built-in
 #     default parameters), and compares the two CSVs with visnav-csvdiff (tolerances below).
@@ -22,8 +23,8 @@ phase "install"
 cmake --preset aarch64-ci >/dev/null
 # Only what runs here: the gtest executables labelled unit but not ground (target
 # flight_unit_test_executables: the flight code's; the ground tools' unit tests run in the debug preset;
-# ctest lists a gtest executable's tests only after it is built), the executables the preset's other tests name (their commands and the
-# tools passed to cmake -P checks), and visnav-replay for step 4. The integration tests, the daemon's, the
+# ctest lists a gtest executable's tests only after it is built), the executables the preset's other tests
+# name (their commands and the tools passed to cmake -P checks), and visnav-replay for step 4. The integration tests, the daemon's, the
 # benchmarks and most tools are not built. A test whose executable were missing fails.
 mapfile -t arm_targets < <(ctest --preset aarch64-ci --show-only=json-v1 |
   grep -o "$PWD/build/aarch64-ci/bin/[A-Za-z0-9_.+-]*" | sed "s|^$PWD/build/aarch64-ci/||" | sort -u)

@@ -34,35 +34,27 @@ void NearRangeTracker::findModelMirrors() {
   m_symmetries.find(m_model);
   m_mirror_count = 0;
   const double tol_m = ModelSymmetries::kIndistinguishableRel * std::max(1.0, m_model.boundingRadius());
+  const auto& vertices = m_model.vertices();
+  const auto& edges = m_model.edges();
   for (int axis = 0; axis < 3; ++axis) {
     Mat3 mirror = Mat3::Identity();
     mirror(axis, axis) = -1.0;
-    bool maps = true;
-    for (const Vec3& v : m_model.vertices()) {
-      bool found = false;
-      for (const Vec3& w : m_model.vertices()) found = found || (mirror * v - w).norm() <= tol_m;
-      if (!found) {
-        maps = false;
-        break;
-      }
-    }
-    if (!maps) continue;
-    // Which vertex and which edge each one becomes (init only: found by position, then by vertex pair).
+    // Which vertex each one becomes (init only: found by position); a mirror that loses one is no symmetry.
     const auto slot = static_cast<std::size_t>(m_mirror_count);
-    const auto& vertices = m_model.vertices();
-    const auto& edges = m_model.edges();
     BoundedBuffer<int>& to_vertex = m_mirror_vertex[slot];
     BoundedBuffer<int>& to_edge = m_mirror_edge[slot];
-    to_vertex.reserve(vertices.size());
+    to_vertex.reserve(vertices.size());  // init only: allocates, and empties a slot a failed mirror used
     to_edge.reserve(edges.size());
-    to_vertex.clear();
-    to_edge.clear();
-    for (const Vec3& v : vertices) {
+    bool maps = true;
+    for (std::size_t u = 0; u < vertices.size() && maps; ++u) {
       int image = -1;
       for (std::size_t w = 0; w < vertices.size() && image < 0; ++w)
-        if ((mirror * v - vertices[w]).norm() <= tol_m) image = static_cast<int>(w);
+        if ((mirror * vertices[u] - vertices[w]).norm() <= tol_m) image = static_cast<int>(w);
+      maps = image >= 0;
       to_vertex.push(image);
     }
+    if (!maps) continue;
+    // And each edge, by its vertex pair.
     for (const ModelEdge& e : edges) {
       const int a = to_vertex[static_cast<std::size_t>(e.v0)];
       const int b = to_vertex[static_cast<std::size_t>(e.v1)];
