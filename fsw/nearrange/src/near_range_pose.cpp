@@ -100,10 +100,44 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
     m_relabel_mirror = -1;
     if (!solved) continue;
     ambiguous = rival_fit.rms_px <= as_good && rival.t_c_m.z() > 0.0 &&
-                !m_symmetries.equivalent(rival, pose, distinct);
+                !m_symmetries.equivalent(rival, pose, distinct) &&
+                (!m_params.mirrored_rival_relabel || rivalShowsMeasuredEdges(pose, rival, k));
   }
   collectVertices(-1);  // leave the buffers as the kept solution saw them
   return ambiguous;
+}
+
+bool NearRangeTracker::rivalShowsMeasuredEdges(const Pose& pose, const Pose& rival, int k) const {
+  // Relabelled through an in-plane mirror (x or y of a flat plate) the rival is the plate turned over: the
+  // same outline with its back towards the camera, never a pose to hold (seeds 1-40: plate/40 flagged 103
+  // of 120 frames without this test). Only the kept pose's outline lines are asked: the depth-mirrored
+  // twin shows every one of them (a box's Necker reversal keeps its silhouette) but hides the interior
+  // edges, and those carry no contrast on the boxes where the twin is a real danger (box/191).
+  const auto& edges = m_model.edges();
+  const auto& surfaces = m_model.surfaces();
+  const BoundedBuffer<int>& to_edge = m_mirror_edge[static_cast<std::size_t>(k)];
+  // Facing or within kRivalGrazingCos of grazing: under perspective the twin of a face seen edge-on may
+  // turn its back by a few degrees (box/93: cosines down to -0.21) and still give the same outline.
+  const auto shown_by_rival = [&](int s) {
+    if (s < 0) return false;
+    const ModelSurface& surface = surfaces[static_cast<std::size_t>(s)];
+    const Vec3 n = rival.R_c_m * surface.normal_m;
+    const Vec3 to_centroid = rival.transform(surface.centroid_m);
+    return -n.dot(to_centroid) > -kRivalGrazingCos * to_centroid.norm();
+  };
+  const auto front = [&](int s) {
+    return s >= 0 && viewSurface(surfaces[static_cast<std::size_t>(s)], pose).front_facing;
+  };
+  for (const EdgeMeasurement& slot : m_edges) {
+    if (!slot.line_ok) continue;
+    const ModelEdge& kept = edges[static_cast<std::size_t>(slot.model_edge)];
+    if (front(kept.surface_left) && front(kept.surface_right)) continue;  // interior
+    const int e = to_edge[static_cast<std::size_t>(slot.model_edge)];
+    if (e < 0) return false;
+    const ModelEdge& edge = edges[static_cast<std::size_t>(e)];
+    if (!shown_by_rival(edge.surface_left) && !shown_by_rival(edge.surface_right)) return false;
+  }
+  return true;
 }
 
 void NearRangeTracker::findChamferCorners() {

@@ -152,6 +152,8 @@ class NearRangeTracker {
   static constexpr double kRivalRmsFactor = 2.0;
   static constexpr double kRivalDistinctRel = 0.05;
   static constexpr double kRivalDistinctDeg = 5.0;
+  /// A rival still shows a surface turned up to 15 deg past grazing (sin 15 deg; rivalShowsMeasuredEdges).
+  static constexpr double kRivalGrazingCos = 0.2588;
 
   double elapsedUs(std::int64_t& since) const;
   void updateSurfaces(const Pose& predicted);
@@ -175,6 +177,10 @@ class NearRangeTracker {
   /// True when a start mirrored in depth about the target (composed with a mirror symmetry of the model, so
   /// a rotation) converges to a distinct pose that fits the same lines about as well.
   bool mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used);
+  /// True when every measured outline line of `pose`, relabelled through mirror `k`, lies on an edge
+  /// `rival` shows (a front-facing surface owns it): a rival that explains the outline with back-facing
+  /// edges is no pose the tracker could hold.
+  bool rivalShowsMeasuredEdges(const Pose& pose, const Pose& rival, int k) const;
   void findModelMirrors();
   void findChamferCorners();
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
