@@ -77,7 +77,7 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
   // F R M puts model vertex M v where R puts v: the rival explains the corner measured for v as M v's (and
   // the line of edge e as M e's). Fitted to the labels as measured, a box's Necker twin is pulled back
   // towards R (campaign box/93, box/191: wrong twins held without the flag). mirrored_rival_relabel
-  // (experimental, off: it also flags plates far more often, fsw/nearrange/README.md) relabels them.
+  // (experimental, off: case slew_box loses its last frames, fsw/nearrange/README.md) relabels them.
   const double range = pose.t_c_m.norm();
   if (!(range > 0.0)) return false;
   const Vec3 los = pose.t_c_m / range;

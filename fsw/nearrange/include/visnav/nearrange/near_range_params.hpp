@@ -175,9 +175,10 @@ struct NearRangeParams {
         {"nearrange", "mirrored_rival_relabel", "-", 0, 1,
          "ambiguity test (experimental, off): the depth-mirrored rival's fit assigns each measured line "
          "and corner to the model feature the model's mirror symmetry makes of it, as the rival pose "
-         "projects it (a box's Necker twin). Seeds 1-40: box confidently wrong 13 -> 7, but tracked "
-         "frames 14 913 -> 14 513 over all families (plates flagged far more often: plate/40 2 -> 103 "
-         "ambiguous frames; fsw/nearrange/README.md). false: the rival is fitted to the lines as measured"},
+         "projects it (a box's Necker twin), and the rival must show the outline it explains. Seeds 1-40: "
+         "confidently wrong frames 18 -> 12 (box 13 -> 7), tracked frames 14 913 -> 14 877; off because "
+         "case slew_box falls to 0.942 tracked (fsw/nearrange/README.md). false: the rival is fitted to "
+         "the lines as measured and a box's twin is never flagged"},
         mirrored_rival_relabel);
     v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,
                "also measure the outline of the body (edges between a front and a back face, open edges of "
