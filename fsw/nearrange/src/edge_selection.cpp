@@ -54,21 +54,6 @@ void NearRangeTracker::findConfusableEdges(const Pose& predicted) {
     return m_edge_selected[e] != 0U && edge.surface_left >= 0 && edge.surface_right >= 0 &&
            m_surface_front[edge.surface_left] != 0U && m_surface_front[edge.surface_right] != 0U;
   };
-  // The strip's other side: the outline edge of a face too oblique to track (front-facing, outside the
-  // sec. II-H gate). That face is dark against a dark sky, so its outline step is weak and its scanlines
-  // find the strong step of the interior edge beside it (case slew_box frames 108-119: outline lines fitted
-  // 2.0-3.6 px off, on the interior edge, the fit 3.1-3.7 deg off at 0.18-0.19 px rms, under the
-  // leave-one-line-out trigger). With confusable_strip_outline it is treated as its interior neighbour is.
-  const auto strip_outline = [this, &edges](std::size_t e) {
-    if (!m_params.confusable_strip_outline || m_edge_selected[e] == 0U) return false;
-    const ModelEdge& edge = edges[e];
-    const auto front = [this](int s) { return s >= 0 && m_surface_front[s] != 0U; };
-    const auto tracked = [this](int s) { return s >= 0 && m_surface_tracked[s] != 0U; };
-    if (front(edge.surface_left) == front(edge.surface_right)) return false;  // not on the outline
-    const int face = front(edge.surface_left) ? edge.surface_left : edge.surface_right;
-    return !tracked(face);
-  };
-  const auto confusable = [&](std::size_t e) { return interior(e) || strip_outline(e); };
   bool any_interior = false;
   for (std::size_t e = 0; e < edges.size(); ++e) {
     m_confusable_partner[e] = -1;
@@ -83,7 +68,7 @@ void NearRangeTracker::findConfusableEdges(const Pose& predicted) {
   }
   const double separation = m_params.confusable_edge_separation_px;
   for (std::size_t e = 0; e < edges.size(); ++e) {
-    if (!confusable(e)) continue;
+    if (!interior(e)) continue;
     const ModelEdge& edge = edges[e];
     if (m_vertex_in_front[edge.v0] == 0U || m_vertex_in_front[edge.v1] == 0U) continue;
     const Vec2 a = m_vertex_px[edge.v0];

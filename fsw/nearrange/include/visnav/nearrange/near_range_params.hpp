@@ -23,7 +23,6 @@ struct NearRangeParams {
   double step_min_z = 5.0;
   double edge_candidate_min_share = 0.5;
   double confusable_edge_separation_px = 6.0;
-  bool confusable_strip_outline = false;  ///< an oblique face's outline edge is confusable too
   int texture_bins = 32;
   double texture_min_log_gain = 1.0;
   double texture_min_variance_ratio = 10.0;
@@ -102,12 +101,6 @@ struct NearRangeParams {
             "flat-lit interior edge has no step of its own (campaign box/17: strips of 2.5-3.8 px; slew_box "
             "measures both at 8-14 px); 0 measures every edge"},
            confusable_edge_separation_px);
-    v.boolean({"nearrange", "confusable_strip_outline", "-", 0, 1,
-               "the outline edge of a front face too oblique to track is confusable with a parallel edge "
-               "within confusable_edge_separation_px too (the interior edge on the strip's other side): "
-               "only its steps nearer its own line count (case slew_box: outline lines fitted 2-3.6 px off, "
-               "on the interior edge). false: an outline edge keeps every step"},
-              confusable_strip_outline);
     v.integer({"nearrange", "texture_bins", "count", 2, 256, "brightness classes of Algorithm 1"},
               texture_bins);
     v.real(
