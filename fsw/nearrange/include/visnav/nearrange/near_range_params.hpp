@@ -41,9 +41,9 @@ struct NearRangeParams {
   double max_rms_px = 1.5;
   double degraded_rms_px = 0.6;
   double reject_line_rms_gain = 0.5;
-  double reject_line_trigger_rms_px = 0.2;
+  double reject_line_trigger_rms_px = 0.15;
   int max_rejected_lines = 3;
-  bool mirrored_rival_relabel = false;  ///< the rival's fit relabels lines through the model mirror
+  bool mirrored_rival_relabel = true;  ///< the rival's fit relabels lines through the model mirror
   // Surface switching (sec. II-H), viewing angle v of CONVENTIONS.md.
   double visibility_enter_low_deg = 45.0;
   double visibility_enter_high_deg = 135.0;
@@ -155,7 +155,8 @@ struct NearRangeParams {
         {"nearrange", "reject_line_trigger_rms_px", "px", 0.0, 100.0,
          "leave-one-line-out is tried when the fit's residual exceeds this (or the fit failed): a face "
          "entering at a grazing angle locked one edge onto its neighbour at 0.4 px rms where the track ran "
-         "at 0.01-0.03 px (slew_box), below degraded_rms_px"},
+         "at 0.01-0.03 px (slew_box), below degraded_rms_px; 0.2 until 2026-11-29, when an outline line "
+         "2.5 px off (slew_box frame 116) fitted at 0.19 px rms and the relabelled rival flagged the frame"},
         reject_line_trigger_rms_px);
     v.integer(
         {"nearrange", "max_rejected_lines", "count", 0, 16,
@@ -173,12 +174,12 @@ struct NearRangeParams {
            visibility_exit_high_deg);
     v.boolean(
         {"nearrange", "mirrored_rival_relabel", "-", 0, 1,
-         "ambiguity test (experimental, off): the depth-mirrored rival's fit assigns each measured line "
-         "and corner to the model feature the model's mirror symmetry makes of it, as the rival pose "
-         "projects it (a box's Necker twin), and the rival must show the outline it explains. Seeds 1-40: "
-         "confidently wrong frames 18 -> 12 (box 13 -> 7), tracked frames 14 913 -> 14 877; off because "
-         "case slew_box falls to 0.942 tracked (fsw/nearrange/README.md). false: the rival is fitted to "
-         "the lines as measured and a box's twin is never flagged"},
+         "ambiguity test: the depth-mirrored rival's fit assigns each measured line and corner to the "
+         "model feature the model's mirror symmetry makes of it, as the rival pose projects it (a box's "
+         "Necker twin), and the rival must show the outline it explains. Seeds 1-40 with "
+         "reject_line_trigger_rms_px 0.15: confidently wrong frames 18 -> 13 (box 13 -> 7), tracked frames "
+         "14 913 -> 14 843 (fsw/nearrange/README.md). false: the rival is fitted to the lines as measured "
+         "and a box's twin is never flagged"},
         mirrored_rival_relabel);
     v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,
                "also measure the outline of the body (edges between a front and a back face, open edges of "
