@@ -76,8 +76,8 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
   // optimum under perspective; if that fits about as well and is a distinct pose, the frame is ambiguous.
   // F R M puts model vertex M v where R puts v: the rival explains the corner measured for v as M v's (and
   // the line of edge e as M e's). Fitted to the labels as measured, a box's Necker twin is pulled back
-  // towards R (campaign box/93, box/191: wrong twins held without the flag). mirrored_rival_relabel
-  // (experimental, off: case slew_box loses its last frames, fsw/nearrange/README.md) relabels them.
+  // towards R (campaign box/93, box/191: wrong twins held without the flag). mirrored_rival_relabel (on
+  // by default; off: the labels as measured) relabels them.
   const double range = pose.t_c_m.norm();
   if (!(range > 0.0)) return false;
   const Vec3 los = pose.t_c_m / range;
@@ -109,8 +109,8 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
 
 bool NearRangeTracker::rivalShowsMeasuredEdges(const Pose& pose, const Pose& rival, int k) const {
   // Relabelled through an in-plane mirror (x or y of a flat plate) the rival is the plate turned over: the
-  // same outline with its back towards the camera, never a pose to hold (seeds 1-40: plate/40 flagged 103
-  // of 120 frames without this test). Only the kept pose's outline lines are asked: the depth-mirrored
+  // same outline with its back towards the camera, never a pose to hold (campaign plate/40: 103 of 120
+  // frames flagged without this test). Only the kept pose's outline lines are asked: the depth-mirrored
   // twin shows every one of them (a box's Necker reversal keeps its silhouette) but hides the interior
   // edges, and those carry no contrast on the boxes where the twin is a real danger (box/191).
   const auto& edges = m_model.edges();

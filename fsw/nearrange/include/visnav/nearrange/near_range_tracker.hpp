@@ -178,8 +178,8 @@ class NearRangeTracker {
   /// a rotation) converges to a distinct pose that fits the same lines about as well.
   bool mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used);
   /// True when every measured outline line of `pose`, relabelled through mirror `k`, lies on an edge
-  /// `rival` shows (a front-facing surface owns it): a rival that explains the outline with back-facing
-  /// edges is no pose the tracker could hold.
+  /// `rival` shows (a surface owning it faces the camera or is within kRivalGrazingCos past grazing): a
+  /// rival that explains the outline with back-facing edges is no pose the tracker could hold.
   bool rivalShowsMeasuredEdges(const Pose& pose, const Pose& rival, int k) const;
   void findModelMirrors();
   void findChamferCorners();
