@@ -230,6 +230,9 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     in.depth_m = m_last_pose.t_c_m.z();
     return;
   }
+  // Near twins are refitted while the branch is to be confirmed (confirmBranch): a quarter-turned
+  // near-square plate passes every other test of an acquisition's first frames.
+  m_near.setNearTwinChecks(m_acquisition_awaits_near || !m_branch.known());
   m_near.track(image, predictedPose(), frame_number, m_near_result);
   const NearRangeResult& r = m_near_result;
   out.tracked_surfaces = r.tracked_surfaces;

@@ -27,45 +27,98 @@ bool NearRangeTracker::fitPose(const Pose& predicted, Pose& pose, PoseFitResult&
   if (solved && !(pose.t_c_m.z() > 0.0)) out.flags |= kFlagOutOfImage;
   if (solved && (out.flags & kFlagResidualTooHigh) == 0U && mirroredRivalFits(pose, fit, out.lines_used))
     out.flags |= kFlagAmbiguous;
+  if (solved && m_near_twin_checks && (out.flags & kFlagResidualTooHigh) == 0U &&
+      nearTwinRivalFits(pose, fit, out.lines_used, out.near_twin_rival))
+    out.flags |= kFlagNearTwinRival;
   return solved;
+}
+
+bool NearRangeTracker::addRelabel(const Mat3& map, const Vec3& offset, double tolerance_m, int near_index) {
+  if (m_relabel_count >= kMaxRelabels) return false;
+  const auto& vertices = m_model.vertices();
+  const auto& edges = m_model.edges();
+  Relabel& slot = m_relabels[static_cast<std::size_t>(m_relabel_count)];
+  // Which vertex each one becomes (init only: found by position, the nearest one); a map that loses one is
+  // none.
+  slot.to_vertex.reserve(vertices.size());  // init only: allocates, and empties a slot a failed map used
+  slot.to_edge.reserve(edges.size());
+  for (const Vec3& v : vertices) {
+    const Vec3 w = map * v + offset;
+    int image = -1;
+    double nearest = tolerance_m;
+    for (std::size_t u = 0; u < vertices.size(); ++u) {
+      const double d = (w - vertices[u]).norm();
+      if (d <= nearest) {
+        nearest = d;
+        image = static_cast<int>(u);
+      }
+    }
+    if (image < 0) return false;
+    slot.to_vertex.push(image);
+  }
+  // And each edge, by its vertex pair.
+  for (const ModelEdge& e : edges) {
+    const int a = slot.to_vertex[static_cast<std::size_t>(e.v0)];
+    const int b = slot.to_vertex[static_cast<std::size_t>(e.v1)];
+    int image = -1;
+    for (std::size_t f = 0; f < edges.size() && image < 0; ++f)
+      if ((edges[f].v0 == a && edges[f].v1 == b) || (edges[f].v0 == b && edges[f].v1 == a))
+        image = static_cast<int>(f);
+    slot.to_edge.push(image);
+  }
+  // And each chamfer corner (findChamferCorners, run before), by its pair of edges: the twin's own corner,
+  // not the turned point (a near twin is not exact).
+  slot.to_corner.reserve(m_chamfer_corners.size());
+  for (const ChamferCorner& c : m_chamfer_corners) {
+    const int a = slot.to_edge[static_cast<std::size_t>(c.edge_a)];
+    const int b = slot.to_edge[static_cast<std::size_t>(c.edge_b)];
+    int image = -1;
+    for (std::size_t d = 0; d < m_chamfer_corners.size() && image < 0; ++d) {
+      const ChamferCorner& other = m_chamfer_corners[d];
+      if ((other.edge_a == a && other.edge_b == b) || (other.edge_a == b && other.edge_b == a))
+        image = static_cast<int>(d);
+    }
+    slot.to_corner.push(image);
+  }
+  slot.map = map;
+  slot.offset = offset;
+  slot.near_index = near_index;
+  ++m_relabel_count;
+  return true;
 }
 
 void NearRangeTracker::findModelMirrors() {
   m_symmetries.find(m_model);
-  m_mirror_count = 0;
+  m_relabel_count = 0;
   const double tol_m = ModelSymmetries::kIndistinguishableRel * std::max(1.0, m_model.boundingRadius());
-  const auto& vertices = m_model.vertices();
-  const auto& edges = m_model.edges();
-  for (int axis = 0; axis < 3; ++axis) {
+  for (int axis = 0; axis < kMaxMirrors; ++axis) {
     Mat3 mirror = Mat3::Identity();
     mirror(axis, axis) = -1.0;
-    // Which vertex each one becomes (init only: found by position); a mirror that loses one is no symmetry.
-    const auto slot = static_cast<std::size_t>(m_mirror_count);
-    BoundedBuffer<int>& to_vertex = m_mirror_vertex[slot];
-    BoundedBuffer<int>& to_edge = m_mirror_edge[slot];
-    to_vertex.reserve(vertices.size());  // init only: allocates, and empties a slot a failed mirror used
-    to_edge.reserve(edges.size());
-    bool maps = true;
-    for (std::size_t u = 0; u < vertices.size() && maps; ++u) {
-      int image = -1;
-      for (std::size_t w = 0; w < vertices.size() && image < 0; ++w)
-        if ((mirror * vertices[u] - vertices[w]).norm() <= tol_m) image = static_cast<int>(w);
-      maps = image >= 0;
-      to_vertex.push(image);
-    }
-    if (!maps) continue;
-    // And each edge, by its vertex pair.
-    for (const ModelEdge& e : edges) {
-      const int a = to_vertex[static_cast<std::size_t>(e.v0)];
-      const int b = to_vertex[static_cast<std::size_t>(e.v1)];
-      int image = -1;
-      for (std::size_t f = 0; f < edges.size() && image < 0; ++f)
-        if ((edges[f].v0 == a && edges[f].v1 == b) || (edges[f].v0 == b && edges[f].v1 == a))
-          image = static_cast<int>(f);
-      to_edge.push(image);
-    }
-    m_mirrors[slot] = mirror;
-    ++m_mirror_count;
+    addRelabel(mirror, Vec3::Zero(), tol_m, -1);
+  }
+  m_mirror_count = m_relabel_count;
+}
+
+void NearRangeTracker::findNearTwins() {
+  // After findModelMirrors. The near twins with the smallest separations first (the hardest to tell apart),
+  // at most kMaxNearTwins; a twin S about the vertex centroid c puts the model point S^T (x - c) + c where
+  // the kept pose puts x.
+  if (!(m_params.near_twin_rival_max_rel > 0.0)) return;
+  m_symmetries.findNear(m_model, m_params.near_twin_rival_max_rel);
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& v : m_model.vertices()) centre += v;
+  centre /= static_cast<double>(std::max<std::size_t>(1, m_model.vertices().size()));
+  std::array<int, ModelSymmetries::kCapacity> order{};
+  const int count = m_symmetries.nearCount();
+  for (int i = 0; i < count; ++i) order[static_cast<std::size_t>(i)] = i;
+  std::stable_sort(order.begin(), order.begin() + count, [&](int a, int b) {
+    return m_symmetries.nearSeparationM(a) < m_symmetries.nearSeparationM(b);
+  });
+  const double tol_m = m_params.near_twin_rival_max_rel * m_model.boundingRadius() + 1e-9;
+  for (int k = 0; k < count && m_relabel_count - m_mirror_count < kMaxNearTwins; ++k) {
+    const int i = order[static_cast<std::size_t>(k)];
+    const Mat3 back = m_symmetries.near(i).transpose();
+    addRelabel(back, centre - back * centre, tol_m, i);
   }
 }
 
@@ -89,15 +142,15 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
   bool ambiguous = false;
   for (int k = 0; k < m_mirror_count && !ambiguous; ++k) {
     Pose start;
-    start.R_c_m = depth_mirror * pose.R_c_m * m_mirrors[static_cast<std::size_t>(k)];
+    start.R_c_m = depth_mirror * pose.R_c_m * m_relabels[static_cast<std::size_t>(k)].map;
     start.t_c_m = pose.t_c_m;
     Pose rival;
     PoseFitResult rival_fit;
     int vertices = 0;
     std::uint32_t flags = 0;
-    if (m_params.mirrored_rival_relabel) m_relabel_mirror = k;
+    if (m_params.mirrored_rival_relabel) m_relabel = k;
     const bool solved = solvePose(start, -1, lines_used, rival, rival_fit, vertices, flags);
-    m_relabel_mirror = -1;
+    m_relabel = -1;
     if (!solved) continue;
     ambiguous = rival_fit.rms_px <= as_good && rival.t_c_m.z() > 0.0 &&
                 !m_symmetries.equivalent(rival, pose, distinct) &&
@@ -105,6 +158,45 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
   }
   collectVertices(-1);  // leave the buffers as the kept solution saw them
   return ambiguous;
+}
+
+bool NearRangeTracker::nearTwinRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used,
+                                         Pose& rival_out) {
+  // A near-square plate's quarter turn, tilted and moved a few per cent in range, draws nearly the same
+  // outline (campaign octagon/172, 2.66 x 2.51 m at 30 m: acquired 90 deg off, its fits 0.5-0.9 px rms
+  // where the true pose's were 0.06-0.3, and delivered for 11 frames). Relabelled onto the twin's features
+  // the measured lines say which of the two they belong to, as mirroredRivalFits does for the depth mirror.
+  const double range = pose.t_c_m.norm();
+  if (!(range > 0.0)) return false;
+  PoseTolerance distinct;
+  distinct.position_m = kRivalDistinctRel * range;
+  distinct.attitude_rad = kRivalDistinctDeg * kRadPerDeg;
+  const double as_good = std::max(kRivalRmsFactor * fit.rms_px, fit.rms_px + m_params.pixel_sigma_px);
+  // The twin of a fit that bent its tilt and range to the wrong labels starts on the wrong side of a flat
+  // target's two-tilt ambiguity (octagon/172's plate at 20 m: LM from there stopped 20 deg away at 4x the
+  // true pose's rms), so its depth-mirrored starts (mirroredRivalFits) are tried too.
+  const Vec3 los = pose.t_c_m / range;
+  const Mat3 depth_mirror = Mat3::Identity() - 2.0 * los * los.transpose();
+  bool rival_fits = false;
+  for (int k = m_mirror_count; k < m_relabel_count && !rival_fits; ++k) {
+    const Pose twin = m_symmetries.nearTwin(pose, m_relabels[static_cast<std::size_t>(k)].near_index);
+    for (int m = -1; m < m_mirror_count && !rival_fits; ++m) {
+      Pose start = twin;
+      if (m >= 0) start.R_c_m = depth_mirror * twin.R_c_m * m_relabels[static_cast<std::size_t>(m)].map;
+      Pose rival;
+      PoseFitResult rival_fit;
+      int vertices = 0;
+      std::uint32_t flags = 0;
+      m_relabel = k;
+      const bool solved = solvePose(start, -1, lines_used, rival, rival_fit, vertices, flags);
+      m_relabel = -1;
+      rival_fits = solved && rival_fit.rms_px <= as_good && rival.t_c_m.z() > 0.0 &&
+                   !m_symmetries.equivalent(rival, pose, distinct) && rivalShowsMeasuredEdges(pose, rival, k);
+      if (rival_fits) rival_out = rival;
+    }
+  }
+  collectVertices(-1);  // leave the buffers as the kept solution saw them
+  return rival_fits;
 }
 
 bool NearRangeTracker::rivalShowsMeasuredEdges(const Pose& pose, const Pose& rival, int k) const {
@@ -115,7 +207,7 @@ bool NearRangeTracker::rivalShowsMeasuredEdges(const Pose& pose, const Pose& riv
   // edges, and those carry no contrast on the boxes where the twin is a real danger (box/191).
   const auto& edges = m_model.edges();
   const auto& surfaces = m_model.surfaces();
-  const BoundedBuffer<int>& to_edge = m_mirror_edge[static_cast<std::size_t>(k)];
+  const BoundedBuffer<int>& to_edge = m_relabels[static_cast<std::size_t>(k)].to_edge;
   // Facing or within kRivalGrazingCos of grazing: under perspective the twin of a face seen edge-on may
   // turn its back by a few degrees (box/93: cosines down to -0.21) and still give the same outline.
   const auto shown_by_rival = [&](int s) {
@@ -219,8 +311,8 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
   for (std::size_t v = 0; v < m_vertex_best_sin.size(); ++v) {
     if (m_vertex_best_sin[v] <= 0.0) continue;
     VertexObservation obs;
-    obs.vertex = m_relabel_mirror < 0 ? static_cast<int>(v)
-                                      : m_mirror_vertex[static_cast<std::size_t>(m_relabel_mirror)][v];
+    obs.vertex =
+        m_relabel < 0 ? static_cast<int>(v) : m_relabels[static_cast<std::size_t>(m_relabel)].to_vertex[v];
     if (obs.vertex < 0) continue;
     obs.px_ideal = m_vertex_best_px[v];
     obs.variance_px2 = m_vertex_best_var[v];
@@ -233,7 +325,8 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
   // dropped, and case low_contrast_octagon lost 3 of 150 frames.
   if (m_chamfer_corners.empty()) return static_cast<int>(m_vertex_obs.size());
   const auto hasLine = [&](int slot) { return slot >= 0 && slot != excluded_slot && m_edges[slot].line_ok; };
-  for (const ChamferCorner& c : m_chamfer_corners) {
+  for (std::size_t index = 0; index < m_chamfer_corners.size(); ++index) {
+    const ChamferCorner& c = m_chamfer_corners[index];
     const int i = m_slot_of_edge[c.edge_a];
     const int j = m_slot_of_edge[c.edge_b];
     const int k = m_slot_of_edge[c.bridge];
@@ -244,9 +337,10 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     const double sin_angle = std::fabs(std::sin(a.theta_rad - b.theta_rad));
     VertexObservation obs;
     if (!intersect(a, b, obs.px_ideal, kMinVertexSinAngle)) continue;
-    obs.point_m = m_relabel_mirror < 0
-                      ? c.point_m
-                      : Vec3(m_mirrors[static_cast<std::size_t>(m_relabel_mirror)] * c.point_m);
+    const int corner = m_relabel < 0 ? static_cast<int>(index)
+                                     : m_relabels[static_cast<std::size_t>(m_relabel)].to_corner[index];
+    if (corner < 0) continue;
+    obs.point_m = m_chamfer_corners[static_cast<std::size_t>(corner)].point_m;
     obs.variance_px2 =
         0.5 * (m_edges[i].end_variance_px2 + m_edges[j].end_variance_px2) / (sin_angle * sin_angle);
     if (!m_vertex_obs.push(obs)) break;
@@ -259,9 +353,9 @@ int NearRangeTracker::collectEdgePoints(int excluded_slot) {
   for (int k = 0; k < static_cast<int>(m_edges.size()); ++k) {
     const EdgeMeasurement& slot = m_edges[k];
     if (!slot.line_ok || k == excluded_slot) continue;
-    const int edge = m_relabel_mirror < 0 ? slot.model_edge
-                                          : m_mirror_edge[static_cast<std::size_t>(m_relabel_mirror)]
-                                                         [static_cast<std::size_t>(slot.model_edge)];
+    const int edge = m_relabel < 0 ? slot.model_edge
+                                   : m_relabels[static_cast<std::size_t>(m_relabel)]
+                                         .to_edge[static_cast<std::size_t>(slot.model_edge)];
     if (edge < 0) continue;
     for (int i = 0; i < slot.point_count; ++i) {
       if (!m_scan_points[slot.first_point + i].inlier) continue;

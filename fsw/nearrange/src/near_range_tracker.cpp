@@ -80,8 +80,9 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
     m_polarity.push(0);
     m_polarity_next.push(0);
   }
+  findChamferCorners();  // before the relabels, which map its corners
   findModelMirrors();
-  findChamferCorners();
+  findNearTwins();
   reset();
   return LoadError::success();
 }

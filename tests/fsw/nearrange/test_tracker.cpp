@@ -187,6 +187,53 @@ TEST(ChamferedPlateTest, LongEdgesMeetAcrossUnmeasuredCutsAsCorners) {
   EXPECT_LT((r.pose.t_c_m - near_truth.t_c_m).norm(), 0.01 * 4.0);
 }
 
+TEST(NearTwinRivalTest, ANearSquarePlatesQuarterTurnIsFlaggedWhenAsked) {
+  // Campaign octagon/172's plate (2.658 x 2.513 m, chamfer 0.437 m): its quarter turn, tilted and moved in
+  // range, draws nearly the same outline. Tracked from the turned pose, the measured lines fit the twin's
+  // labels (the true pose) better than their own: flagged when the caller asks, and only then.
+  const PolygonModel model = makeOctagonPlate(2.658, 2.513, 0.437);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  NearRangeTracker tracker;
+  ASSERT_TRUE(tracker.init(vgaCamera(), model, NearRangeParams{}).ok);
+  ASSERT_GE(tracker.nearTwinCount(), 1) << "the quarter turns are near twins";
+  ModelSymmetries symmetries;
+  symmetries.find(model);
+  symmetries.findNear(model, NearRangeParams{}.near_twin_rival_max_rel);
+  int quarter = -1;
+  for (int i = 0; i < symmetries.nearCount() && quarter < 0; ++i)
+    if (std::fabs(rotationAngleRad(Mat3::Identity(), symmetries.near(i)) - 0.5 * kPi) < 1e-6) quarter = i;
+  ASSERT_GE(quarter, 0);
+
+  const Pose truth = plateAt(20.0, 0.2, 8.0, -5.0);
+  const test::RenderedFrame frame = renderFrame(renderer, truth, 21);
+  const Pose turned = symmetries.nearTwin(truth, quarter);
+  NearRangeResult r;
+  ASSERT_EQ(tracker.track(frame.image(), turned, 0, r), Status::kOk);
+  ASSERT_NE(r.status, TrackStatus::kLost) << "the turned pose finds the same lines";
+  EXPECT_EQ(r.flags & kFlagNearTwinRival, 0U) << "not asked: not refitted";
+  EXPECT_GT(rotationAngleRad(r.pose.R_c_m, truth.R_c_m), 80.0 * kRadPerDeg) << "the lines hold the twin";
+
+  tracker.reset();
+  tracker.setNearTwinChecks(true);
+  ASSERT_EQ(tracker.track(frame.image(), turned, 1, r), Status::kOk);
+  ASSERT_NE(r.status, TrackStatus::kLost);
+  EXPECT_NE(r.flags & kFlagNearTwinRival, 0U) << "rms " << r.rms_px;
+
+  // From the true pose the turned labels fit nowhere near as well: no flag.
+  tracker.reset();
+  ASSERT_EQ(tracker.track(frame.image(), truth, 2, r), Status::kOk);
+  ASSERT_EQ(r.status, TrackStatus::kTracking);
+  EXPECT_EQ(r.flags & kFlagNearTwinRival, 0U);
+
+  // A plate far from square has no near twin the lines could fit: no flag from the truth either.
+  const PolygonModel oblong = makeOctagonPlate(2.6, 1.4, 0.3);
+  NearRangeTracker oblong_tracker;
+  NearRangeParams params;
+  ASSERT_TRUE(oblong_tracker.init(vgaCamera(), oblong, params).ok);
+  EXPECT_EQ(oblong_tracker.nearTwinCount(), 0);
+}
+
 TEST_F(TrackerTest, AFaceOnPlateIsNotAmbiguous) {
   // The mirrored start of a face-on plate is the same pose: no rival, no flag.
   const Pose truth = test::plateAt(12.0);

@@ -43,7 +43,8 @@ struct NearRangeParams {
   double reject_line_rms_gain = 0.5;
   double reject_line_trigger_rms_px = 0.15;
   int max_rejected_lines = 3;
-  bool mirrored_rival_relabel = true;  ///< the rival's fit relabels lines through the model mirror
+  bool mirrored_rival_relabel = true;     ///< the rival's fit relabels lines through the model mirror
+  double near_twin_rival_max_rel = 0.25;  ///< near twins refitted when asked (setNearTwinChecks)
   // Surface switching (sec. II-H), viewing angle v of CONVENTIONS.md.
   double visibility_enter_low_deg = 45.0;
   double visibility_enter_high_deg = 135.0;
@@ -181,6 +182,13 @@ struct NearRangeParams {
          "14 913 -> 14 843 (fsw/nearrange/README.md). false: the rival is fitted to the lines as measured "
          "and a box's twin is never flagged"},
         mirrored_rival_relabel);
+    v.real(
+        {"nearrange", "near_twin_rival_max_rel", "-", 0.0, 1.0,
+         "near twins the tracker refits to its measured lines when the caller asks (a track whose branch "
+         "is not yet confirmed): turns of the model onto itself within this fraction of its bounding "
+         "radius (a near-square plate's quarter turn), the closest NearRangeTracker::kMaxNearTwins of them. "
+         "One that fits as well flags kFlagNearTwinRival. 0: none"},
+        near_twin_rival_max_rel);
     v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,
                "also measure the outline of the body (edges between a front and a back face, open edges of "
                "front faces) outside the sec. II-H gate: it has contrast against the background when a "

@@ -47,6 +47,10 @@ enum TrackFlag : std::uint32_t {
   /// The depth-mirrored pose (Necker reversal; a plate's other tilt) explains the lines as well: the image
   /// does not say which is true (status degraded; never good evidence on its own).
   kFlagAmbiguous = 1U << 10,
+  /// Asked for (setNearTwinChecks): a near twin of the model (a turn mapping it onto itself within
+  /// near_twin_rival_max_rel, e.g. a near-square plate's quarter turn) explains the same lines as well.
+  /// Information for the caller's rival test; the status is not changed by it.
+  kFlagNearTwinRival = 1U << 11,
 };
 
 /// Per-stage execution time of one track() call [us] (zeros when no clock is set).
@@ -81,6 +85,9 @@ struct NearRangeResult {
   int vertices = 0;
   double rms_px = 0.0;
   int lm_iterations = 0;
+  /// With kFlagNearTwinRival: the near twin's fit that explains the lines as well (for the caller's
+  /// continuity test).
+  Pose near_twin_rival;
   NearRangeTiming timing;
 };
 
@@ -121,6 +128,12 @@ class NearRangeTracker {
   void setClock(MonotonicClockNs clock) { m_clock = clock; }
   /// Forget surface visibility and polarity history (e.g. after re-acquisition).
   void reset();
+  /// Whether the following track() calls also refit the model's near twins to the measured lines
+  /// (kFlagNearTwinRival): up to kMaxNearTwins LM fits a frame, so the caller asks for it only while it
+  /// has to tell a track from its twins (a branch not yet confirmed). Off after init.
+  void setNearTwinChecks(bool on) { m_near_twin_checks = on; }
+  /// Near twins the model has (within near_twin_rival_max_rel, at most kMaxNearTwins).
+  int nearTwinCount() const { return m_relabel_count - m_mirror_count; }
 
   /// One frame. `predicted` is the pose to project with (the last pose or a filter prediction);
   /// `frame_index` seeds RANSAC so the same frame gives the same result.
@@ -155,6 +168,15 @@ class NearRangeTracker {
   /// A rival still shows a surface turned up to 15 deg past grazing (sin 15 deg; rivalShowsMeasuredEdges).
   static constexpr double kRivalGrazingCos = 0.2588;
 
+ public:
+  /// Near twins refitted a frame at most (the smallest separations first): a near-cube box has 23.
+  static constexpr int kMaxNearTwins = 8;
+
+ private:
+  /// At most three axis mirrors of the model frame map it onto itself.
+  static constexpr int kMaxMirrors = 3;
+  static constexpr int kMaxRelabels = kMaxMirrors + kMaxNearTwins;
+
   double elapsedUs(std::int64_t& since) const;
   void updateSurfaces(const Pose& predicted);
   void selectEdges(NearRangeResult& out);
@@ -181,7 +203,14 @@ class NearRangeTracker {
   /// `rival` shows (a surface owning it faces the camera or is within kRivalGrazingCos past grazing): a
   /// rival that explains the outline with back-facing edges is no pose the tracker could hold.
   bool rivalShowsMeasuredEdges(const Pose& pose, const Pose& rival, int k) const;
+  /// True when a near twin of `pose` (ModelSymmetries::nearTwin), its lines and corners relabelled onto the
+  /// twin's features, converges to a distinct pose that fits them about as well and shows them.
+  bool nearTwinRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used, Pose& rival_out);
+  /// Fills relabel slot m_relabel_count with the features `map` (x -> map x + offset) makes of each vertex
+  /// and edge, if every vertex lands within tolerance_m of one. Init only.
+  bool addRelabel(const Mat3& map, const Vec3& offset, double tolerance_m, int near_index);
   void findModelMirrors();
+  void findNearTwins();
   void findChamferCorners();
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
   double covarianceScale(const PoseFitResult& fit, std::uint32_t flags) const;
@@ -229,11 +258,24 @@ class NearRangeTracker {
   BoundedBuffer<int> m_slot_of_edge;  ///< per model edge: its m_edges slot this frame, or -1 (measureEdges)
   BoundedBuffer<EdgePointObservation> m_edge_obs;
   ModelSymmetries m_symmetries;
-  std::array<Mat3, 3> m_mirrors{};  ///< axis reflections of the model frame that map the model onto itself
-  std::array<BoundedBuffer<int>, 3> m_mirror_vertex;  ///< per mirror: model vertex -> its mirror image
-  std::array<BoundedBuffer<int>, 3> m_mirror_edge;    ///< per mirror: model edge -> its mirror image
+  /// How a rival's fit relabels the measured features: the model point x measured for the kept pose is the
+  /// rival's feature nearest to map x + offset (a mirror M: M x; a near twin S about the centroid c:
+  /// S^T (x - c) + c).
+  struct Relabel {
+    Mat3 map = Mat3::Identity();
+    Vec3 offset = Vec3::Zero();
+    int near_index = -1;           ///< ModelSymmetries::near index (near twins only)
+    BoundedBuffer<int> to_vertex;  ///< model vertex -> the rival's vertex
+    BoundedBuffer<int> to_edge;    ///< model edge -> the rival's edge
+    BoundedBuffer<int> to_corner;  ///< chamfer corner -> the rival's chamfer corner
+  };
+  /// Slots [0, m_mirror_count): axis reflections of the model frame that map the model onto itself;
+  /// [m_mirror_count, m_relabel_count): near twins.
+  std::array<Relabel, kMaxRelabels> m_relabels;
   int m_mirror_count = 0;
-  int m_relabel_mirror = -1;  ///< the rival fit's mirror: observations relabelled to the mirrored features
+  int m_relabel_count = 0;
+  int m_relabel = -1;  ///< the rival fit's relabel slot: observations relabelled to the rival's features
+  bool m_near_twin_checks = false;
   bool m_first_frame = true;
 };
 
