@@ -18,7 +18,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               doubt_min_line_fraction; 0 switches it off)
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
-              frames whose tracker flags have none of --rival-flags, or an acquisition / reacquisition
+              frames whose tracker flags have none of --rival-flags and without a near-twin rival the
+              pipeline counted (frames.csv column near_twin_rival), or an acquisition / reacquisition
               confirmation (unless --no-confirmed-sources), or a certain near-range frame the pipeline
               judged to have kept the branch by continuity (frames.csv column kept_branch: a clean fit,
               accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
@@ -111,7 +112,8 @@ def replay_scene(rows, a):
                     known = False
             else:
                 bad = 0
-                rival_free = r['mode'] != 'near_range' or (int(r['near_flags']) & a.rival_flags) == 0
+                rival_free = r['mode'] != 'near_range' or ((int(r['near_flags']) & a.rival_flags) == 0
+                                                           and r.get('near_twin_rival', '0') != '1')
                 continuous = (not a.no_branch_continuity and r['mode'] == 'near_range'
                               and r.get('kept_branch', '0') == '1')
                 if not a.no_confirmed_sources and (acquisition_pose or r['reacquired'] == '1'

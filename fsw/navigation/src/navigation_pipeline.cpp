@@ -315,6 +315,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_acquisition_result = acq::AcquisitionResult{};
   m_pose_showed_face = true;
   m_fit_kept_the_branch = false;
+  m_near_twin_rival = false;
   m_pose_jumped = false;
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;

@@ -85,15 +85,15 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // A near twin (kFlagNearTwinRival) is no rival where continuity chooses: the last valid pose's look keeps
   // the fit and refuses the twin (a near-cubic box's quarter turn is 90 deg away; seeds 1-40 without this
   // withheld 37 right frames after short breaks).
-  const bool near_twin_rival =
-      (m_near_result.flags & kFlagNearTwinRival) != 0U &&
+  m_near_twin_rival =
+      processed_in == NavMode::kNearRange && (m_near_result.flags & kFlagNearTwinRival) != 0U &&
       !(m_frames_since_valid != ~0ULL &&
         m_reacquisition.lookConsistentWith(m_last_valid_pose, m_frames_since_valid, m_near_result.pose) &&
         !m_reacquisition.lookConsistentWith(m_last_valid_pose, m_frames_since_valid,
                                             m_near_result.near_twin_rival));
   const bool rival_free =
       processed_in != NavMode::kNearRange ||
-      ((m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U && !near_twin_rival);
+      ((m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U && !m_near_twin_rival);
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;

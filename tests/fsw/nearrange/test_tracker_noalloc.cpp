@@ -10,13 +10,17 @@ namespace visnav {
 namespace {
 
 void runAndCount(NearRangeParams params, const PolygonModel& model, const std::vector<Pose>& truths,
-                 const synthetic::RenderOptions& render = {}) {
+                 const synthetic::RenderOptions& render = {}, bool near_twin_checks = false) {
   synthetic::Renderer renderer;
   ASSERT_TRUE(renderer.init(test::vgaCamera(), model, render).ok);
   std::vector<test::RenderedFrame> frames;
   for (std::size_t i = 0; i < truths.size(); ++i) frames.push_back(test::renderFrame(renderer, truths[i], i));
   NearRangeTracker tracker;
   ASSERT_TRUE(tracker.init(test::vgaCamera(), model, params).ok);
+  if (near_twin_checks) {
+    ASSERT_GE(tracker.nearTwinCount(), 1) << "the model has near twins to refit";
+    tracker.setNearTwinChecks(true);
+  }
   Pose pose = truths.front();
   NearRangeResult result;
   int not_lost = 0;
@@ -51,6 +55,13 @@ TEST(TrackerNoAlloc, BoxPointToLineResidual) {
   render.shading.enabled = true;
   render.shading.sun_dir_c = Vec3(0.3, 0.5, 1.0);
   runAndCount(params, makeBox(0.8, 0.6, 0.5), truths, render);
+}
+
+TEST(TrackerNoAlloc, NearSquareOctagonWithNearTwinChecks) {
+  // The near twins' refits (kFlagNearTwinRival) relabel through tables built at init.
+  std::vector<Pose> truths;
+  for (int i = 0; i < 20; ++i) truths.push_back(test::plateAt(14.0 + 0.1 * i, 0.01 * i, 6.0, -0.2 * i));
+  runAndCount(NearRangeParams{}, makeOctagonPlate(2.658, 2.513, 0.437), truths, {}, true);
 }
 
 TEST(TrackerNoAlloc, CounterSeesAllocations) {

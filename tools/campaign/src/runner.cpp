@@ -211,6 +211,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.shows_face = pipeline->lastPoseShowedAFace();
     f.twin_by_continuity = sol.twin_by_continuity;
     f.kept_branch = pipeline->lastFitKeptTheBranch();
+    f.near_twin_rival = pipeline->lastNearTwinRival();
     f.jumped = pipeline->lastPoseJumped();
     const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
     if (u.status == Status::kOk && u.dof == 6) {

@@ -77,6 +77,9 @@ class NavigationPipeline {
   /// Whether the last frame's near-range fit met the branch continuity rule (keptTheBranch), whatever the
   /// branch's state: what tools/campaign/gate_replay.py replays.
   bool lastFitKeptTheBranch() const { return m_fit_kept_the_branch; }
+  /// Whether the last frame's near-range fit had a near-twin rival the branch rule counted (the tracker's
+  /// kFlagNearTwinRival, unless continuity with the last valid look chose): for the gate replay.
+  bool lastNearTwinRival() const { return m_near_twin_rival; }
   /// Whether the last frame's near-range pose was withheld as a disputed jump (disputed_max_look_change_deg).
   bool lastPoseJumped() const { return m_pose_jumped; }
 
@@ -120,6 +123,7 @@ class NavigationPipeline {
   double m_max_view_cos = 1.0;         ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
   bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
+  bool m_near_twin_rival = false;      ///< lastNearTwinRival()
   bool m_pose_jumped = false;          ///< lastPoseJumped()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
   bool m_track_twin_by_continuity = false;
