@@ -70,6 +70,8 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_near.reset();
   m_reacquisition.stop();
   m_branch.setKnown();  // the operator's pose says which branch
+  m_branch_reference_pose = pose;
+  m_frames_since_branch_reference = 0;
   m_modes.transition(NavMode::kNearRange, "start: initial pose given", frame_number);
   m_fdir.resetPersistence();
 }
@@ -366,10 +368,13 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   if (out.pose_valid) {
     m_last_valid_pose = out.pose;
     m_frames_since_valid = 0;
+    m_branch_reference_pose = out.pose;
+    m_frames_since_branch_reference = 0;
     flagTwins(out);
   } else if (m_frames_since_valid != ~0ULL) {
     ++m_frames_since_valid;
   }
+  if (!out.pose_valid && m_frames_since_branch_reference != ~0ULL) ++m_frames_since_branch_reference;
   if (m_modes.step(in, out.frame_number)) enterMode(m_modes.mode());
   out.fault_bits = m_fdir.endFrame();
   if (m_clock != nullptr) out.timing.process_us = static_cast<double>(m_clock() - start) * 1e-3;

@@ -82,14 +82,16 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
 void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // track_branch.hpp says why. A fit without corners (point-to-line fallback) is not checked against its
   // twin well enough to count as rival-free.
-  // A near twin (kFlagNearTwinRival) is no rival where continuity chooses: the last valid pose's look keeps
-  // the fit and refuses the twin (a near-cubic box's quarter turn is 90 deg away; seeds 1-40 without this
-  // withheld 37 right frames after short breaks).
+  // A near twin (kFlagNearTwinRival) is no rival where continuity chooses: the look of the last valid pose
+  // (or of the operator's start pose, before any) keeps the fit and refuses the twin (a near-cubic box's
+  // quarter turn is 90 deg away; seeds 1-40 without this withheld 37 right frames after short breaks, and
+  // box/67, whose first frames were too uncertain to deliver, 70 frames without the start pose).
   m_near_twin_rival =
       processed_in == NavMode::kNearRange && (m_near_result.flags & kFlagNearTwinRival) != 0U &&
-      !(m_frames_since_valid != ~0ULL &&
-        m_reacquisition.lookConsistentWith(m_last_valid_pose, m_frames_since_valid, m_near_result.pose) &&
-        !m_reacquisition.lookConsistentWith(m_last_valid_pose, m_frames_since_valid,
+      !(m_frames_since_branch_reference != ~0ULL &&
+        m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference,
+                                           m_near_result.pose) &&
+        !m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference,
                                             m_near_result.near_twin_rival));
   const bool rival_free =
       processed_in != NavMode::kNearRange ||

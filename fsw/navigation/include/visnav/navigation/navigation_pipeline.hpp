@@ -166,6 +166,10 @@ class NavigationPipeline {
   bool m_find_confirms_branch = false;  ///< doubt_clear_frames > 1: the find's branch waits for its doubt
   Pose m_last_valid_pose;               ///< the last pose delivered as valid
   std::uint64_t m_frames_since_valid = ~0ULL;  ///< frames since then (~0: none yet)
+  /// What continuity tells a near twin apart by (confirmBranch): the last valid pose, or the operator's start
+  /// pose when none was valid since it, and the frames since (~0: neither).
+  Pose m_branch_reference_pose;
+  std::uint64_t m_frames_since_branch_reference = ~0ULL;
   TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
