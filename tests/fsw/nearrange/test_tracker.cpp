@@ -153,6 +153,12 @@ TEST_F(TrackerTest, InitRejectsBrokenHysteresis) {
   EXPECT_NE(e.message.find("visibility_exit_low_deg"), std::string::npos);
 }
 
+/// A renderer and a default tracker for a test's own model.
+void initRig(const PolygonModel& model, synthetic::Renderer& renderer, NearRangeTracker& tracker) {
+  ASSERT_TRUE(renderer.init(vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  ASSERT_TRUE(tracker.init(vgaCamera(), model, NearRangeParams{}).ok);
+}
+
 TEST(ChamferedPlateTest, LongEdgesMeetAcrossUnmeasuredCutsAsCorners) {
   // A 2.0 x 1.6 m plate with its corners cut 0.1 m (the campaign's octagon family): at 20 m the cuts are
   // 7 px long, too short for a line, so no two measured lines share a vertex. Where their lines meet across
@@ -160,9 +166,8 @@ TEST(ChamferedPlateTest, LongEdgesMeetAcrossUnmeasuredCutsAsCorners) {
   // point-to-line fallback, and the cuts count neither as lines nor as missed ones.
   const PolygonModel model = makeOctagonPlate(2.0, 1.6, 0.1);
   synthetic::Renderer renderer;
-  ASSERT_TRUE(renderer.init(vgaCamera(), model, synthetic::RenderOptions{}).ok);
   NearRangeTracker tracker;
-  ASSERT_TRUE(tracker.init(vgaCamera(), model, NearRangeParams{}).ok);
+  ASSERT_NO_FATAL_FAILURE(initRig(model, renderer, tracker));
 
   const Pose far_truth = plateAt(20.0, 0.2, 8.0, -5.0);
   const test::RenderedFrame far_frame = renderFrame(renderer, far_truth, 11);
@@ -193,9 +198,8 @@ TEST(NearTwinRivalTest, ANearSquarePlatesQuarterTurnIsFlaggedWhenAsked) {
   // labels (the true pose) better than their own: flagged when the caller asks, and only then.
   const PolygonModel model = makeOctagonPlate(2.658, 2.513, 0.437);
   synthetic::Renderer renderer;
-  ASSERT_TRUE(renderer.init(vgaCamera(), model, synthetic::RenderOptions{}).ok);
   NearRangeTracker tracker;
-  ASSERT_TRUE(tracker.init(vgaCamera(), model, NearRangeParams{}).ok);
+  ASSERT_NO_FATAL_FAILURE(initRig(model, renderer, tracker));
   ASSERT_GE(tracker.nearTwinCount(), 1) << "the quarter turns are near twins";
   ModelSymmetries symmetries;
   symmetries.find(model);
