@@ -78,7 +78,8 @@ class NavigationPipeline {
   /// branch's state: what tools/campaign/gate_replay.py replays.
   bool lastFitKeptTheBranch() const { return m_fit_kept_the_branch; }
   /// Whether the last frame's near-range fit had a near-twin rival the branch rule counted (the tracker's
-  /// kFlagNearTwinRival, unless continuity with the last valid look chose): for the gate replay.
+  /// kFlagNearTwinRival, unless continuity with the last valid or the start pose's look chose): for the
+  /// gate replay.
   bool lastNearTwinRival() const { return m_near_twin_rival; }
   /// Whether the last frame's near-range pose was withheld as a disputed jump (disputed_max_look_change_deg).
   bool lastPoseJumped() const { return m_pose_jumped; }
