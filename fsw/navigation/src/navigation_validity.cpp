@@ -84,7 +84,7 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // twin well enough to count as rival-free.
   // A near twin (kFlagNearTwinRival) is no rival where continuity chooses: the look of the last valid pose
   // (or of the operator's start pose, before any) keeps the fit and refuses the twin (a near-cubic box's
-  // quarter turn is 90 deg away; seeds 1-40 without this withheld 37 right frames after short breaks, and
+  // quarter turn is 90 deg away; without this exception seeds 1-40 lost 37 tracked frames of right poses, and
   // box/67, whose first frames were too uncertain to deliver, 70 frames without the start pose).
   m_near_twin_rival =
       processed_in == NavMode::kNearRange && (m_near_result.flags & kFlagNearTwinRival) != 0U &&

@@ -163,18 +163,19 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
 bool NearRangeTracker::nearTwinRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used,
                                          Pose& rival_out) {
   // A near-square plate's quarter turn, tilted and moved a few per cent in range, draws nearly the same
-  // outline (campaign octagon/172, 2.66 x 2.51 m at 30 m: acquired 90 deg off, its fits 0.5-0.9 px rms
+  // outline (campaign octagon/172, 2.66 x 2.51 m at 30 m: acquired 90 deg off, its fits mostly 0.5-0.9 px rms
   // where the true pose's were 0.06-0.3, and delivered for 11 frames). Relabelled onto the twin's features
   // the measured lines say which of the two they belong to, as mirroredRivalFits does for the depth mirror.
   const double range = pose.t_c_m.norm();
-  if (!(range > 0.0)) return false;
+  if (nearTwinCount() == 0 || !(range > 0.0)) return false;  // nothing refitted, the buffers untouched
   PoseTolerance distinct;
   distinct.position_m = kRivalDistinctRel * range;
   distinct.attitude_rad = kRivalDistinctDeg * kRadPerDeg;
   const double as_good = std::max(kRivalRmsFactor * fit.rms_px, fit.rms_px + m_params.pixel_sigma_px);
   // The twin of a fit that bent its tilt and range to the wrong labels starts on the wrong side of a flat
-  // target's two-tilt ambiguity (octagon/172's plate at 20 m: LM from there stopped 20 deg away at 4x the
-  // true pose's rms), so its depth-mirrored starts (mirroredRivalFits) are tried too.
+  // target's two-tilt ambiguity (test NearTwinRivalTest, octagon/172's plate rendered at 20 m: LM from there
+  // stopped 20 deg away at 4x the true pose's rms), so its depth-mirrored starts (mirroredRivalFits) are
+  // tried too.
   const Vec3 los = pose.t_c_m / range;
   const Mat3 depth_mirror = Mat3::Identity() - 2.0 * los * los.transpose();
   bool rival_fits = false;
