@@ -11,8 +11,10 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
   certainty   candidate with attitude 1-sigma <= --attitude-sigma-deg and position 1-sigma / range
               <= --position-sigma-rel ([navigation] max_valid_attitude_sigma_deg / _position_sigma_rel)
   doubt       a near-range candidate the filter's innovation gate rejected (fault bit 0x10), that used
-              fewer than --doubt-min-line-fraction of its selected lines, or whose track began with a
-              reacquisition's find and has not yet had a pose within the doubted limit
+              fewer than --doubt-min-line-fraction of its selected lines, beside a face the tracker saw as a
+              narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
+              ignores it), or whose track began with a reacquisition's find and has not yet had a pose
+              within the doubted limit
               needs attitude 1-sigma <=
               --doubted-attitude-sigma-deg ([navigation] doubted_max_attitude_sigma_deg /
               doubt_min_line_fraction; 0 switches it off)
@@ -47,6 +49,7 @@ import sys
 AMBIGUOUS = 0x400          # kFlagAmbiguous
 RESIDUAL_FALLBACK = 0x100  # kFlagResidualFallback
 FAULT_INNOVATION = 0x10    # kFaultInnovation
+NARROW_FACE = 0x1000       # kFlagNarrowFace
 
 
 def parse_args(argv):
@@ -56,6 +59,7 @@ def parse_args(argv):
     p.add_argument('--position-sigma-rel', type=float, default=0.025)
     p.add_argument('--doubted-attitude-sigma-deg', type=float, default=1.0)
     p.add_argument('--doubt-min-line-fraction', type=float, default=0.75)
+    p.add_argument('--no-narrow-face-doubt', action='store_true')
     p.add_argument('--branch-confirm-frames', type=int, default=3)
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
     p.add_argument('--no-confirmed-sources', action='store_true')
@@ -87,7 +91,8 @@ def replay_scene(rows, a):
                    and float(r['position_sigma_rel']) <= a.position_sigma_rel)
         if certain and a.doubted_attitude_sigma_deg > 0 and r['mode'] == 'near_range':
             doubted = track_doubted or (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
-                int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total']))
+                int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total'])) or (
+                not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0)
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
         if (r['mode'] == 'near_range' and r['candidate'] == '1' and a.doubted_attitude_sigma_deg > 0

@@ -33,7 +33,7 @@ void NearRangeTracker::selectEdges(NearRangeResult& out) {
   if (out.tracked_surfaces == 0 && out.silhouette_lines == 0) out.flags |= kFlagNoSurface;
 }
 
-void NearRangeTracker::findConfusableEdges(const Pose& predicted) {
+bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
   // An interior edge (both neighbouring surfaces front-facing) next to a face seen at a grazing angle lies a
   // few pixels from the outline edge on that face's far side. Closer than the step test can resolve (its two
   // w-sample windows plus the blur: confusable_edge_separation_px), the interior edge's scanlines may find
@@ -60,13 +60,14 @@ void NearRangeTracker::findConfusableEdges(const Pose& predicted) {
     any_interior = any_interior || interior(e);
   }
   // A plate, or a body seen face-on with one tracked face, has no interior edge: nothing to project.
-  if (!any_interior || !(m_params.confusable_edge_separation_px > 0.0)) return;
+  if (!any_interior || !(m_params.confusable_edge_separation_px > 0.0)) return false;
   const auto& vertices = m_model.vertices();
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     const Vec3 p_c = predicted.transform(vertices[v]);
     m_vertex_in_front[v] = p_c.z() > 0.0 && m_camera.project(p_c, m_vertex_px[v]) ? 1U : 0U;
   }
   const double separation = m_params.confusable_edge_separation_px;
+  bool narrow_strip = false;
   for (std::size_t e = 0; e < edges.size(); ++e) {
     if (!interior(e)) continue;
     const ModelEdge& edge = edges[e];
@@ -92,12 +93,14 @@ void NearRangeTracker::findConfusableEdges(const Pose& predicted) {
       const double s1 = std::min(length, std::max(d.dot(c), d.dot(c + cd)));
       if (s1 - s0 < kMinOverlap * length) continue;
       const double gap = std::max(std::fabs(n.dot(c)), std::fabs(n.dot(c + cd)));
+      narrow_strip = narrow_strip || gap < separation;
       if (gap >= kNegligibleGapPx && gap < best_gap) {
         best_gap = gap;
         m_confusable_partner[e] = static_cast<int>(f);
       }
     }
   }
+  return narrow_strip;
 }
 
 }  // namespace visnav

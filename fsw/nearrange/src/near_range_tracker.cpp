@@ -362,7 +362,7 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
                               std::sqrt(2.0 * m_params.scanline_band_half_width_px + 1.0);
   updateSurfaces(predicted);  // 1 surfaces (sec. II-H)
   selectEdges(out);
-  findConfusableEdges(predicted);
+  if (findConfusableEdges(predicted)) out.flags |= kFlagNarrowFace;
   out.timing.project_us = elapsedUs(stamp);
   if ((out.flags & kFlagNoSurface) != 0U) {
     finishLost(predicted, out);

@@ -328,6 +328,8 @@ TEST(ConfusableEdges, AFlatLitBoxIsTrackedOnItsOutlineNotOnContrastlessInteriorE
   ASSERT_EQ(tracker.track(frame.image(), truth, 0, r), Status::kOk);
   ASSERT_NE(r.status, TrackStatus::kLost) << "flags " << r.flags;
   EXPECT_GT(r.confusable_points, 0);  // the outline's steps seen from the front face's edges
+  EXPECT_NE(r.flags & kFlagNarrowFace, 0U) << "the side faces are strips of a few pixels";
+  EXPECT_EQ(r.status, TrackStatus::kTracking) << "information only: flags " << r.flags;
   EXPECT_LT(attitudeErrorDeg(r), 2.0);
   EXPECT_LT((r.pose.t_c_m - truth.t_c_m).norm(), 0.01 * 14.5);
   // The control: measuring every step (separation 0) takes the outline's steps for the interior edges.
@@ -352,6 +354,7 @@ TEST(ConfusableEdges, AFlatLitBoxIsTrackedOnItsOutlineNotOnContrastlessInteriorE
   const test::RenderedFrame diagonal_frame = test::renderFrame(renderer, along_diagonal, 18);
   ASSERT_EQ(diagonal.track(diagonal_frame.image(), along_diagonal, 0, r), Status::kOk);
   EXPECT_EQ(r.confusable_points, 0);
+  EXPECT_EQ(r.flags & kFlagNarrowFace, 0U) << "every face is tens of pixels wide";
 }
 
 }  // namespace

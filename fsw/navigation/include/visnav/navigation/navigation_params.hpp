@@ -41,6 +41,7 @@ struct NavigationParams {
   double max_valid_position_sigma_rel = 0.025;
   double doubted_max_attitude_sigma_deg = 1.0;  ///< the same for a near-range pose that is doubted (below)
   double doubt_min_line_fraction = 0.75;        ///< fewer used lines / selected lines: the pose is doubted
+  bool doubt_narrow_face = true;  ///< a fit beside a face seen nearly edge-on (kFlagNarrowFace) is doubted
   int doubt_clear_frames = 1;  ///< consecutive poses within the doubted limit that end a find's doubt
   double disputed_max_look_change_deg = 5.0;    ///< a disputed pose turned more than this is not valid
   double disputed_max_range_change_rel = 0.03;  ///< or its range this far (relative) from the prediction's
@@ -187,6 +188,13 @@ struct NavigationParams {
             "a near-range pose is doubted when fewer than this share of its selected lines were used (the "
             "others were not found or rejected): it rests on part of the outline"},
            doubt_min_line_fraction);
+    v.boolean({"navigation", "doubt_narrow_face", "-", 0, 1,
+               "a near-range pose is doubted when a tracked face is seen nearly edge-on, as a strip "
+               "narrower than [nearrange] confusable_edge_separation_px (the tracker's narrow-face flag): "
+               "the lines beside it may be biased by up to the strip's width with a tight scatter, and "
+               "a pose on them looks certain (campaign box/25: 5 of 6 lines at 0.02-0.08 px rms, 1.0-1.5 "
+               "deg 1-sigma, 4.7-5.9 deg off)"},
+              doubt_narrow_face);
     v.integer(
         {"navigation", "doubt_clear_frames", "count", 1, 1000,
          "a track that began with a reacquisition's find stays doubted, and none of its poses is "

@@ -51,6 +51,10 @@ enum TrackFlag : std::uint32_t {
   /// near_twin_rival_max_rel, e.g. a near-square plate's quarter turn) explains the same lines as well.
   /// Information for the caller's rival test; the status is not changed by it.
   kFlagNearTwinRival = 1U << 11,
+  /// A tracked face is seen nearly edge-on, as a strip narrower than confusable_edge_separation_px between
+  /// two parallel edges: the step test cannot resolve them, and the lines fitted there may be biased by up
+  /// to the strip's width, which their scatter does not show (information; the status is not changed).
+  kFlagNarrowFace = 1U << 12,
 };
 
 /// Per-stage execution time of one track() call [us] (zeros when no clock is set).
@@ -180,7 +184,7 @@ class NearRangeTracker {
   double elapsedUs(std::int64_t& since) const;
   void updateSurfaces(const Pose& predicted);
   void selectEdges(NearRangeResult& out);
-  void findConfusableEdges(const Pose& predicted);
+  bool findConfusableEdges(const Pose& predicted);  ///< true: a face is seen as a narrow strip
   void measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out);
   void measureEdge(const MonoImage& image, const Pose& predicted, int model_edge, NearRangeResult& out);
   bool outwardReference(const ModelEdge& edge, const Pose& predicted, Vec2& centroid_px) const;
