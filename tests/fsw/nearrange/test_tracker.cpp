@@ -309,7 +309,8 @@ TEST_F(DiagonalBoxTest, PaperGateAloneLosesIt) {
 // A flat-lit box nearly face-on (campaign box/17): its side faces are grazing strips a few pixels wide, and
 // the edges between the front face and them have no contrast at all. Their scanlines cross the outline a
 // few pixels out; believing those steps tilted the fit by 5.7 deg from the true start at 0.2 px rms. A step
-// nearer the parallel outline edge than the interior edge itself is not taken for it.
+// nearer the parallel outline edge than the interior edge itself is not taken for it, and the frame is
+// flagged (kFlagNarrowFace): the navigation doubts a pose beside such a strip.
 TEST(ConfusableEdges, AFlatLitBoxIsTrackedOnItsOutlineNotOnContrastlessInteriorEdges) {
   const PolygonModel model = makeBox(0.726, 0.555, 0.48);
   synthetic::Renderer renderer;
@@ -329,7 +330,6 @@ TEST(ConfusableEdges, AFlatLitBoxIsTrackedOnItsOutlineNotOnContrastlessInteriorE
   ASSERT_NE(r.status, TrackStatus::kLost) << "flags " << r.flags;
   EXPECT_GT(r.confusable_points, 0);  // the outline's steps seen from the front face's edges
   EXPECT_NE(r.flags & kFlagNarrowFace, 0U) << "the side faces are strips of a few pixels";
-  EXPECT_EQ(r.status, TrackStatus::kTracking) << "information only: flags " << r.flags;
   EXPECT_LT(attitudeErrorDeg(r), 2.0);
   EXPECT_LT((r.pose.t_c_m - truth.t_c_m).norm(), 0.01 * 14.5);
   // The control: measuring every step (separation 0) takes the outline's steps for the interior edges.
