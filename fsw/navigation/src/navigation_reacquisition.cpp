@@ -185,9 +185,11 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
     }
   }
   // The track lost a few frames ago tells a near twin the image cannot resolve from the true pose: the
-  // same look test, with this frame's tolerance, that the find must pass below.
-  if (m_params.navigation.reacquire_twin_continuity && m_frames_since_valid != ~0ULL)
-    m_acquisition.setLookReference(m_last_valid_pose, m_reacquisition.lookToleranceRad(m_frames_since_valid));
+  // same look test, with this frame's tolerance, that the find must pass below. Its reference is the last
+  // valid pose, or the operator's start pose before any (m_branch_reference_pose).
+  if (m_params.navigation.reacquire_twin_continuity && m_frames_since_branch_reference != ~0ULL)
+    m_acquisition.setLookReference(m_branch_reference_pose,
+                                   m_reacquisition.lookToleranceRad(m_frames_since_branch_reference));
   acq::AcquisitionResult result;
   if (m_acquisition.step(image, frame_number, result) != Status::kOk) return;
   step.acquisition_state = static_cast<int>(result.state);
@@ -205,9 +207,11 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
   // nor its look once the filter coasts on a rate from a bad track (box/78: 16 deg off at the loss, 29 deg
   // four frames later). The last valid pose judges the look, with the local search's tolerance widening per
   // frame since it: a box turned onto another face a few frames after the loss is refused (campaign box/160:
-  // found 89 deg off 11 frames after its last valid pose).
-  if (m_frames_since_valid != ~0ULL &&
-      !m_reacquisition.lookConsistentWith(m_last_valid_pose, m_frames_since_valid, result.pose)) {
+  // found 89 deg off 11 frames after its last valid pose). Before any valid pose, the operator's start pose
+  // judges it (campaign box/147: no pose of its first frames valid, then found 84 deg off 42 frames later).
+  if (m_frames_since_branch_reference != ~0ULL &&
+      !m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference,
+                                          result.pose)) {
     ++step.starts_inconsistent;
     return;
   }
