@@ -2,8 +2,9 @@
 """Replays visnav's output gates over a campaign's frames.csv (visnav-campaign --frames).
 
 Whether a pose is delivered as valid does not feed back into the tracking: the same frames are tracked, the
-same filter updated, whatever the gates decide (one exception: the close-range reacquisition checks its finds'
-look against the last valid pose, so a withheld pose there can change a later search; tools/campaign/README.md).
+same filter updated, whatever the gates decide (two exceptions: the close-range reacquisition checks its
+finds' look against the last valid pose, and the tracker refits near twins only while the branch is
+unconfirmed, so a withheld pose can change a later search or fit; tools/campaign/README.md).
 frames.csv records each frame's candidate pose (delivered or
 withheld) with its errors, its own sigmas and the tracker's flags, so a gate can be judged offline over a
 whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed, with the shipped defaults:
