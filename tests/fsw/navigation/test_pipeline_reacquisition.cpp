@@ -114,6 +114,41 @@ TEST_F(PipelineTest, ATargetThatApproachedWhileHiddenIsFoundByTheCloseRangeAcqui
   }
 }
 
+TEST_F(PipelineTest, BeforeAnyValidPoseTheStartPoseJudgesAFindsLook) {
+  // Started with the plate's pose but hidden from the first frame (no pose is ever valid before the
+  // search), it reappears 20 % closer: with the start pose's look, the acquisition's find is taken; turned
+  // 40 deg about the line of sight, beyond the look tolerance (15 deg, widening 0.5 deg a frame here), it is
+  // refused, as it would be after a valid pose (campaign box/147: found 84 deg off 42 frames after its start,
+  // none of its first poses valid, and delivered).
+  const Pose start = test::plateAt(15.0, 0.3, 1.0, -1.0);
+  for (const double turn_deg : {0.0, 40.0}) {
+    std::vector<test::RenderedFrame> seq;
+    Pose behind = start;
+    behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+    for (int i = 0; i < 30; ++i) {
+      seq.push_back(test::renderFrame(
+          renderer, i < kHiddenUntil ? behind : test::plateAt(12.0, 0.3, 1.0 + turn_deg, -1.0), 500U + i));
+      if (i < kHiddenUntil) seq.back().truth = start;
+    }
+    PipelineParams p = params;
+    p.navigation.reacquire_tolerance_growth_deg_per_frame = 0.5;
+    NavigationPipeline pipeline;
+    HiddenRun run;
+    ASSERT_NO_FATAL_FAILURE(runHidden(seq, p, pipeline, run));
+    EXPECT_EQ(run.allocations, 0U);
+    for (int i = 0; i < kHiddenUntil; ++i)
+      ASSERT_FALSE(run.out[static_cast<std::size_t>(i)].pose_valid) << "frame " << i << ": nothing to see";
+    int valid_after = 0;
+    for (std::size_t i = kHiddenUntil; i < run.out.size(); ++i) valid_after += run.out[i].pose_valid ? 1 : 0;
+    if (turn_deg == 0.0) {
+      expectFoundByAcquisitionSoon(run, valid_after);
+    } else {
+      EXPECT_LT(run.found_at, 0) << "a find 40 deg from the start pose's look was taken";
+      EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
 TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRangeSeesIt) {
   // As above, but the plate also moved sideways while hidden, from 1.5 m right of the line of sight to 2.4 m
   // left of it: it reappears 17 deg (about 2.5 target radii) from the prediction's line of sight and 20 %

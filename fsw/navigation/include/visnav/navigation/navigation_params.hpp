@@ -42,7 +42,7 @@ struct NavigationParams {
   double doubted_max_attitude_sigma_deg = 1.0;  ///< the same for a near-range pose that is doubted (below)
   double doubt_min_line_fraction = 0.75;        ///< fewer used lines / selected lines: the pose is doubted
   bool doubt_narrow_face = true;  ///< a fit beside a face seen nearly edge-on (kFlagNarrowFace) is doubted
-  int doubt_clear_frames = 1;  ///< consecutive poses within the doubted limit that end a find's doubt
+  int doubt_clear_frames = 1;     ///< consecutive poses within the doubted limit that end a find's doubt
   double disputed_max_look_change_deg = 5.0;    ///< a disputed pose turned more than this is not valid
   double disputed_max_range_change_rel = 0.03;  ///< or its range this far (relative) from the prediction's
   double max_valid_view_angle_deg = 80.0;  ///< a pose showing no surface nearer facing than this is not valid
