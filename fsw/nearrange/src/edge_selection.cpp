@@ -95,11 +95,11 @@ bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
       const double gap = std::max(std::fabs(n.dot(c)), std::fabs(n.dot(c + cd)));
       // Opposite edges of one face this close: that face is seen nearly edge-on (kFlagNarrowFace). Another
       // part's edge nearby (a panel beside a body) is no narrow face.
-      const bool same_face = other.surface_left >= 0 && (other.surface_left == edge.surface_left ||
-                                                         other.surface_left == edge.surface_right);
-      const bool same_face_right = other.surface_right >= 0 && (other.surface_right == edge.surface_left ||
-                                                                other.surface_right == edge.surface_right);
-      narrow_strip = narrow_strip || (gap < separation && (same_face || same_face_right));
+      const auto bordersEdge = [&edge](int surface) {
+        return surface >= 0 && (surface == edge.surface_left || surface == edge.surface_right);
+      };
+      narrow_strip = narrow_strip || (gap < separation &&
+                                      (bordersEdge(other.surface_left) || bordersEdge(other.surface_right)));
       if (gap >= kNegligibleGapPx && gap < best_gap) {
         best_gap = gap;
         m_confusable_partner[e] = static_cast<int>(f);
