@@ -66,6 +66,10 @@ def parse_args(argv):
     p.add_argument('--no-confirmed-sources', action='store_true')
     p.add_argument('--break-after', type=int, default=1)
     p.add_argument('--max-nis', type=float, default=0.0)
+    p.add_argument('--min-line-fraction', type=float, default=0.0)
+    p.add_argument('--min-edge-support', type=float, default=0.0)
+    p.add_argument('--weak-evidence-doubt', action='store_true')
+    p.add_argument('--weak-evidence-invalid', action='store_true')
     p.add_argument('--no-view-gate', action='store_true')
     p.add_argument('--no-acquisition-await', action='store_true')
     p.add_argument('--no-branch-continuity', action='store_true')
@@ -93,13 +97,21 @@ def replay_scene(rows, a):
         if certain and a.doubted_attitude_sigma_deg > 0 and r['mode'] == 'near_range':
             doubted = track_doubted or (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
                 int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total'])) or (
-                not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0)
+                not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0) or (
+                a.weak_evidence_doubt and r.get('evidence_good', '1') == '0')
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
         if (r['mode'] == 'near_range' and r['candidate'] == '1' and a.doubted_attitude_sigma_deg > 0
                 and float(r['attitude_sigma_deg']) <= a.doubted_attitude_sigma_deg):
             track_doubted = False
         if certain and a.max_nis > 0 and r['nis'] and float(r['nis']) > a.max_nis:
+            certain = False
+        if (certain and r['mode'] == 'near_range'
+                and int(r['lines_used']) < a.min_line_fraction * int(r['lines_total'])):
+            certain = False
+        if certain and r['mode'] == 'near_range' and (
+                (a.weak_evidence_invalid and r.get('evidence_good', '1') == '0')
+                or int(r.get('inlier_points', '0')) < a.min_edge_support * int(r.get('scanlines', '0'))):
             certain = False
         if certain and not a.no_view_gate and r.get('shows_face', '1') == '0':
             certain = False

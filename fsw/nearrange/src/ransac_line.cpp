@@ -2,8 +2,18 @@
 
 #include <cmath>
 
+#include "visnav/core/types.hpp"
+
 namespace visnav {
 namespace {
+
+/// Variance of a zero-mean normal of sigma `sigma` cut to +-threshold: sigma^2 (1 - 2 c phi(c) /
+/// erf(c/sqrt2)), c = threshold / sigma.
+double cutNormalVariance(double sigma, double threshold) {
+  const double c = threshold / sigma;
+  const double phi = std::exp(-0.5 * c * c) / std::sqrt(2.0 * kPi);
+  return sigma * sigma * (1.0 - 2.0 * c * phi / std::erf(c / std::sqrt(2.0)));
+}
 
 int countInliers(const Vec2* points, int count, const Line2d& line, double threshold) {
   const Vec2 n = line.normal();
@@ -71,6 +81,22 @@ RansacResult fitLineRansac(const Vec2* points, int count, const RansacParams& pa
   result.inliers = inliers;
   result.rms_px = std::sqrt(sq / inliers);
   return result;
+}
+
+double uncutScatterSigma(double inlier_variance_px2, double threshold_px) {
+  if (!(inlier_variance_px2 > 0.0) || !(threshold_px > 0.0)) return 0.0;
+  const double measured = std::sqrt(inlier_variance_px2);
+  // Below a quarter of the threshold the cut removes under 0.2 % of the variance.
+  if (measured < 0.25 * threshold_px) return measured;
+  double high = 2.0 * threshold_px;
+  if (cutNormalVariance(high, threshold_px) <= inlier_variance_px2) return high;
+  double low = measured;  // the cut only ever shrinks the variance
+  constexpr int kBisections = 40;
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (low + high);
+    (cutNormalVariance(mid, threshold_px) < inlier_variance_px2 ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
 }
 
 }  // namespace visnav

@@ -59,6 +59,37 @@ Pose plateTilted(double obliquity_deg) {
   return Pose::fromYpr({0.0, obliquity_deg * kRadPerDeg, kPi}, Vec3(0.0, 0.0, 10.0));
 }
 
+// The consensus set's scatter, cut at the threshold, gives back the points' own sigma.
+TEST(RansacLine, UncutScatterGivesBackTheSigmaTheThresholdCut) {
+  constexpr double kThreshold = 0.9;
+  for (const double sigma : {0.45, 0.6, 0.8}) {
+    Pcg32 gen(17);
+    double sum_sq = 0.0;
+    int kept = 0;
+    for (int i = 0; i < 200000; ++i) {
+      // Box-Muller normal draw.
+      const double u1 = 1.0 - gen.uniform();
+      const double d = sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * gen.uniform());
+      if (std::fabs(d) > kThreshold) continue;
+      sum_sq += d * d;
+      ++kept;
+    }
+    const double cut_variance = sum_sq / kept;
+    EXPECT_LT(std::sqrt(cut_variance), 0.9 * sigma) << "the cut must shrink sigma " << sigma;
+    EXPECT_NEAR(uncutScatterSigma(cut_variance, kThreshold), sigma, 0.03 * sigma) << sigma;
+  }
+}
+
+TEST(RansacLine, UncutScatterKeepsASmallScatterAndCapsAFullBand) {
+  EXPECT_DOUBLE_EQ(uncutScatterSigma(0.1 * 0.1, 0.9), 0.1);  // a tenth of the threshold: no cut to undo
+  // A uniform band fills the threshold: any sigma above twice the threshold looks the same.
+  EXPECT_DOUBLE_EQ(uncutScatterSigma(0.9 * 0.9 / 3.0, 0.9), 1.8);
+  EXPECT_EQ(uncutScatterSigma(0.0, 0.9), 0.0);
+  EXPECT_EQ(uncutScatterSigma(-1.0, 0.9), 0.0);
+  EXPECT_EQ(uncutScatterSigma(0.1, 0.0), 0.0);
+  EXPECT_EQ(uncutScatterSigma(std::nan(""), 0.9), 0.0);
+}
+
 TEST(SurfaceVisibility, HeadOnIsNinetyDegrees) {
   const PolygonModel plate = makeRectanglePlate(2.3, 1.8);
   const SurfaceView view = viewSurface(plate.surfaces()[0], plateTilted(0.0));

@@ -105,7 +105,8 @@ std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const 
 
 std::string traceEdges(const NearRangeTracker& tracker, const Pose& truth) {
   // Each measured edge: model edge, points, and the fitted line's distance (ideal px) from the edge's true
-  // projection at both ends; a line far from the truth is what a wrong fit was built on.
+  // projection at both ends, and after "|" the 1-sigma the tracker gave those ends (its end_variance_px2);
+  // a line far from the truth is what a wrong fit was built on.
   std::string out = "       edges:";
   const PolygonModel& model = tracker.model();
   const BoundedBuffer<EdgeMeasurement>& edges = tracker.lastEdges();
@@ -120,8 +121,8 @@ std::string traceEdges(const NearRangeTracker& tracker, const Pose& truth) {
         tracker.camera().projectIdeal(truth.transform(model.vertices()[static_cast<std::size_t>(me.v1)]), b);
     char buf[64];
     if (e.line_ok && projected)
-      std::snprintf(buf, sizeof buf, " %d:%d(%.1f,%.1f)", e.model_edge, e.point_count,
-                    e.line.signedDistance(a), e.line.signedDistance(b));
+      std::snprintf(buf, sizeof buf, " %d:%d(%.2f,%.2f|%.2f)", e.model_edge, e.point_count,
+                    e.line.signedDistance(a), e.line.signedDistance(b), std::sqrt(e.end_variance_px2));
     else
       std::snprintf(buf, sizeof buf, " %d:%d(-)", e.model_edge, e.point_count);
     out += buf;
@@ -206,6 +207,9 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.near_flags = pipeline->lastNearRange().flags;
     f.lines_used = pipeline->lastNearRange().lines_used;
     f.lines_total = pipeline->lastNearRange().lines_total;
+    f.scanlines = pipeline->lastNearRange().scanlines;
+    f.inlier_points = pipeline->lastNearRange().inlier_points;
+    f.evidence_good = nav::imageEvidenceGood(pipeline->lastNearRange(), params.navigation);
     f.reacquired = pipeline->lastReacquisition().found;
     f.symmetric_twins = sol.symmetric_twins;
     f.shows_face = pipeline->lastPoseShowedAFace();

@@ -33,6 +33,7 @@ struct NearRangeParams {
   int ransac_iterations = 100;
   int ransac_seed = 1;
   int min_points_per_line = 5;
+  bool uncut_line_scatter = false;  ///< a line's point sigma undoes the RANSAC threshold's cut
   double min_inlier_ratio = 0.5;
   // Pose update (sec. II-G).
   int pose_residual = static_cast<int>(PoseResidualMode::kVertex);
@@ -189,6 +190,12 @@ struct NearRangeParams {
          "radius (a near-square plate's quarter turn), the closest NearRangeTracker::kMaxNearTwins of them. "
          "One that fits as well flags kFlagNearTwinRival. 0: none"},
         near_twin_rival_max_rel);
+    v.boolean({"nearrange", "uncut_line_scatter", "-", 0, 1,
+               "a line's point sigma, which sets how well its ends and the vertices on it are known, is "
+               "that of the normal scatter whose part within ransac_threshold_px the inliers show "
+               "(uncutScatterSigma), not the inliers' own: at the 0.9 px threshold a 0.6 px scatter looks "
+               "like 0.45. Off: the inliers' rms (before 2026-12-01)"},
+              uncut_line_scatter);
     v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,
                "also measure the outline of the body (edges between a front and a back face, open edges of "
                "front faces) outside the sec. II-H gate: it has contrast against the background when a "

@@ -60,7 +60,10 @@ struct FrameOutcome {
   std::uint32_t near_flags = 0;               ///< the near-range tracker's flags (0 when it did not run)
   int lines_used = 0;
   int lines_total = 0;
-  bool reacquired = false;  ///< the candidate came from close-range reacquisition
+  int scanlines = 0;           ///< scanlines the tracker cast on its selected edges
+  int inlier_points = 0;       ///< edge points on its fitted lines
+  bool evidence_good = false;  ///< nav::imageEvidenceGood of the tracker's result (false when it did not run)
+  bool reacquired = false;     ///< the candidate came from close-range reacquisition
   int symmetric_twins = 0;  ///< NavSolution::symmetric_twins: attitudes the image cannot tell apart (valid)
   bool shows_face = true;   ///< the candidate showed a face (NavigationPipeline::lastPoseShowedAFace)
   bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
