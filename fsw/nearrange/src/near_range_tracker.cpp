@@ -250,19 +250,17 @@ void NearRangeTracker::fitLines(std::uint64_t frame_index, NearRangeResult& out)
     ++out.lines_used;
     out.inlier_points += fit.inliers;
     // The line's own scatter (floored at the configured edge-point sigma) sets how well its ends are known:
-    // that of its points, not of the inliers the threshold cut from them (uncutScatterSigma).
+    // that of its points, not of the inliers the threshold cut from them (uncutScatterVariance).
     double sum_sq = 0.0;
     for (int i = 0; i < slot.point_count; ++i)
       if (m_inlier[i] != 0U) {
         const double d = slot.line.signedDistance(m_points_ideal[slot.first_point + i]);
         sum_sq += d * d;
       }
-    const double inlier_var = sum_sq / std::max(1, fit.inliers - 2);
-    const double point_sigma = m_params.uncut_line_scatter
-                                   ? uncutScatterSigma(inlier_var, m_params.ransac_threshold_px)
-                                   : std::sqrt(inlier_var);
-    const double scatter2 =
-        std::max(point_sigma * point_sigma, m_params.pixel_sigma_px * m_params.pixel_sigma_px);
+    double point_var = sum_sq / std::max(1, fit.inliers - 2);
+    if (m_params.uncut_line_scatter)
+      point_var = uncutScatterVariance(point_var, m_params.ransac_threshold_px);
+    const double scatter2 = std::max(point_var, m_params.pixel_sigma_px * m_params.pixel_sigma_px);
     slot.end_variance_px2 = 4.0 * scatter2 / fit.inliers;
     ratio_sum += ratio;
     // Remember each inlier's polarity at its place on the edge for the next frame.

@@ -83,20 +83,20 @@ RansacResult fitLineRansac(const Vec2* points, int count, const RansacParams& pa
   return result;
 }
 
-double uncutScatterSigma(double inlier_variance_px2, double threshold_px) {
+double uncutScatterVariance(double inlier_variance_px2, double threshold_px) {
   if (!(inlier_variance_px2 > 0.0) || !(threshold_px > 0.0)) return 0.0;
-  const double measured = std::sqrt(inlier_variance_px2);
-  // Below a quarter of the threshold the cut removes under 0.2 % of the variance.
-  if (measured < 0.25 * threshold_px) return measured;
+  // Below a quarter of the threshold the cut removes under 0.2 % of the variance: kept as it is.
+  if (inlier_variance_px2 < 0.0625 * threshold_px * threshold_px) return inlier_variance_px2;
   double high = 2.0 * threshold_px;
-  if (cutNormalVariance(high, threshold_px) <= inlier_variance_px2) return high;
-  double low = measured;  // the cut only ever shrinks the variance
+  if (cutNormalVariance(high, threshold_px) <= inlier_variance_px2) return high * high;
+  double low = std::sqrt(inlier_variance_px2);  // the cut only ever shrinks the variance
   constexpr int kBisections = 40;
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (low + high);
     (cutNormalVariance(mid, threshold_px) < inlier_variance_px2 ? low : high) = mid;
   }
-  return 0.5 * (low + high);
+  const double sigma = 0.5 * (low + high);
+  return sigma * sigma;
 }
 
 }  // namespace visnav

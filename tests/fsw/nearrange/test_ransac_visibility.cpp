@@ -76,18 +76,18 @@ TEST(RansacLine, UncutScatterGivesBackTheSigmaTheThresholdCut) {
     }
     const double cut_variance = sum_sq / kept;
     EXPECT_LT(std::sqrt(cut_variance), 0.9 * sigma) << "the cut must shrink sigma " << sigma;
-    EXPECT_NEAR(uncutScatterSigma(cut_variance, kThreshold), sigma, 0.03 * sigma) << sigma;
+    EXPECT_NEAR(std::sqrt(uncutScatterVariance(cut_variance, kThreshold)), sigma, 0.03 * sigma) << sigma;
   }
 }
 
 TEST(RansacLine, UncutScatterKeepsASmallScatterAndCapsAFullBand) {
-  EXPECT_DOUBLE_EQ(uncutScatterSigma(0.1 * 0.1, 0.9), 0.1);  // a tenth of the threshold: no cut to undo
+  EXPECT_EQ(uncutScatterVariance(0.1 * 0.1, 0.9), 0.1 * 0.1);  // a tenth of the threshold: no cut to undo
   // A uniform band fills the threshold: any sigma above twice the threshold looks the same.
-  EXPECT_DOUBLE_EQ(uncutScatterSigma(0.9 * 0.9 / 3.0, 0.9), 1.8);
-  EXPECT_EQ(uncutScatterSigma(0.0, 0.9), 0.0);
-  EXPECT_EQ(uncutScatterSigma(-1.0, 0.9), 0.0);
-  EXPECT_EQ(uncutScatterSigma(0.1, 0.0), 0.0);
-  EXPECT_EQ(uncutScatterSigma(std::nan(""), 0.9), 0.0);
+  EXPECT_DOUBLE_EQ(uncutScatterVariance(0.9 * 0.9 / 3.0, 0.9), 1.8 * 1.8);
+  EXPECT_EQ(uncutScatterVariance(0.0, 0.9), 0.0);
+  EXPECT_EQ(uncutScatterVariance(-1.0, 0.9), 0.0);
+  EXPECT_EQ(uncutScatterVariance(0.1, 0.0), 0.0);
+  EXPECT_EQ(uncutScatterVariance(std::nan(""), 0.9), 0.0);
 }
 
 TEST(SurfaceVisibility, HeadOnIsNinetyDegrees) {

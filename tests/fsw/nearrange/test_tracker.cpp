@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "tracker_fixture.hpp"
 
@@ -142,6 +144,45 @@ TEST_F(TrackerTest, PointToLineResidualAlsoTracks) {
   p2l.track(frame.image(), truth, 0, r);
   EXPECT_EQ(r.status, TrackStatus::kTracking);
   EXPECT_LT(truth.boxMinus(r.pose).tail<3>().norm(), 0.05);
+}
+
+// The RANSAC threshold cuts the scatter it keeps: on noisy, low-contrast edges the inliers look tighter than
+// the points are, and the line ends (so the vertices on them) look better known than they are ([nearrange]
+// uncut_line_scatter). On clean edges the scatter is far inside the threshold and nothing changes.
+TEST(UncutLineScatter, WidensTheLineEndsOnNoisyEdgesOnly) {
+  const PolygonModel model = makeRectanglePlate(2.3, 1.8);
+  const Pose truth = test::plateAt(14.0, 0.2, 8.0, -5.0);
+  // Each measured line's end sigma (px), in slot order.
+  const auto endSigmas = [&](double noise_sigma, double target_brightness, bool uncut) {
+    synthetic::RenderOptions options;
+    options.noise_sigma = noise_sigma;
+    options.target_brightness = target_brightness;
+    synthetic::Renderer renderer;
+    EXPECT_TRUE(renderer.init(test::vgaCamera(), model, options).ok);
+    const test::RenderedFrame frame = test::renderFrame(renderer, truth, 23);
+    NearRangeParams params;
+    params.uncut_line_scatter = uncut;
+    NearRangeTracker tracker;
+    EXPECT_TRUE(tracker.init(test::vgaCamera(), model, params).ok);
+    NearRangeResult r;
+    EXPECT_EQ(tracker.track(frame.image(), truth, 0, r), Status::kOk);
+    EXPECT_EQ(r.lines_used, 4) << "noise " << noise_sigma;
+    std::vector<double> sigmas;
+    for (std::size_t i = 0; i < tracker.lastEdges().size(); ++i)
+      if (tracker.lastEdges()[i].line_ok) sigmas.push_back(std::sqrt(tracker.lastEdges()[i].end_variance_px2));
+    return sigmas;
+  };
+  EXPECT_EQ(endSigmas(0.01, 0.8, true), endSigmas(0.01, 0.8, false)) << "clean edges: bit for bit";
+  // Noise 0.12 on a 0.1 step: the points scatter about as wide as the threshold.
+  const std::vector<double> cut = endSigmas(0.12, 0.2, false);
+  const std::vector<double> uncut = endSigmas(0.12, 0.2, true);
+  ASSERT_EQ(cut.size(), uncut.size());
+  double widest_gain = 0.0;
+  for (std::size_t i = 0; i < cut.size(); ++i) {
+    EXPECT_GE(uncut[i], cut[i]) << "line " << i;
+    widest_gain = std::max(widest_gain, uncut[i] / cut[i]);
+  }
+  EXPECT_GT(widest_gain, 1.2);
 }
 
 TEST_F(TrackerTest, InitRejectsBrokenHysteresis) {

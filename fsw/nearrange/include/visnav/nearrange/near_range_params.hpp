@@ -193,7 +193,7 @@ struct NearRangeParams {
     v.boolean({"nearrange", "uncut_line_scatter", "-", 0, 1,
                "a line's point sigma, which sets how well its ends and the vertices on it are known, is "
                "that of the normal scatter whose part within ransac_threshold_px the inliers show "
-               "(uncutScatterSigma), not the inliers' own: at the 0.9 px threshold a 0.6 px scatter looks "
+               "(uncutScatterVariance), not the inliers' own: at the 0.9 px threshold a 0.6 px scatter looks "
                "like 0.45. Off: the inliers' rms (before 2026-12-01)"},
               uncut_line_scatter);
     v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,

@@ -26,11 +26,12 @@ struct RansacResult {
 RansacResult fitLineRansac(const Vec2* points, int count, const RansacParams& params, Pcg32& rng,
                            std::uint8_t* inlier, Vec2* scratch);
 
-/// The sigma of a zero-mean normal point scatter whose part within +-threshold_px has the variance
+/// The variance of a zero-mean normal point scatter whose part within +-threshold_px has the variance
 /// `inlier_variance_px2`. The consensus set keeps only the points within the threshold, so its scatter
 /// understates the points' own once that is not small against the threshold: a normal cut at 1.5 sigma
-/// keeps 55 % of its variance. Capped at 2 * threshold_px, where the cut scatter is within 4 % of a uniform
-/// band's and says no more. Bounded bisection, no allocation.
-double uncutScatterSigma(double inlier_variance_px2, double threshold_px);
+/// keeps 55 % of its variance. Returned unchanged below a quarter of the threshold (sigma), capped at
+/// (2 * threshold_px)^2, where the cut scatter is within 4 % of a uniform band's and says no more. Bounded
+/// bisection, no allocation.
+double uncutScatterVariance(double inlier_variance_px2, double threshold_px);
 
 }  // namespace visnav
