@@ -37,6 +37,12 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               the filter rejected it and its look turned more than [navigation] disputed_max_look_change_deg
               from the frame before's pose; as the pipeline judged it; --no-jump-gate ignores it)
   --max-nis   (not shipped) withhold frames whose filter NIS exceeds this
+  evidence    (not shipped; frames.csv columns scanlines, inlier_points, evidence_good, written since
+              2026-12-01) --min-line-fraction F: a near-range candidate that used fewer than F of its selected
+              lines is not certain; --min-edge-support F: nor one with fewer inlier points than F per
+              scanline cast; --weak-evidence-doubt / --weak-evidence-invalid: a candidate whose image
+              evidence is not good (nav::imageEvidenceGood, as the pipeline judged it) is doubted / not
+              certain
 
 Prints tracked mean and confidently wrong frames (scenes) per family, as visnav-campaign defines them.
 --check SCENES_CSV: with the gates as given, every scene's tracked and confidently wrong counts must equal
@@ -59,7 +65,7 @@ def parse_args(argv):
     p.add_argument('--attitude-sigma-deg', type=float, default=2.5)
     p.add_argument('--position-sigma-rel', type=float, default=0.025)
     p.add_argument('--doubted-attitude-sigma-deg', type=float, default=1.0)
-    p.add_argument('--doubt-min-line-fraction', type=float, default=0.75)
+    p.add_argument('--doubt-min-line-fraction', type=float, default=0.85)
     p.add_argument('--no-narrow-face-doubt', action='store_true')
     p.add_argument('--branch-confirm-frames', type=int, default=3)
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)

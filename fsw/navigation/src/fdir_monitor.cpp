@@ -31,6 +31,13 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
   return lines && inliers && residual && support && certain;
 }
 
+bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params) {
+  return (faults & kFaultInnovation) != 0U ||
+         static_cast<double>(r.lines_used) <
+             params.doubt_min_line_fraction * static_cast<double>(r.lines_total) ||
+         (params.doubt_narrow_face && (r.flags & kFlagNarrowFace) != 0U);
+}
+
 void FdirMonitor::init(const NavigationParams& params, const PolygonModel& model, double focal_px) {
   m_params = params;
   // The camera cannot be inside the target; beyond the depth where the target spans 4 px no 6-DOF fit is

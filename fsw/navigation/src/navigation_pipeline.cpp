@@ -257,10 +257,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   if (!dropped && accepted) {
     // A fault (e.g. the innovation gate on a measurement the image supports) is flagged in fault_bits and
     // halves the quality; it does not swap the measurement for the prediction.
-    const bool doubted = (faults & kFaultInnovation) != 0U ||
-                         static_cast<double>(r.lines_used) < m_params.navigation.doubt_min_line_fraction *
-                                                                 static_cast<double>(r.lines_total) ||
-                         (m_params.navigation.doubt_narrow_face && (r.flags & kFlagNarrowFace) != 0U);
+    const bool doubted = nearFitDoubted(r, faults, m_params.navigation);
     // Disputed by the filter and turned further since the frame before than a target turns in one frame:
     // tracked, not valid. Against the last pose, not the prediction: a filter restarted from two alternating
     // fits predicts a rate they do not have (slew_box: 13.6 deg/s). Until deliver() below, m_last_pose is the

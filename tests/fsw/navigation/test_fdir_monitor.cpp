@@ -212,6 +212,40 @@ TEST(Fdir, EvidenceNeedsAPoseCertainEnoughToBeDelivered) {
   EXPECT_TRUE(imageEvidenceGood(withSigmas(10.0 * limit_deg, 10.0 * limit_rel), off));
 }
 
+// A fit that left out part of its outline is doubted: at the default share 0.85 any line of up to 6, or
+// 2 of 7-13 (campaign box/191: 4 of 5 lines, 5.0-5.5 deg off at 1.7-2.3 deg 1-sigma, valid at 0.75).
+TEST(Fdir, AFitThatLeftOutPartOfItsOutlineIsDoubted) {
+  const NavigationParams params;
+  NearRangeResult r;
+  r.status = TrackStatus::kTracking;
+  const auto doubtedAt = [&](int used, int total, const NavigationParams& p) {
+    r.lines_used = used;
+    r.lines_total = total;
+    return nearFitDoubted(r, 0U, p);
+  };
+  EXPECT_FALSE(doubtedAt(4, 4, params));
+  EXPECT_FALSE(doubtedAt(6, 6, params));
+  EXPECT_TRUE(doubtedAt(4, 5, params));
+  EXPECT_TRUE(doubtedAt(5, 6, params));
+  EXPECT_FALSE(doubtedAt(6, 7, params));
+  EXPECT_TRUE(doubtedAt(11, 13, params));
+  EXPECT_FALSE(doubtedAt(12, 14, params));
+  NavigationParams before = params;  // the share until 2026-12-01
+  before.doubt_min_line_fraction = 0.75;
+  EXPECT_FALSE(doubtedAt(4, 5, before));
+  EXPECT_FALSE(doubtedAt(5, 6, before));
+  EXPECT_TRUE(doubtedAt(2, 4, before));
+  // The other two reasons, on a fit with all its lines.
+  r.lines_used = r.lines_total = 6;
+  EXPECT_TRUE(nearFitDoubted(r, kFaultInnovation, params));
+  EXPECT_FALSE(nearFitDoubted(r, kFaultResidual, params));
+  r.flags = kFlagNarrowFace;
+  EXPECT_TRUE(nearFitDoubted(r, 0U, params));
+  NavigationParams no_strip_doubt = params;
+  no_strip_doubt.doubt_narrow_face = false;
+  EXPECT_FALSE(nearFitDoubted(r, 0U, no_strip_doubt));
+}
+
 TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
   FdirMonitor f;
   initWithPersistence(f, 3);

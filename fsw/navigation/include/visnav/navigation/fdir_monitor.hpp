@@ -35,6 +35,13 @@ struct NearRangeCheck {
 bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
                        bool continues_rival_free_fit = false);
 
+/// A near-range fit the navigation doubts (fsw/navigation/README.md, "Certain enough to deliver"): the
+/// filter's innovation gate rejected it (`faults` has kFaultInnovation), it used fewer than
+/// `doubt_min_line_fraction` of its selected lines (it rests on part of the outline), or a tracked face was
+/// seen as a narrow strip beside its lines (kFlagNarrowFace, with `doubt_narrow_face`). Such a pose is valid
+/// only within `doubted_max_attitude_sigma_deg`: its covariance knows the noise, not the bias.
+bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params);
+
 class FdirMonitor {
  public:
   /// The model and `focal_px` derive the plausibility limits the parameters leave 0: below, the camera
