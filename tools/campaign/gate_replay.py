@@ -12,7 +12,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
   certainty   candidate with attitude 1-sigma <= --attitude-sigma-deg and position 1-sigma / range
               <= --position-sigma-rel ([navigation] max_valid_attitude_sigma_deg / _position_sigma_rel)
   doubt       a near-range candidate the filter's innovation gate rejected (fault bit 0x10), that used
-              fewer than --doubt-min-line-fraction of its selected lines, beside a face the tracker saw as a
+              fewer than --doubt-min-line-fraction of its selected lines or left out any of at most
+              --doubt-every-line-up-to ([navigation] doubt_every_line_up_to), beside a face the tracker saw as a
               narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
               ignores it), or whose track began with a reacquisition's find and has not yet had a pose
               within the doubted limit
@@ -65,13 +66,14 @@ def parse_args(argv):
     p.add_argument('--attitude-sigma-deg', type=float, default=2.5)
     p.add_argument('--position-sigma-rel', type=float, default=0.025)
     p.add_argument('--doubted-attitude-sigma-deg', type=float, default=1.0)
-    p.add_argument('--doubt-min-line-fraction', type=float, default=0.85)
+    p.add_argument('--doubt-min-line-fraction', type=float, default=0.75)
     p.add_argument('--no-narrow-face-doubt', action='store_true')
     p.add_argument('--branch-confirm-frames', type=int, default=3)
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
     p.add_argument('--no-confirmed-sources', action='store_true')
     p.add_argument('--break-after', type=int, default=1)
     p.add_argument('--max-nis', type=float, default=0.0)
+    p.add_argument('--doubt-every-line-up-to', type=int, default=6)
     p.add_argument('--min-line-fraction', type=float, default=0.0)
     p.add_argument('--min-edge-support', type=float, default=0.0)
     p.add_argument('--weak-evidence-doubt', action='store_true')
@@ -104,7 +106,8 @@ def replay_scene(rows, a):
             doubted = track_doubted or (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
                 int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total'])) or (
                 not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0) or (
-                a.weak_evidence_doubt and r.get('evidence_good', '1') == '0')
+                a.weak_evidence_doubt and r.get('evidence_good', '1') == '0') or (
+                int(r['lines_total']) <= a.doubt_every_line_up_to and int(r['lines_used']) < int(r['lines_total']))
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
         if (r['mode'] == 'near_range' and r['candidate'] == '1' and a.doubted_attitude_sigma_deg > 0

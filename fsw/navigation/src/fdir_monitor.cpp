@@ -35,6 +35,7 @@ bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const Naviga
   return (faults & kFaultInnovation) != 0U ||
          static_cast<double>(r.lines_used) <
              params.doubt_min_line_fraction * static_cast<double>(r.lines_total) ||
+         (r.lines_total <= params.doubt_every_line_up_to && r.lines_used < r.lines_total) ||
          (params.doubt_narrow_face && (r.flags & kFlagNarrowFace) != 0U);
 }
 

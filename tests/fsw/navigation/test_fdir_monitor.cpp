@@ -212,8 +212,9 @@ TEST(Fdir, EvidenceNeedsAPoseCertainEnoughToBeDelivered) {
   EXPECT_TRUE(imageEvidenceGood(withSigmas(10.0 * limit_deg, 10.0 * limit_rel), off));
 }
 
-// A fit that left out part of its outline is doubted: at the default share 0.85 any line of up to 6, or
-// 2 of 7-13 (campaign box/191: 4 of 5 lines, 5.0-5.5 deg off at 1.7-2.3 deg 1-sigma, valid at 0.75).
+// A fit that left out part of its outline is doubted: a quarter of its lines (doubt_min_line_fraction
+// 0.75), or any line of a small outline (doubt_every_line_up_to 6; campaign box/191: 4 of 5 lines, 5.0-5.5
+// deg off at 1.7-2.3 deg 1-sigma).
 TEST(Fdir, AFitThatLeftOutPartOfItsOutlineIsDoubted) {
   const NavigationParams params;
   NearRangeResult r;
@@ -228,13 +229,14 @@ TEST(Fdir, AFitThatLeftOutPartOfItsOutlineIsDoubted) {
   EXPECT_TRUE(doubtedAt(4, 5, params));
   EXPECT_TRUE(doubtedAt(5, 6, params));
   EXPECT_FALSE(doubtedAt(6, 7, params));
-  EXPECT_TRUE(doubtedAt(11, 13, params));
-  EXPECT_FALSE(doubtedAt(12, 14, params));
-  NavigationParams before = params;  // the share until 2026-12-01
-  before.doubt_min_line_fraction = 0.75;
-  EXPECT_FALSE(doubtedAt(4, 5, before));
-  EXPECT_FALSE(doubtedAt(5, 6, before));
-  EXPECT_TRUE(doubtedAt(2, 4, before));
+  EXPECT_FALSE(doubtedAt(6, 8, params)) << "a chamfered plate whose contrast passes through zero on 2 edges";
+  EXPECT_TRUE(doubtedAt(5, 8, params));
+  EXPECT_TRUE(doubtedAt(10, 14, params));
+  NavigationParams fraction_only = params;  // the rule until 2026-12-01
+  fraction_only.doubt_every_line_up_to = 0;
+  EXPECT_FALSE(doubtedAt(4, 5, fraction_only));
+  EXPECT_FALSE(doubtedAt(5, 6, fraction_only));
+  EXPECT_TRUE(doubtedAt(2, 4, fraction_only));
   // The other two reasons, on a fit with all its lines.
   r.lines_used = r.lines_total = 6;
   EXPECT_TRUE(nearFitDoubted(r, kFaultInnovation, params));

@@ -169,7 +169,8 @@ TEST(UncutLineScatter, WidensTheLineEndsOnNoisyEdgesOnly) {
     EXPECT_EQ(r.lines_used, 4) << "noise " << noise_sigma;
     std::vector<double> sigmas;
     for (std::size_t i = 0; i < tracker.lastEdges().size(); ++i)
-      if (tracker.lastEdges()[i].line_ok) sigmas.push_back(std::sqrt(tracker.lastEdges()[i].end_variance_px2));
+      if (tracker.lastEdges()[i].line_ok)
+        sigmas.push_back(std::sqrt(tracker.lastEdges()[i].end_variance_px2));
     return sigmas;
   };
   EXPECT_EQ(endSigmas(0.01, 0.8, true), endSigmas(0.01, 0.8, false)) << "clean edges: bit for bit";
