@@ -37,10 +37,10 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
 
 /// A near-range fit the navigation doubts (fsw/navigation/README.md, "Certain enough to deliver"): the
 /// filter's innovation gate rejected it (`faults` has kFaultInnovation), it used fewer than
-/// `doubt_min_line_fraction` of its selected lines or left out any of at most `doubt_every_line_up_to`
-/// (it rests on part of the outline), or a tracked face was
-/// seen as a narrow strip beside its lines (kFlagNarrowFace, with `doubt_narrow_face`). Such a pose is valid
-/// only within `doubted_max_attitude_sigma_deg`: its covariance knows the noise, not the bias.
+/// `doubt_min_line_fraction` of its selected lines or left out any of at most `doubt_every_line_up_to` (it
+/// rests on part of the outline), or a tracked face was seen as a narrow strip beside its lines
+/// (kFlagNarrowFace, with `doubt_narrow_face`). Such a pose is valid only within
+/// `doubted_max_attitude_sigma_deg`: its covariance knows the noise, not the bias.
 bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params);
 
 class FdirMonitor {

@@ -190,14 +190,15 @@ struct NearRangeParams {
          "radius (a near-square plate's quarter turn), the closest NearRangeTracker::kMaxNearTwins of them. "
          "One that fits as well flags kFlagNearTwinRival. 0: none"},
         near_twin_rival_max_rel);
-    v.boolean({"nearrange", "uncut_line_scatter", "-", 0, 1,
-               "a line's point sigma, which sets how well its ends and the vertices on it are known, is "
-               "that of the normal scatter whose part within ransac_threshold_px the inliers show "
-               "(uncutScatterVariance), not the inliers' own: at the 0.9 px threshold a 0.6 px scatter "
-               "looks like 0.45. Campaign trace, seeds 1-8: line ends off their true edge by 1.5-2.7 of "
-               "their claimed sigma (median) where the points scatter 0.4-0.8 px, 1.2-1.4 with it. Off: on "
-               "seeds 1-40 tracked mean 0.637 -> 0.632 and confidently wrong frames 7 -> 8 with it"},
-              uncut_line_scatter);
+    v.boolean(
+        {"nearrange", "uncut_line_scatter", "-", 0, 1,
+         "a line's point sigma, which sets how well its ends and the vertices on it are known, is "
+         "that of the normal scatter whose part within ransac_threshold_px the inliers show "
+         "(uncutScatterVariance), not the inliers' own: at the 0.9 px threshold a 0.6 px scatter "
+         "looks like 0.45. Campaign trace, seeds 1-8: where the points scatter 0.4-0.8 px, the line ends' "
+         "true offsets spread 1.5-2.7 times their claimed sigma, 1.2-1.4 times with it. Off: on "
+         "seeds 1-40 tracked mean 0.637 -> 0.632 and confidently wrong frames 7 -> 8 with it"},
+        uncut_line_scatter);
     v.boolean({"nearrange", "silhouette_edges", "-", 0, 1,
                "also measure the outline of the body (edges between a front and a back face, open edges of "
                "front faces) outside the sec. II-H gate: it has contrast against the background when a "
