@@ -13,8 +13,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               <= --position-sigma-rel ([navigation] max_valid_attitude_sigma_deg / _position_sigma_rel)
   doubt       a near-range candidate the filter's innovation gate rejected (fault bit 0x10), that used
               fewer than --doubt-min-line-fraction of its selected lines or left out any of at most
-              --doubt-every-line-up-to ([navigation] doubt_every_line_up_to), beside a face the tracker saw as a
-              narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
+              --doubt-every-line-up-to ([navigation] doubt_every_line_up_to), beside a face the tracker
+              saw as a narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
               ignores it), or whose track began with a reacquisition's find and has not yet had a pose
               within the doubted limit
               needs attitude 1-sigma <=
@@ -107,7 +107,7 @@ def replay_scene(rows, a):
                 int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total'])) or (
                 not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0) or (
                 a.weak_evidence_doubt and r.get('evidence_good', '1') == '0') or (
-                int(r['lines_total']) <= a.doubt_every_line_up_to and int(r['lines_used']) < int(r['lines_total']))
+                int(r['lines_used']) < int(r['lines_total']) <= a.doubt_every_line_up_to)
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
         if (r['mode'] == 'near_range' and r['candidate'] == '1' and a.doubted_attitude_sigma_deg > 0
@@ -115,12 +115,10 @@ def replay_scene(rows, a):
             track_doubted = False
         if certain and a.max_nis > 0 and r['nis'] and float(r['nis']) > a.max_nis:
             certain = False
-        if (certain and r['mode'] == 'near_range'
-                and int(r['lines_used']) < a.min_line_fraction * int(r['lines_total'])):
-            certain = False
         if certain and r['mode'] == 'near_range' and (
-                (a.weak_evidence_invalid and r.get('evidence_good', '1') == '0')
-                or int(r.get('inlier_points', '0')) < a.min_edge_support * int(r.get('scanlines', '0'))):
+                int(r['lines_used']) < a.min_line_fraction * int(r['lines_total'])
+                or int(r.get('inlier_points', '0')) < a.min_edge_support * int(r.get('scanlines', '0'))
+                or (a.weak_evidence_invalid and r.get('evidence_good', '1') == '0')):
             certain = False
         if certain and not a.no_view_gate and r.get('shows_face', '1') == '0':
             certain = False

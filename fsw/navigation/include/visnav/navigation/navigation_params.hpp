@@ -187,10 +187,8 @@ struct NavigationParams {
            doubted_max_attitude_sigma_deg);
     v.real({"navigation", "doubt_min_line_fraction", "-", 0.0, 1.0,
             "a near-range pose is doubted when fewer than this share of its selected lines were used (the "
-            "others were not found or rejected): it rests on part of the outline. 0.85 would also doubt "
-            "2 of 8 (replayed on the full campaign: confidently wrong frames 33 -> 22, tracked mean 0.622 "
-            "-> 0.615), but case low_contrast_octagon, whose contrast passes through zero along 2 of its "
-            "8 edges, falls from 0.98 to 0.81 tracked"},
+            "others were not found or rejected): it rests on part of the outline. 0.85 (2 of 8 doubted) "
+            "fails case low_contrast_octagon: 1.00 -> 0.81 tracked (README, stop 47)"},
            doubt_min_line_fraction);
     v.integer({"navigation", "doubt_every_line_up_to", "lines", 0, 1000,
                "a near-range pose with at most this many selected lines is doubted when any of them was not "
