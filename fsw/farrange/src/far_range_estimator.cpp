@@ -171,6 +171,9 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   const Roi full = Roi::full(m_camera.width(), m_camera.height());
   Gate gate = m_robust ? currentGate() : Gate{};
   int selected = -1;
+  // recheck_frames: this frame is searched whole, and the track is checked against its largest cluster.
+  const bool recheck = m_robust && m_params.recheck_frames > 0 && m_track.active && !m_has_prediction &&
+                       m_track.frames_since_check >= m_params.recheck_frames;
   if (m_robust && m_flatten_as_fallback && m_params.printed_search_wins && m_track_flattened) {
     // A fix over the flattened background is a fallback, and so is its track: once eq. 11 as printed finds
     // a target in the whole frame again, that target is taken as it would be without flattening (campaign
@@ -187,7 +190,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
       out.flags |= printed_flags | kFlagPrintedWins;
     }
   }
-  if (selected < 0 && m_robust && m_params.use_roi && gate.active) {
+  if (selected < 0 && m_robust && m_params.use_roi && gate.active && !recheck) {
     // The region holds the gate and the target's expected extent with a margin (sec. V).
     const double half =
         std::max(gate.radius_px + gate.half_extent_px, m_params.roi_extent_factor * gate.half_extent_px) +
@@ -216,6 +219,13 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     searchRegion(image, full, out);
     std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
     selected = m_robust ? selectRobust(gate, out.flags) : selectPaper();
+    // Before the outline search, which replaces this frame's eq. 13 clusters with its own.
+    if (recheck) {
+      m_track.frames_since_check = 0;
+      const int kept = selected;
+      selected = recheckTrack(selected, out.flags);
+      if (selected != kept) gate = Gate{};
+    }
     if (selected < 0 && m_robust) selected = searchExtended(gate, out.flags);
     out.timing.select_us += elapsedUs(stamp);
   }
@@ -252,6 +262,37 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   m_has_prediction = false;  // a filter prediction holds for one frame
   out.timing.total_us = elapsedUs(start);
   return Status::kOk;
+}
+
+double FarRangeEstimator::clusterDistance(const Cluster& c) const {
+  const int n = usedPixels(c);
+  double d = m_params.gamma / std::sqrt(static_cast<double>(n));
+  if (m_target_radius_m > 0.0 && m_params.extent_distance_min_px > 0.0 &&
+      c.max_radius_px >= m_params.extent_distance_min_px)
+    d = std::min(d, m_camera.intrinsics().fx_px * m_target_radius_m / c.max_radius_px);
+  return d;
+}
+
+int FarRangeEstimator::recheckTrack(int selected, std::uint32_t& flags) {
+  // A track holds what it was started on. Taken before the target was visible (or while it was a few
+  // pixels), that is clutter, and the gate then never looks anywhere else: campaign plate/64 held a blob 22
+  // deg off, read at 40 m, for the whole approach while the plate came from 750 m to 6 m (never handed
+  // over). The whole frame's largest plausible cluster, the rule without a track, takes the track over
+  // only when it is far larger than the tracked one and reads near enough for the acquisition to look at
+  // it: a small true target at a few hundred metres stays tracked beside a large glow, and acquisition,
+  // which refutes a cue without edge structure (refuteLastFix), judges the new one.
+  std::uint32_t untracked_flags = 0U;
+  const int rival = selectRobust(Gate{}, untracked_flags);
+  if (rival < 0 || rival == selected) return selected;
+  const auto& clusters = m_finder.clusters();
+  const Cluster& r = clusters[static_cast<std::size_t>(rival)];
+  const double tracked_n =
+      selected >= 0 ? usedPixels(clusters[static_cast<std::size_t>(selected)]) : m_track.size_px;
+  if (usedPixels(r) < m_params.recheck_switch_ratio * tracked_n) return selected;
+  if (m_recheck_max_distance_m > 0.0 && clusterDistance(r) > m_recheck_max_distance_m) return selected;
+  m_track = Track{};
+  flags = (flags & ~(kFlagGated | kFlagAmbiguous)) | untracked_flags | kFlagRecheckSwitched;
+  return rival;
 }
 
 int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags) {
@@ -379,9 +420,11 @@ void FarRangeEstimator::updateTrack(const FarRangeResult& out) {
       const Vec2 step = (out.centroid_px - t.position_px) / static_cast<double>(1 + t.misses);
       t.velocity_px = t.has_velocity ? Vec2(0.5 * (t.velocity_px + step)) : step;
       t.has_velocity = true;
+      ++t.frames_since_check;
     } else {
       t.velocity_px.setZero();
       t.has_velocity = false;
+      t.frames_since_check = 0;
     }
     t.active = true;
     t.position_px = out.centroid_px;

@@ -23,6 +23,7 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (e.ok) e = m_near.init(camera, model, params.nearrange);
   if (e.ok) e = m_far.init(camera, params.farrange);
   m_far.setTargetRadius(model.boundingRadius());
+  m_far.setRecheckMaxDistance(m_params.navigation.acquire_below_m);
   if (e.ok) e = m_acquisition.init(camera, model, params.acquisition, params.nearrange);
   if (e.ok)
     e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange, params.acquisition);

@@ -25,22 +25,23 @@ namespace visnav::far {
 
 /// Why a frame has no target, or what is special about it (bit set; several may hold).
 enum FarRangeFlag : std::uint32_t {
-  kFlagNoCluster = 1U << 0,        ///< no response above t_in
-  kFlagNoCandidate = 1U << 1,      ///< clusters exist, none accepted (size, shape, gate)
-  kFlagClusterCapacity = 1U << 2,  ///< more spawn pixels than max_clusters
-  kFlagPixelCapacity = 1U << 3,    ///< a cluster's growth stopped at max_cluster_pixels
-  kFlagRoi = 1U << 4,              ///< searched a region of interest only
-  kFlagRoiFallback = 1U << 5,      ///< the region yielded no target: the full frame was searched
-  kFlagGated = 1U << 6,            ///< selected inside the gate of the prediction
-  kFlagCoasting = 1U << 7,         ///< no target this frame, the track is kept (robust)
-  kFlagAtBorder = 1U << 8,         ///< the target touches the image border: n is too small
-  kFlagAmbiguous = 1U << 9,        ///< a second acceptable cluster came close in score
-  kFlagUnconfirmed = 1U << 10,     ///< picked without a track (largest plausible cluster)
-  kFlagExtended = 1U << 11,        ///< found by its outline on the edge response alone (extended target)
-  kFlagExtentDistance = 1U << 12,  ///< distance_m from the cluster's extent and the target's radius
-  kFlagRefutedSkipped = 1U << 13,  ///< a cluster inside a refuted region was passed over (refuteLastFix)
-  kFlagFlattened = 1U << 14,       ///< found over the flattened background (background_fallback_only)
-  kFlagPrintedWins = 1U << 15,     ///< the printed search ended a flattened track (printed_search_wins)
+  kFlagNoCluster = 1U << 0,         ///< no response above t_in
+  kFlagNoCandidate = 1U << 1,       ///< clusters exist, none accepted (size, shape, gate)
+  kFlagClusterCapacity = 1U << 2,   ///< more spawn pixels than max_clusters
+  kFlagPixelCapacity = 1U << 3,     ///< a cluster's growth stopped at max_cluster_pixels
+  kFlagRoi = 1U << 4,               ///< searched a region of interest only
+  kFlagRoiFallback = 1U << 5,       ///< the region yielded no target: the full frame was searched
+  kFlagGated = 1U << 6,             ///< selected inside the gate of the prediction
+  kFlagCoasting = 1U << 7,          ///< no target this frame, the track is kept (robust)
+  kFlagAtBorder = 1U << 8,          ///< the target touches the image border: n is too small
+  kFlagAmbiguous = 1U << 9,         ///< a second acceptable cluster came close in score
+  kFlagUnconfirmed = 1U << 10,      ///< picked without a track (largest plausible cluster)
+  kFlagExtended = 1U << 11,         ///< found by its outline on the edge response alone (extended target)
+  kFlagExtentDistance = 1U << 12,   ///< distance_m from the cluster's extent and the target's radius
+  kFlagRefutedSkipped = 1U << 13,   ///< a cluster inside a refuted region was passed over (refuteLastFix)
+  kFlagFlattened = 1U << 14,        ///< found over the flattened background (background_fallback_only)
+  kFlagPrintedWins = 1U << 15,      ///< the printed search ended a flattened track (printed_search_wins)
+  kFlagRecheckSwitched = 1U << 16,  ///< a track recheck found a far larger, hand-over-near target elsewhere
 };
 
 /// Execution time of one estimate() per stage [us] (zeros when no clock is set).
@@ -91,6 +92,12 @@ class FarRangeEstimator {
   LoadError setExtraFilters(ResponseFilter* const* filters, int count, const double* weights);
   /// Init-time: the target's bounding radius [m] (the model's), for extent_distance_m. 0: unknown.
   void setTargetRadius(double radius_m) { m_target_radius_m = radius_m > 0.0 ? radius_m : 0.0; }
+  /// recheck_frames: a cluster found by the recheck replaces the track only when its distance (as report()
+  /// would give it) is at most this (the navigation pipeline gives its acquisition hand-over distance);
+  /// 0: no distance condition.
+  void setRecheckMaxDistance(double distance_m) {
+    m_recheck_max_distance_m = distance_m > 0.0 ? distance_m : 0.0;
+  }
   /// Forget the track (after a mode change or a ground command). Refuted regions stay.
   void reset();
   /// `frames` frames passed without estimate() (another mode looked at them): the track coasts over them,
@@ -134,6 +141,7 @@ class FarRangeEstimator {
     double size_px = 0.0;  ///< n of the last accepted target
     double half_extent_px = 0.0;
     int misses = 0;
+    int frames_since_check = 0;  ///< fixes since the track began or was last rechecked (recheck_frames)
   };
   struct Gate {
     bool active = false;
@@ -152,6 +160,8 @@ class FarRangeEstimator {
   void prepareCandidates();
   int searchExtended(const Gate& gate, std::uint32_t& flags);
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
+  int recheckTrack(int selected, std::uint32_t& flags);
+  double clusterDistance(const Cluster& c) const;  ///< as report() gives it
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;   ///< n of eq. 16 for this method
   Vec2 usedCentre(const Cluster& c) const;  ///< its centre: of the filled cluster when holes are filled
@@ -165,6 +175,7 @@ class FarRangeEstimator {
   bool m_track_flattened = false;      ///< the last fix was found over the flattened background
   bool m_robust = true;
   double m_target_radius_m = 0.0;
+  double m_recheck_max_distance_m = 0.0;
   MonotonicClockNs m_clock = nullptr;
   EdgeFilter m_edge;
   HistogramFilter m_histogram;

@@ -50,6 +50,8 @@ struct FarRangeParams {
   double extended_enclose_ratio = 4.0;
   double extent_distance_min_px = 4.0;
   int refuted_fix_frames = 60;
+  int recheck_frames = 0;             ///< every this many fixes a track is checked against the whole frame
+  double recheck_switch_ratio = 4.0;  ///< a rival that many times the tracked n (and near enough) wins
   // Capacities (memory is sized from these and the image size at init).
   int max_clusters = 256;
   int max_cluster_pixels = 262144;
@@ -205,6 +207,17 @@ struct FarRangeParams {
          "4 such regions are kept. Campaign approaches handed over a stationary clutter region 10-40 deg "
          "off the target again and again (12 mode changes, never acquired); 0: never"},
         refuted_fix_frames);
+    v.integer(
+        {"farrange", "recheck_frames", "frames", 0, 100000,
+         "robust: every this many fixes of a track, the whole frame is searched as without a track; its "
+         "largest plausible cluster replaces the track when it is at least recheck_switch_ratio times the "
+         "tracked n and reads nearer than the acquisition hand-over distance (the pipeline's "
+         "acquire_below_m). A track taken on clutter before the target was visible held it for the whole "
+         "approach (campaign plate/64: a blob 22 deg off, read 40 m, while the plate came to 6 m); 0: never"},
+        recheck_frames);
+    v.real({"farrange", "recheck_switch_ratio", "-", 1.0, 1.0e6,
+            "see recheck_frames: how many times the tracked n a cluster found by the recheck must be"},
+           recheck_switch_ratio);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
     v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},
