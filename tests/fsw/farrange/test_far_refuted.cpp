@@ -4,6 +4,7 @@
 // forever; always a way back to the target.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "far_approach.hpp"
@@ -247,6 +248,35 @@ TEST(TrackRecheck, ASmallFarTargetIsKeptBesideALargerGlowThatReadsFar) {
     ASSERT_TRUE(r.valid) << frame;
     EXPECT_EQ((r.flags & kFlagRecheckSwitched) != 0U, frame == 3) << frame;
     EXPECT_EQ(test::angleDeg(r.direction_c, truth) < 0.1, frame < 3) << frame;
+  }
+}
+
+// recheck_static_growth: a track whose n grows (an approaching target: 5 % of the range a frame here, so n
+// grows by a third over three frames) is kept, even beside a larger glow with no distance condition.
+TEST(TrackRecheck, AnApproachingTargetIsKeptWhateverTheGlowBesideIt) {
+  synthetic::RenderOptions o = test::farRender();
+  synthetic::Glint glow = glowAt(Vec2(150.0, 360.0));
+  glow.first_frame = 2;
+  o.glints.push_back(glow);
+  Scene s(o);
+  FarRangeParams params;
+  params.recheck_frames = 3;
+  params.recheck_switch_ratio = 1.01;
+  ASSERT_GT(1.0 / (0.95 * 0.95 * 0.95 * 0.95 * 0.95 * 0.95), params.recheck_static_growth);
+  for (const bool approaching : {true, false}) {
+    FarRangeEstimator e;
+    ASSERT_TRUE(e.init(s.camera, params).ok);
+    e.setTargetRadius(s.model.boundingRadius());
+    int switched_on = -1;
+    for (int frame = 0; frame <= 8; ++frame) {
+      const double range_m = approaching ? 300.0 * std::pow(0.95, frame) : 300.0;
+      const test::FarFrame f = s.frame(test::satAt(range_m, 5.0, -3.0, 20.0), 3, frame == 0 ? 0 : 3);
+      FarRangeResult r;
+      ASSERT_EQ(e.estimate(f.image(), r), Status::kOk);
+      ASSERT_TRUE(r.valid) << frame;
+      if ((r.flags & kFlagRecheckSwitched) != 0U && switched_on < 0) switched_on = frame;
+    }
+    EXPECT_EQ(switched_on, approaching ? -1 : 4) << (approaching ? "approaching" : "static");
   }
 }
 

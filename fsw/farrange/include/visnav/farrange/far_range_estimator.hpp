@@ -142,6 +142,7 @@ class FarRangeEstimator {
     double half_extent_px = 0.0;
     int misses = 0;
     int frames_since_check = 0;  ///< fixes since the track began or was last rechecked (recheck_frames)
+    double size_at_check = 0.0;  ///< n then
   };
   struct Gate {
     bool active = false;
