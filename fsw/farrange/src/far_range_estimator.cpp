@@ -190,7 +190,18 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
       out.flags |= printed_flags | kFlagPrintedWins;
     }
   }
-  if (selected < 0 && m_robust && m_params.use_roi && gate.active && !recheck) {
+  if (recheck) {
+    // The whole frame first; a frame the recheck does not switch is then searched as any other, so it
+    // gives the same fix as without the recheck.
+    const std::uint32_t flags_before = out.flags;
+    selected = recheckTrack(image, gate, out);
+    if (selected >= 0) {
+      gate = Gate{};
+    } else {
+      out.flags = flags_before;
+    }
+  }
+  if (selected < 0 && m_robust && m_params.use_roi && gate.active) {
     // The region holds the gate and the target's expected extent with a margin (sec. V).
     const double half =
         std::max(gate.radius_px + gate.half_extent_px, m_params.roi_extent_factor * gate.half_extent_px) +
@@ -219,13 +230,6 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     searchRegion(image, full, out);
     std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
     selected = m_robust ? selectRobust(gate, out.flags) : selectPaper();
-    // Before the outline search, which replaces this frame's eq. 13 clusters with its own.
-    if (recheck) {
-      m_track.frames_since_check = 0;
-      const int kept = selected;
-      selected = recheckTrack(selected, out.flags);
-      if (selected != kept) gate = Gate{};
-    }
     if (selected < 0 && m_robust) selected = searchExtended(gate, out.flags);
     out.timing.select_us += elapsedUs(stamp);
   }
@@ -273,30 +277,30 @@ double FarRangeEstimator::clusterDistance(const Cluster& c) const {
   return d;
 }
 
-int FarRangeEstimator::recheckTrack(int selected, std::uint32_t& flags) {
+int FarRangeEstimator::recheckTrack(const MonoImage& image, const Gate& gate, FarRangeResult& out) {
   // A track holds what it was started on. Taken before the target was visible (or while it was a few
   // pixels), that is clutter, and the gate then never looks anywhere else: campaign plate/64 held a blob 22
   // deg off, read at 40 m, for the whole approach while the plate came from 750 m to 6 m (never handed
   // over). The whole frame's largest plausible cluster, the rule without a track, takes the track over
-  // only when it is far larger than the tracked one and reads near enough for the acquisition to look at
-  // it: a small true target at a few hundred metres stays tracked beside a large glow, and acquisition,
-  // which refutes a cue without edge structure (refuteLastFix), judges the new one.
-  // And only a track that did not grow since the last check: an approaching target does (at 2.5 % of
-  // the range a frame, 1.6 times in 10 frames), a stationary glow or blob does not.
-  const auto& clusters = m_finder.clusters();
-  const double tracked_n =
-      selected >= 0 ? usedPixels(clusters[static_cast<std::size_t>(selected)]) : m_track.size_px;
+  // only when it lies outside the gate, is far larger than the tracked n and reads near enough for the
+  // acquisition to look at it, and only from a track that did not grow since the last check: an
+  // approaching target grows (1.6 times in 10 frames at 2.5 % of the range a frame), a stationary glow or
+  // blob does not. Acquisition, which refutes a cue without edge structure (refuteLastFix), judges it.
+  m_track.frames_since_check = 0;
+  const double tracked_n = std::max(m_track.size_px, 1.0);
   const double grown = tracked_n / std::max(m_track.size_at_check, 1.0);
   m_track.size_at_check = tracked_n;
-  if (grown > m_params.recheck_static_growth) return selected;
+  if (grown > m_params.recheck_static_growth) return -1;
+  searchRegion(image, Roi::full(m_camera.width(), m_camera.height()), out);
   std::uint32_t untracked_flags = 0U;
   const int rival = selectRobust(Gate{}, untracked_flags);
-  if (rival < 0 || rival == selected) return selected;
-  const Cluster& r = clusters[static_cast<std::size_t>(rival)];
-  if (usedPixels(r) < m_params.recheck_switch_ratio * tracked_n) return selected;
-  if (m_recheck_max_distance_m > 0.0 && clusterDistance(r) > m_recheck_max_distance_m) return selected;
+  if (rival < 0) return -1;
+  const Cluster& r = m_finder.clusters()[static_cast<std::size_t>(rival)];
+  if ((usedCentre(r) - gate.centre_px).norm() <= gate.radius_px) return -1;  // the tracked target itself
+  if (usedPixels(r) < m_params.recheck_switch_ratio * tracked_n) return -1;
+  if (m_recheck_max_distance_m > 0.0 && clusterDistance(r) > m_recheck_max_distance_m) return -1;
   m_track = Track{};
-  flags = (flags & ~(kFlagGated | kFlagAmbiguous)) | untracked_flags | kFlagRecheckSwitched;
+  out.flags |= untracked_flags | kFlagRecheckSwitched;
   return rival;
 }
 

@@ -161,7 +161,7 @@ class FarRangeEstimator {
   void prepareCandidates();
   int searchExtended(const Gate& gate, std::uint32_t& flags);
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
-  int recheckTrack(int selected, std::uint32_t& flags);
+  int recheckTrack(const MonoImage& image, const Gate& gate, FarRangeResult& out);
   double clusterDistance(const Cluster& c) const;  ///< as report() gives it
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;   ///< n of eq. 16 for this method
