@@ -50,7 +50,7 @@ struct FarRangeParams {
   double extended_enclose_ratio = 4.0;
   double extent_distance_min_px = 4.0;
   int refuted_fix_frames = 60;
-  int recheck_frames = 0;               ///< every this many fixes a track is checked against the whole frame
+  int recheck_frames = 10;              ///< every this many fixes a track is checked against the whole frame
   double recheck_switch_ratio = 4.0;    ///< a rival that many times the tracked n (and near enough) wins
   double recheck_static_growth = 1.25;  ///< a track whose n grew more since the last check is kept
   // Capacities (memory is sized from these and the image size at init).
