@@ -141,7 +141,7 @@ class FarRangeEstimator {
     double size_px = 0.0;  ///< n of the last accepted target
     double half_extent_px = 0.0;
     int misses = 0;
-    int frames_since_check = 0;  ///< fixes since the track began or was last rechecked (recheck_frames)
+    int frames_since_check = 0;  ///< frames since the track began or was last rechecked (recheck_frames)
     double size_at_check = 0.0;  ///< n then
   };
   struct Gate {
@@ -162,6 +162,8 @@ class FarRangeEstimator {
   int searchExtended(const Gate& gate, std::uint32_t& flags);
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
   int recheckTrack(const MonoImage& image, const Gate& gate, FarRangeResult& out);
+  bool takesTheTrackOver(int rival, const Gate& gate, double tracked_n) const;
+  int largestOutline(std::uint32_t& flags);
   double clusterDistance(const Cluster& c) const;  ///< as report() gives it
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;   ///< n of eq. 16 for this method
