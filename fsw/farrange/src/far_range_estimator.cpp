@@ -247,14 +247,6 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     out.timing.select_us += elapsedUs(stamp);
     if (selected >= 0) out.flags |= kFlagFlattened;
   }
-  if (selected < 0 && m_robust && m_params.untracked_outline && !gate.active) {
-    // No track and no eq. 13 cluster in the whole frame, even over the flattened background: a target on
-    // a gradient solved to its own level has no rare grey level at any size, only its outline (campaign
-    // octagon/62: no fix, or a 2-px speck read at 900-1300 m, while the octagon came to 6.8 m).
-    std::int64_t stamp = m_clock != nullptr ? m_clock() : 0;
-    selected = largestOutline(out.flags);
-    out.timing.select_us += elapsedUs(stamp);
-  }
   if (selected >= 0 && m_robust && (out.flags & kFlagExtended) == 0U)
     selected = preferEnclosingOutline(gate, selected, out.flags);
   if (selected >= 0) {
@@ -303,15 +295,7 @@ int FarRangeEstimator::recheckTrack(const MonoImage& image, const Gate& gate, Fa
   if (grown > m_params.recheck_static_growth) return -1;
   searchRegion(image, Roi::full(m_camera.width(), m_camera.height()), out);
   std::uint32_t untracked_flags = 0U;
-  int rival = selectRobust(Gate{}, untracked_flags);
-  if (!takesTheTrackOver(rival, gate, tracked_n) && m_params.untracked_outline) {
-    // A target whose grey levels are those of its background (a gradient solved to the target's level at
-    // its centre) is no eq. 13 cluster at any size, and its outline is searched only near a track: the
-    // whole frame's largest closed outline, under the same conditions (campaign octagon/62: far range held
-    // a 2-px speck read at 895 m while the octagon came to 6.8 m on a gradient).
-    untracked_flags = 0U;
-    rival = largestOutline(untracked_flags);
-  }
+  const int rival = selectRobust(Gate{}, untracked_flags);
   if (!takesTheTrackOver(rival, gate, tracked_n)) return -1;
   m_track = Track{};
   out.flags |= untracked_flags | kFlagRecheckSwitched;
@@ -324,37 +308,6 @@ bool FarRangeEstimator::takesTheTrackOver(int rival, const Gate& gate, double tr
   if ((usedCentre(r) - gate.centre_px).norm() <= gate.radius_px) return false;  // the tracked target itself
   if (usedPixels(r) < m_params.recheck_switch_ratio * tracked_n) return false;
   return !(m_recheck_max_distance_m > 0.0 && clusterDistance(r) > m_recheck_max_distance_m);
-}
-
-int FarRangeEstimator::largestOutline(std::uint32_t& flags) {
-  // searchExtended's clusters of strong edge response, holes filled, over the whole frame's edge response
-  // (this frame's, from searchRegion), without a gate: at least extended_min_half_px in half extent and not
-  // cut by the image border (a limb's arc is); the largest n wins.
-  if (!(m_params.extended_min_half_px > 0.0)) return -1;
-  const Roi& roi = m_edge_response.roi();
-  std::uint8_t* row_max = m_edge_row_max.data();
-  for (int ry = 0; ry < roi.height; ++ry) {
-    const std::uint8_t* s = m_edge_response.row(ry);
-    row_max[ry] = *std::max_element(s, s + roi.width);
-  }
-  m_finder.find(m_edge_response, row_max, m_ext_spawn_q, m_ext_grow_q, m_params.min_cluster_px);
-  auto& clusters = m_finder.clusters();
-  int best = -1;
-  int best_n = 0;
-  for (std::size_t i = 0; i < clusters.size(); ++i) {
-    Cluster& c = clusters[i];
-    if (c.pixel_count < m_params.min_cluster_px || c.halfExtentPx() < m_params.extended_min_half_px) continue;
-    if (touchesImageBorder(c)) continue;
-    if (m_params.fill_holes) m_finder.fillHoles(c);
-    if (c.axis_ratio > m_params.max_axis_ratio) continue;
-    if (passedOver(c, flags)) continue;
-    if (usedPixels(c) > best_n) {
-      best = static_cast<int>(i);
-      best_n = usedPixels(c);
-    }
-  }
-  if (best >= 0) flags |= kFlagExtended | kFlagUnconfirmed;
-  return best;
 }
 
 int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags) {

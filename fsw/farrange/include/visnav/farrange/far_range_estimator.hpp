@@ -163,7 +163,6 @@ class FarRangeEstimator {
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
   int recheckTrack(const MonoImage& image, const Gate& gate, FarRangeResult& out);
   bool takesTheTrackOver(int rival, const Gate& gate, double tracked_n) const;
-  int largestOutline(std::uint32_t& flags);
   double clusterDistance(const Cluster& c) const;  ///< as report() gives it
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;   ///< n of eq. 16 for this method

@@ -52,7 +52,6 @@ struct FarRangeParams {
   int refuted_fix_frames = 60;
   int recheck_frames = 10;              ///< every this many fixes a track is checked against the whole frame
   double recheck_switch_ratio = 4.0;    ///< a rival that many times the tracked n (and near enough) wins
-  bool untracked_outline = false;       ///< without a track, the largest closed outline as a last resort
   double recheck_static_growth = 1.25;  ///< a track whose n grew more since the last check is kept
   // Capacities (memory is sized from these and the image size at init).
   int max_clusters = 256;
@@ -226,14 +225,6 @@ struct FarRangeParams {
             "campaign's 2.5 % a frame), clutter does not. Without it, on the campaign's approaches true "
             "far targets of a few pixels gave way to nearer-reading clutter"},
            recheck_static_growth);
-    v.boolean({"farrange", "untracked_outline", "-", 0, 1,
-               "robust: without a track, where eq. 13 finds no cluster in the whole frame (even over the "
-               "flattened background), the largest closed outline on the edge response (holes filled, "
-               "at least extended_min_half_px in half extent, not cut by the border, not line-like) is the "
-               "fix; the track recheck looks for one too when eq. 13's largest cluster does not qualify. A "
-               "target on a gradient solved to its own level has no rare grey level at any size (campaign "
-               "octagon/62: no fix while the octagon came to 6.8 m)"},
-              untracked_outline);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
     v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},
