@@ -172,8 +172,6 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   Gate gate = m_robust ? currentGate() : Gate{};
   int selected = -1;
   // recheck_frames: this frame is searched whole, and the track is checked against its largest cluster.
-  // Counted in frames, coasting ones too: a track on a speck found every few frames is no less stuck.
-  if (m_track.active) ++m_track.frames_since_check;
   const bool recheck = m_robust && m_params.recheck_frames > 0 && m_track.active && !m_has_prediction &&
                        m_track.frames_since_check >= m_params.recheck_frames;
   if (m_robust && m_flatten_as_fallback && m_params.printed_search_wins && m_track_flattened) {
@@ -435,6 +433,7 @@ void FarRangeEstimator::updateTrack(const FarRangeResult& out) {
       const Vec2 step = (out.centroid_px - t.position_px) / static_cast<double>(1 + t.misses);
       t.velocity_px = t.has_velocity ? Vec2(0.5 * (t.velocity_px + step)) : step;
       t.has_velocity = true;
+      ++t.frames_since_check;
     } else {
       t.velocity_px.setZero();
       t.has_velocity = false;

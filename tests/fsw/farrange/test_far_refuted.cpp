@@ -205,9 +205,9 @@ TEST(TrackRecheck, ATrackOnClutterGivesWayToAFarLargerTargetOnlyWhenRechecked) {
       EXPECT_EQ(on_target, switched_on > 0) << "recheck " << setting.recheck_frames << ", max distance "
                                             << setting.max_distance_m << ", frame " << frame;
     }
-    // The clutter-only frame's fix starts the track; recheck_frames frames later (the third) the frame is
-    // searched whole.
-    EXPECT_EQ(switched_on, setting.switches ? 3 : -1)
+    // The clutter-only frame's fix starts the track; after recheck_frames more fixes the next frame (the
+    // fourth) is searched whole.
+    EXPECT_EQ(switched_on, setting.switches ? 4 : -1)
         << "recheck " << setting.recheck_frames << ", max distance " << setting.max_distance_m;
   }
 }
@@ -237,7 +237,7 @@ TEST(TrackRecheck, ASmallFarTargetIsKeptBesideALargerGlowThatReadsFar) {
     EXPECT_LT(test::angleDeg(r.direction_c, truth), 0.1) << frame;
     EXPECT_EQ(r.flags & kFlagRecheckSwitched, 0U) << frame;
   }
-  // Without the distance condition the larger glow takes the track at the first recheck: the second frame
+  // Without the distance condition the larger glow takes the track at the first recheck: the third frame
   // after the one that started the track.
   FarRangeEstimator loose;
   ASSERT_TRUE(loose.init(s.camera, params).ok);
@@ -246,14 +246,13 @@ TEST(TrackRecheck, ASmallFarTargetIsKeptBesideALargerGlowThatReadsFar) {
   for (int frame = 1; frame <= 3; ++frame) {
     const FarRangeResult r = estimate(loose, after);
     ASSERT_TRUE(r.valid) << frame;
-    EXPECT_EQ((r.flags & kFlagRecheckSwitched) != 0U, frame == 2) << frame;
-    EXPECT_EQ(test::angleDeg(r.direction_c, truth) < 0.1, frame < 2) << frame;
+    EXPECT_EQ((r.flags & kFlagRecheckSwitched) != 0U, frame == 3) << frame;
+    EXPECT_EQ(test::angleDeg(r.direction_c, truth) < 0.1, frame < 3) << frame;
   }
 }
 
 // recheck_static_growth: a track whose n grows (an approaching target: 5 % of the range a frame here, so n
-// grows by more than a third over three frames) is kept, even beside a larger glow with no distance
-// condition.
+// grows by a third over three frames) is kept, even beside a larger glow with no distance condition.
 TEST(TrackRecheck, AnApproachingTargetIsKeptWhateverTheGlowBesideIt) {
   synthetic::RenderOptions o = test::farRender();
   synthetic::Glint glow = glowAt(Vec2(150.0, 360.0));
@@ -261,7 +260,7 @@ TEST(TrackRecheck, AnApproachingTargetIsKeptWhateverTheGlowBesideIt) {
   o.glints.push_back(glow);
   Scene s(o);
   FarRangeParams params;
-  params.recheck_frames = 4;  // the check sees the n of the frame before: 3 frames of growth
+  params.recheck_frames = 3;
   params.recheck_switch_ratio = 1.01;
   ASSERT_GT(1.0 / (0.95 * 0.95 * 0.95 * 0.95 * 0.95 * 0.95), params.recheck_static_growth);
   for (const bool approaching : {true, false}) {

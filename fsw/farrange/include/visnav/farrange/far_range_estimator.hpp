@@ -141,7 +141,7 @@ class FarRangeEstimator {
     double size_px = 0.0;  ///< n of the last accepted target
     double half_extent_px = 0.0;
     int misses = 0;
-    int frames_since_check = 0;  ///< frames since the track began or was last rechecked (recheck_frames)
+    int frames_since_check = 0;  ///< fixes since the track began or was last rechecked (recheck_frames)
     double size_at_check = 0.0;  ///< n then
   };
   struct Gate {

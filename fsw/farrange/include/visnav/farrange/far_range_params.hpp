@@ -210,11 +210,13 @@ struct FarRangeParams {
         refuted_fix_frames);
     v.integer(
         {"farrange", "recheck_frames", "frames", 0, 100000,
-         "robust: every this many fixes of a track, the whole frame is searched as without a track; its "
-         "largest plausible cluster replaces the track when it is at least recheck_switch_ratio times the "
-         "tracked n and reads nearer than the acquisition hand-over distance (the pipeline's "
-         "acquire_below_m). A track taken on clutter before the target was visible held it for the whole "
-         "approach (campaign plate/64: a blob 22 deg off, read 40 m, while the plate came to 6 m); 0: never"},
+         "robust: every this many fixes of a track, the whole frame is searched "
+         "as without a track; its largest plausible cluster replaces the track when it lies outside the "
+         "gate, is at least recheck_switch_ratio times the tracked n and reads nearer than the "
+         "acquisition hand-over distance (the pipeline's acquire_below_m), from a track that did not "
+         "grow (recheck_static_growth). A track taken on clutter before the target was visible held it "
+         "for the whole approach (campaign plate/64: a blob 22 deg off, read 40 m, while the plate came "
+         "to 6 m); 0: never"},
         recheck_frames);
     v.real({"farrange", "recheck_switch_ratio", "-", 1.0, 1.0e6,
             "see recheck_frames: how many times the tracked n a cluster found by the recheck must be"},
