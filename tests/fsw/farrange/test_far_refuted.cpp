@@ -212,14 +212,19 @@ TEST(TrackRecheck, ATrackOnClutterGivesWayToAFarLargerTargetOnlyWhenRechecked) {
   }
 }
 
-// The other way round: a small true target at 300 m is tracked, and a glow larger in n appears. It reads
-// beyond the hand-over distance, so the recheck keeps the target (any size ratio: 1.01 here).
-TEST(TrackRecheck, ASmallFarTargetIsKeptBesideALargerGlowThatReadsFar) {
+// The satellite's frames with the glow of glowAt appearing on frame 2, after the frame that starts a track.
+synthetic::RenderOptions lateGlowRender() {
   synthetic::RenderOptions o = test::farRender();
   synthetic::Glint glow = glowAt(Vec2(150.0, 360.0));
   glow.first_frame = 2;
   o.glints.push_back(glow);
-  Scene s(o);
+  return o;
+}
+
+// The other way round: a small true target at 300 m is tracked, and a glow larger in n appears. It reads
+// beyond the hand-over distance, so the recheck keeps the target (any size ratio: 1.01 here).
+TEST(TrackRecheck, ASmallFarTargetIsKeptBesideALargerGlowThatReadsFar) {
+  Scene s(lateGlowRender());
   const test::FarFrame before = s.frame(kSatellite, 3, 0);
   const test::FarFrame after = s.frame(kSatellite, 4, 3);
   const Vec3 truth = after.truth.t_c_m.normalized();
@@ -254,11 +259,7 @@ TEST(TrackRecheck, ASmallFarTargetIsKeptBesideALargerGlowThatReadsFar) {
 // recheck_static_growth: a track whose n grows (an approaching target: 5 % of the range a frame here, so n
 // grows by a third over three frames) is kept, even beside a larger glow with no distance condition.
 TEST(TrackRecheck, AnApproachingTargetIsKeptWhateverTheGlowBesideIt) {
-  synthetic::RenderOptions o = test::farRender();
-  synthetic::Glint glow = glowAt(Vec2(150.0, 360.0));
-  glow.first_frame = 2;
-  o.glints.push_back(glow);
-  Scene s(o);
+  Scene s(lateGlowRender());
   FarRangeParams params;
   params.recheck_frames = 3;
   params.recheck_switch_ratio = 1.01;
