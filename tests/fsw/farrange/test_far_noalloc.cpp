@@ -1,6 +1,7 @@
 // REQUIREMENT: the per-frame far-range call allocates nothing after init (fsw/farrange/README.md), in every
 // path: full frame, region of interest, ROI fallback, coasting, lost, both methods, 8- and 16-bit frames,
-// the flattened background (background_block_px), the outline search of an extended target.
+// the flattened background (background_block_px), the outline search of an extended target, the track
+// recheck and its switch.
 #include <gtest/gtest.h>
 
 #include "../../support/alloc_counter.hpp"
@@ -115,6 +116,42 @@ TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
   }
   EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
   EXPECT_GT(extended, 20);
+}
+
+// The track recheck (recheck_frames): the whole-frame search, and the switch from a glow tracked alone to
+// the satellite at 40 m (test_far_refuted.cpp, TrackRecheck), many times over.
+TEST(FarRangeNoAlloc, TheTrackRecheckAndItsSwitch) {
+  synthetic::RenderOptions o = test::farRender();
+  synthetic::Glint glow;
+  glow.first_frame = 0;
+  glow.last_frame = 1000;
+  glow.start_px = glow.end_px = Vec2(150.0, 360.0);
+  glow.sigma_px = 8.0;
+  glow.peak = 1.0;
+  o.glints.push_back(glow);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::farCamera(), test::smallsat(), o).ok);
+  const test::FarFrame clutter_only = test::renderFar(renderer, test::satAt(300.0, 0.0, 80.0, 0.0), 5, 0);
+  const test::FarFrame near = test::renderFar(renderer, test::satAt(40.0, 5.0, -3.0, 20.0), 6, 1);
+  FarRangeParams p;
+  p.recheck_frames = 3;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(test::farCamera(), p).ok);
+  e.setTargetRadius(test::smallsat().boundingRadius());
+  e.setRecheckMaxDistance(100.0);
+  FarRangeResult r;
+  int switches = 0;
+  const std::uint64_t before = test::allocationCount();
+  for (int round = 0; round < 10; ++round) {
+    e.reset();
+    e.estimate(clutter_only.image(), r);
+    for (int i = 0; i < 6; ++i) {
+      e.estimate(near.image(), r);
+      switches += (r.flags & kFlagRecheckSwitched) != 0U ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
+  EXPECT_EQ(switches, 10) << "one switch a round: the path really ran";
 }
 
 TEST(FarRangeNoAlloc, CounterSeesAllocations) {
