@@ -268,46 +268,6 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   return Status::kOk;
 }
 
-double FarRangeEstimator::clusterDistance(const Cluster& c) const {
-  const int n = usedPixels(c);
-  double d = m_params.gamma / std::sqrt(static_cast<double>(n));
-  if (m_target_radius_m > 0.0 && m_params.extent_distance_min_px > 0.0 &&
-      c.max_radius_px >= m_params.extent_distance_min_px)
-    d = std::min(d, m_camera.intrinsics().fx_px * m_target_radius_m / c.max_radius_px);
-  return d;
-}
-
-int FarRangeEstimator::recheckTrack(const MonoImage& image, const Gate& gate, FarRangeResult& out) {
-  // A track holds what it was started on. Taken before the target was visible (or while it was a few
-  // pixels), that is clutter, and the gate then never looks anywhere else: campaign plate/64 held a blob 22
-  // deg off, read at 40 m, for the whole approach while the plate came from 750 m to 6 m (never handed
-  // over). The whole frame's largest plausible cluster, the rule without a track, takes the track over
-  // only when it lies outside the gate, is far larger than the tracked n and reads near enough for the
-  // acquisition to look at it, and only from a track that did not grow since the last check: an
-  // approaching target grows (1.6 times in 10 frames at 2.5 % of the range a frame), a stationary glow or
-  // blob does not. Acquisition, which refutes a cue without edge structure (refuteLastFix), judges it.
-  m_track.frames_since_check = 0;
-  const double tracked_n = std::max(m_track.size_px, 1.0);
-  const double grown = tracked_n / std::max(m_track.size_at_check, 1.0);
-  m_track.size_at_check = tracked_n;
-  if (grown > m_params.recheck_static_growth) return -1;
-  searchRegion(image, Roi::full(m_camera.width(), m_camera.height()), out);
-  std::uint32_t untracked_flags = 0U;
-  const int rival = selectRobust(Gate{}, untracked_flags);
-  if (!takesTheTrackOver(rival, gate, tracked_n)) return -1;
-  m_track = Track{};
-  out.flags |= untracked_flags | kFlagRecheckSwitched;
-  return rival;
-}
-
-bool FarRangeEstimator::takesTheTrackOver(int rival, const Gate& gate, double tracked_n) const {
-  if (rival < 0) return false;
-  const Cluster& r = m_finder.clusters()[static_cast<std::size_t>(rival)];
-  if ((usedCentre(r) - gate.centre_px).norm() <= gate.radius_px) return false;  // the tracked target itself
-  if (usedPixels(r) < m_params.recheck_switch_ratio * tracked_n) return false;
-  return !(m_recheck_max_distance_m > 0.0 && clusterDistance(r) > m_recheck_max_distance_m);
-}
-
 int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags) {
   // eq. 13 may hold only a fragment of a target that grew (plate/50: n = 1 to 3 at 50 m in noise 0.11, read
   // as 1200-2100 m), and the gate's size consistency then keeps the fragment. An outline on the edge response
