@@ -343,6 +343,21 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
   return best;
 }
 
+FarRangeEstimator::ClusterDistances FarRangeEstimator::distancesOf(const Cluster& c) const {
+  ClusterDistances d;
+  d.eq16_m = m_params.gamma / std::sqrt(static_cast<double>(usedPixels(c)));
+  // The target's bounding sphere seen at the cluster's extent. eq. 16's n counts response pixels, and an
+  // extended target's outline has far fewer than its area (a plate at 12 m read 65 m). Both read too far
+  // on a fragment of the target (the extent on a satellite whose panels are dark), and too far is a dead
+  // end (never handed over) where too near costs one failed acquisition: the nearer of the two is taken.
+  if (m_target_radius_m > 0.0 && c.max_radius_px > 0.0) {
+    d.extent_m = m_camera.intrinsics().fx_px * m_target_radius_m / c.max_radius_px;
+    d.from_extent = m_params.extent_distance_min_px > 0.0 &&
+                    c.max_radius_px >= m_params.extent_distance_min_px && d.extent_m < d.eq16_m;
+  }
+  return d;
+}
+
 void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResult& out) const {
   const bool filled = m_robust && m_params.fill_holes && c.filled_count > 0;
   out.centroid_px = filled ? c.filled_com_px : c.com_px;
@@ -355,21 +370,12 @@ void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResul
   const Vec3& d = out.direction_c;
   out.azimuth_rad = std::atan2(d.x(), d.z());
   out.elevation_rad = std::atan2(-d.y(), std::hypot(d.x(), d.z()));
-  out.eq16_distance_m = m_params.gamma / std::sqrt(static_cast<double>(out.cluster_pixels));
-  out.distance_m = out.eq16_distance_m;
-  // The target's bounding sphere seen at the cluster's extent. eq. 16's n counts response pixels, and an
-  // extended target's outline has far fewer than its area (a plate at 12 m read 65 m). Both read too far
-  // on a fragment of the target (the extent on a satellite whose panels are dark), and too far is a dead
-  // end (never handed over) where too near costs one failed acquisition: the nearer of the two is taken.
+  const ClusterDistances distances = distancesOf(c);
+  out.eq16_distance_m = distances.eq16_m;
+  out.extent_distance_m = distances.extent_m;
+  out.distance_m = distances.delivered();
+  if (distances.from_extent) out.flags |= kFlagExtentDistance;
   out.extent_px = c.max_radius_px;
-  if (m_target_radius_m > 0.0 && c.max_radius_px > 0.0) {
-    out.extent_distance_m = m_camera.intrinsics().fx_px * m_target_radius_m / c.max_radius_px;
-    if (m_params.extent_distance_min_px > 0.0 && c.max_radius_px >= m_params.extent_distance_min_px &&
-        out.extent_distance_m < out.distance_m) {
-      out.distance_m = out.extent_distance_m;
-      out.flags |= kFlagExtentDistance;
-    }
-  }
   if (touchesImageBorder(c)) out.flags |= kFlagAtBorder;
   out.valid = true;
   if (!m_robust) {

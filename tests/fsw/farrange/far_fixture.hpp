@@ -71,6 +71,18 @@ inline FarFrame renderFar(synthetic::Renderer& renderer, const Pose& truth, std:
   return f;
 }
 
+/// A broad glow (a Gaussian blob of sigma 8 px) larger in the response than the far satellite at 300 m
+/// (test_far_refuted.cpp, test_far_noalloc.cpp).
+inline synthetic::Glint glowAt(const Vec2& at_px) {
+  synthetic::Glint g;
+  g.first_frame = 0;
+  g.last_frame = 1000;
+  g.start_px = g.end_px = at_px;
+  g.sigma_px = 8.0;
+  g.peak = 1.0;
+  return g;
+}
+
 /// Angle between two directions [deg].
 inline double angleDeg(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * kDegPerRad;

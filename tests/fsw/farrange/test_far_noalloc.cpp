@@ -122,13 +122,7 @@ TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
 // the satellite at 40 m (test_far_refuted.cpp, TrackRecheck), many times over.
 TEST(FarRangeNoAlloc, TheTrackRecheckAndItsSwitch) {
   synthetic::RenderOptions o = test::farRender();
-  synthetic::Glint glow;
-  glow.first_frame = 0;
-  glow.last_frame = 1000;
-  glow.start_px = glow.end_px = Vec2(150.0, 360.0);
-  glow.sigma_px = 8.0;
-  glow.peak = 1.0;
-  o.glints.push_back(glow);
+  o.glints.push_back(test::glowAt(Vec2(150.0, 360.0)));
   synthetic::Renderer renderer;
   ASSERT_TRUE(renderer.init(test::farCamera(), test::smallsat(), o).ok);
   const test::FarFrame clutter_only = test::renderFar(renderer, test::satAt(300.0, 0.0, 80.0, 0.0), 5, 0);

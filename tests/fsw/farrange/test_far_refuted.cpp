@@ -14,16 +14,7 @@ namespace {
 
 using approach_support::Scene;
 
-/// A broad glow (a Gaussian blob of sigma 8 px) larger in the response than the far satellite at 300 m.
-synthetic::Glint glowAt(const Vec2& at_px) {
-  synthetic::Glint g;
-  g.first_frame = 0;
-  g.last_frame = 1000;
-  g.start_px = g.end_px = at_px;
-  g.sigma_px = 8.0;
-  g.peak = 1.0;
-  return g;
-}
+using test::glowAt;
 
 const Pose kSatellite = test::satAt(300.0, 5.0, -3.0, 20.0);
 

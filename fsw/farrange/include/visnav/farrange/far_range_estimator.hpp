@@ -163,7 +163,13 @@ class FarRangeEstimator {
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
   int recheckTrack(const MonoImage& image, const Gate& gate, FarRangeResult& out);
   bool takesTheTrackOver(int rival, const Gate& gate, double tracked_n) const;
-  double clusterDistance(const Cluster& c) const;  ///< as report() gives it
+  struct ClusterDistances {
+    double eq16_m = 0.0;       ///< gamma / sqrt(n) (eq. 16)
+    double extent_m = 0.0;     ///< f R / r_max (0 without the target's radius)
+    bool from_extent = false;  ///< the nearer and far enough out to count: delivered (kFlagExtentDistance)
+    double delivered() const { return from_extent ? extent_m : eq16_m; }
+  };
+  ClusterDistances distancesOf(const Cluster& c) const;  ///< what report() delivers, and the recheck tests
   Gate currentGate() const;
   int usedPixels(const Cluster& c) const;   ///< n of eq. 16 for this method
   Vec2 usedCentre(const Cluster& c) const;  ///< its centre: of the filled cluster when holes are filled
