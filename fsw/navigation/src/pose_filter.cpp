@@ -38,14 +38,6 @@ Eigen::Matrix<double, N, N> symmetricPart(const Eigen::Matrix<double, N, N>& m) 
 
 Mat3 isotropic(double sigma) { return Mat3::Identity() * sigma * sigma; }
 
-/// NIS of `value` against zero under `cov`, or -1 where cov is not positive definite.
-template <int N>
-double nisAgainstZero(const Eigen::Matrix<double, N, 1>& value, const Eigen::Matrix<double, N, N>& cov) {
-  Eigen::LDLT<Eigen::Matrix<double, N, N>> factor;
-  if (!factorPositive<N>(symmetricPart<N>(cov), factor)) return -1.0;
-  return value.dot(factor.solve(value));
-}
-
 /// Prior of the angular velocity at a (re)start: zero with the configured sigma per axis.
 Mat3 angularVelocityPrior(const PoseFilterParams& params) {
   return isotropic(params.initial_angular_velocity_sigma_deg_s * kRadPerDeg);
@@ -142,24 +134,23 @@ Status PoseFilter::initialiseFromThree(const Pose& oldest, const Mat6& oldest_co
   const Mat3 q0 = p0.block<3, 3>(kPosition, kPosition);
   const Mat3 q1 = p1.block<3, 3>(kPosition, kPosition);
   const Mat3 q2 = p2.block<3, 3>(kPosition, kPosition);
-  // Plus what the process noise lets the velocity change between the steps' midpoints: under a white
-  // acceleration of density q the two mean velocities differ with variance q (dt1 + dt2) / 3 per axis. A
-  // target swinging sideways at 0.7 m/s^2 changed its step velocity by 0.13 m/s a frame, 7 sigma of the fits'
-  // noise alone (campaign box/114), and the process noise the rejections had raised says that is motion.
-  const double q = m_noise_scale * m_params.linear_accel_noise * m_params.linear_accel_noise;
   const Mat3 change_cov = q0 / (first_dt_s * first_dt_s) + q1 * (middle_weight * middle_weight) +
-                          q2 / (second_dt_s * second_dt_s) + Mat3::Identity() * (q * span_s / 3.0);
+                          q2 / (second_dt_s * second_dt_s);
   const Mat3 velocity_cov = (q0 + q2) / (span_s * span_s);
+  Eigen::LDLT<Mat3> velocity_factor;
   Eigen::LDLT<Mat3> change_factor;
   // Significant against the fits' noise and against the prior a restart at rest would keep (zero with
   // initial_velocity_sigma_m_s): below that the prior already covers it, and a few biased fits read as a
   // drift the prediction then carries through a whole search (campaign plate/107: 0.88 m/s from fits of a
   // plate closing at 0.25 m/s, lost on the next frame, never found again).
-  const Vec3 motion = significantVelocity(velocity, velocity_cov, current.t_c_m);
+  const double prior_var = m_params.initial_velocity_sigma_m_s * m_params.initial_velocity_sigma_m_s;
+  const bool significant = factorPositive<3>(velocity_cov, velocity_factor) &&
+                           velocity.dot(velocity_factor.solve(velocity)) > m_params.restart_rate_chi2 &&
+                           velocity.squaredNorm() / prior_var > m_params.restart_rate_chi2;
   const bool consistent = factorPositive<3>(change_cov, change_factor) &&
                           step_change.dot(change_factor.solve(step_change)) <= m_params.restart_rate_chi2;
-  if (motion.isZero(0.0) || !consistent) return Status::kOk;  // as initialise(): at rest with the prior
-  m_velocity = motion;
+  if (!(significant && consistent)) return Status::kOk;  // as initialise(): at rest with the prior
+  m_velocity = velocity;
   Mat12 p = m_covariance;
   setUncorrelatedBlock(p, kVelocity, velocity_cov);
   // The velocity error (e2 - e0) / T correlates with the current pose error e2 (both its blocks).
@@ -168,28 +159,6 @@ Status PoseFilter::initialiseFromThree(const Pose& oldest, const Mat6& oldest_co
   p.block<3, 6>(kVelocity, 0) = cross.transpose();
   m_covariance = p;
   return Status::kOk;
-}
-
-Vec3 PoseFilter::significantVelocity(const Vec3& velocity, const Mat3& velocity_cov,
-                                     const Vec3& t_c_m) const {
-  const double chi2 = m_params.restart_rate_chi2;
-  const double prior_var = m_params.initial_velocity_sigma_m_s * m_params.initial_velocity_sigma_m_s;
-  if (!(nisAgainstZero<3>(velocity, velocity_cov) > chi2)) return Vec3::Zero();  // the fits' noise
-  if (velocity.squaredNorm() > chi2 * prior_var) return velocity;  // beyond what a start at rest covers
-  const double range = t_c_m.norm();
-  if (!m_params.rate_prior_along_line_of_sight || !(range > 0.0) || !std::isfinite(range)) return Vec3::Zero();
-  // The start-at-rest prior covers a slow velocity along the line of sight, where single fits are weak and
-  // biased in depth (campaign box/17, plate/107), but not across it: a fit's bearing is precise to a fraction
-  // of a pixel, and 1 m/s across at 21 m is 9 px a frame at f 918 px, which a prediction at rest loses
-  // (campaign box/114: restarted at rest every other frame, NIS 27-39). The part across is kept where it is
-  // significant on its own.
-  const Vec3 los = t_c_m / range;
-  Eigen::Matrix<double, 3, 2> across;
-  across.col(0) = los.unitOrthogonal();
-  across.col(1) = los.cross(across.col(0));
-  const Eigen::Vector2d across_v = across.transpose() * velocity;
-  const Eigen::Matrix2d across_cov = across.transpose() * velocity_cov * across;
-  return nisAgainstZero<2>(across_v, across_cov) > chi2 ? Vec3(across * across_v) : Vec3::Zero();
 }
 
 std::uint32_t PoseFilter::dropInsignificantRates() {
@@ -207,12 +176,12 @@ std::uint32_t PoseFilter::dropInsignificantRates() {
     Eigen::LDLT<Mat3> factor;
     return factorPositive<3>(cov, factor) && rate.dot(factor.solve(rate)) > m_params.restart_rate_chi2;
   };
+  const double prior_var = m_params.initial_velocity_sigma_m_s * m_params.initial_velocity_sigma_m_s;
   std::uint32_t dropped = 0U;
-  if (!m_velocity.isZero(0.0)) {
-    const Vec3 motion = significantVelocity(
-        m_velocity, Mat3(m_covariance.block<3, 3>(kVelocity, kVelocity)), m_pose.t_c_m);
-    if (motion != m_velocity) dropped |= kDroppedVelocity;
-    m_velocity = motion;
+  if (!m_velocity.isZero(0.0) && !(significant(m_velocity, kVelocity) &&
+                                   m_velocity.squaredNorm() > m_params.restart_rate_chi2 * prior_var)) {
+    m_velocity.setZero();
+    dropped |= kDroppedVelocity;
   }
   if (m_attitude_known && !m_angular_velocity.isZero(0.0) &&
       !significant(m_angular_velocity, kAngularVelocity)) {

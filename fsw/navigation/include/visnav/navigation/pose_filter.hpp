@@ -52,8 +52,8 @@ class PoseFilter {
   /// rejected but the image vouched for): as initialise() from `current`, except the velocity when the
   /// three show one: the difference of `oldest` and `current` over their span T, with covariance
   /// (P_oldest + P_current) / T^2 (position blocks) and cross-covariance P_current / T to the pose, taken
-  /// where it is significant (significantVelocity: against the fits' covariance and the prior
-  /// initial_velocity_sigma_m_s, or its part across the line of sight alone) and the two steps agree (the NIS
+  /// when it is significant (its NIS against zero above restart_rate_chi2, under the fits' covariance and
+  /// under the prior initial_velocity_sigma_m_s) and the two steps agree (the NIS
   /// of their difference at most restart_rate_chi2: one fit that jumped makes one step alone). The angular
   /// rate always starts at zero: single fits' attitude differences are biased beyond their covariance.
   /// kInvalidArgument (state untouched) on a non-finite pose, a covariance that is not positive definite,
@@ -65,9 +65,8 @@ class PoseFilter {
   static constexpr std::uint32_t kDroppedVelocity = 1U;
   static constexpr std::uint32_t kDroppedAngularVelocity = 2U;
   /// Sets the velocity and the angular velocity each to zero unless it is significant: its NIS against zero
-  /// under its own covariance above restart_rate_chi2, the velocity also beyond the start-at-rest prior
-  /// (initial_velocity_sigma_m_s) or else kept only across the line of sight, as in initialiseFromThree
-  /// (significantVelocity). The covariance is kept. For a search:
+  /// under its own covariance above restart_rate_chi2, and for the velocity also against the start-at-rest
+  /// prior (initial_velocity_sigma_m_s), as in initialiseFromThree. The covariance is kept. For a search:
   /// what the last fits could not tell from noise is not carried through it. Returns what was dropped
   /// (kDropped* bits; 0 when uninitialised or nothing was).
   std::uint32_t dropInsignificantRates();
@@ -112,11 +111,6 @@ class PoseFilter {
 
  private:
   void inject(const Vec12& dx);
-  /// The part of `velocity` that is motion: zero unless its NIS against zero under `velocity_cov` exceeds
-  /// restart_rate_chi2; all of it beyond what the start-at-rest prior covers (initial_velocity_sigma_m_s,
-  /// the same chi2); otherwise its part across the line of sight to `t_c_m` where that alone is significant
-  /// (rate_prior_along_line_of_sight; off: nothing).
-  Vec3 significantVelocity(const Vec3& velocity, const Mat3& velocity_cov, const Vec3& t_c_m) const;
   void adaptProcessNoise(const FilterUpdate& result, RejectedInnovation rejected);
   /// Adaptation constants: an exponential average of NIS / dof (weight 0.3: about the last 3 updates; on a
   /// consistent model it is 1 +- 0.24, so 2 is a 4-sigma event) above 2 raises the noise by 4x per frame

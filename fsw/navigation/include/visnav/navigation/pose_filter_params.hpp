@@ -15,8 +15,6 @@ struct PoseFilterParams {
   double initial_angular_velocity_sigma_deg_s = 5.0;
   // Restart from a track (initialiseFromThree): when three consecutive fits' velocity is motion.
   double restart_rate_chi2 = 11.34;  ///< 3 dof, 99 %
-  // The start-at-rest prior covers only the velocity along the line of sight (false: all of it).
-  bool rate_prior_along_line_of_sight = true;
   // Innovation gates (chi-square quantiles).
   double pose_gate_chi2 = 22.46;      ///< 6 dof, 99.9 %
   double position_gate_chi2 = 16.27;  ///< 3 dof, 99.9 %
@@ -57,14 +55,6 @@ struct PoseFilterParams {
             "NIS 23-194); from two fits instead of three, two fits 0.7 m apart in depth started a box at "
             "3.5 m/s and lost it (campaign box/17). 1e6 switches it off"},
            restart_rate_chi2);
-    v.boolean({"filter", "rate_prior_along_line_of_sight", "-", 0, 1,
-               "the start-at-rest prior (initial_velocity_sigma_m_s) that a restart's velocity and a search's "
-               "carried velocity must exceed applies to the part along the line of sight only, where single "
-               "fits are weak and biased in depth; the part across it is kept when significant against the "
-               "fits' noise alone (a fit's bearing is precise to a fraction of a pixel). false: the whole "
-               "velocity is held to the prior, and a target drifting sideways at 1-2 m/s (9-17 px a frame) "
-               "was restarted at rest every other frame and lost (campaign box/114)"},
-              rate_prior_along_line_of_sight);
     v.real({"filter", "pose_gate_chi2", "-", 0.1, 1000.0,
             "6-DOF measurement rejected when its NIS exceeds this (chi-square, 6 dof: 16.81 = 99 %, "
             "22.46 = 99.9 %)"},
