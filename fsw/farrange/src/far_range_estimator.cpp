@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace visnav::far {
@@ -83,14 +84,24 @@ void FarRangeEstimator::skipFrames(int frames) {
 
 bool FarRangeEstimator::refuteLastFix() {
   if (m_params.refuted_fix_frames <= 0 || !m_has_last_fix) return false;
-  // The slot that expires first (a free one has 0 frames left).
-  Refuted* slot = &m_refuted[0];
-  for (Refuted& r : m_refuted)
-    if (r.frames_left < slot->frames_left) slot = &r;
+  // The region refuted before that this fix lies in (refuted_follow: it followed its cluster), else the slot
+  // that expires first, a free or expired one first.
+  Refuted* slot = nullptr;
+  if (m_params.refuted_follow)
+    for (Refuted& r : m_refuted)
+      if (r.refutations > 0 && sameRegion(r, m_last_fix_px, m_last_fix_pixels)) slot = &r;
+  if (slot == nullptr) {
+    slot = &m_refuted[0];
+    for (Refuted& r : m_refuted)
+      if (r.frames_left < slot->frames_left) slot = &r;
+    slot->refutations = 0;
+  }
   slot->centre_px = m_last_fix_px;
   slot->radius_px = std::max(m_last_fix_extent_px, m_params.gate_radius_px);
   slot->pixels = m_last_fix_pixels;
-  slot->frames_left = m_params.refuted_fix_frames;
+  slot->refutations = m_params.refuted_follow ? slot->refutations + 1 : 1;
+  slot->frames_left = m_params.refuted_fix_frames
+                      << std::min(slot->refutations - 1, static_cast<int>(kMaxRefutedDoublings));
   m_has_last_fix = false;
   return true;
 }
@@ -103,16 +114,41 @@ int FarRangeEstimator::refutedCount() const {
   return n;
 }
 
-bool FarRangeEstimator::refuted(const Vec2& centre_px, double pixels) const {
+bool FarRangeEstimator::sameRegion(const Refuted& r, const Vec2& centre_px, double pixels) {
   // The same cluster again: centred within the refuted one's extent (its centre of mass wanders with the
   // threshold from frame to frame) and of a like size. A much smaller cluster beside a large clutter region
   // is something else: campaign plate/35's plate lay inside the extent of the glow refuted next to it.
-  const double log_ratio_limit = std::log(kRefutedSizeRatio);
+  return (centre_px - r.centre_px).norm() <= r.radius_px &&
+         std::abs(std::log(std::max(pixels, 1.0) / std::max(r.pixels, 1.0))) <= std::log(kRefutedSizeRatio);
+}
+
+bool FarRangeEstimator::refuted(const Vec2& centre_px, double pixels) const {
   for (const Refuted& r : m_refuted)
-    if (r.frames_left > 0 && (centre_px - r.centre_px).norm() <= r.radius_px &&
-        std::abs(std::log(std::max(pixels, 1.0) / std::max(r.pixels, 1.0))) <= log_ratio_limit)
-      return true;
+    if (r.frames_left > 0 && sameRegion(r, centre_px, pixels)) return true;
   return false;
+}
+
+void FarRangeEstimator::followRefuted() {
+  // Clutter that moves (glints drifting across the image) would leave its region within a few frames and be
+  // handed over again; each remembered region moves with the like-sized cluster nearest its centre. Bounded:
+  // kMaxRefuted x max_clusters distance tests.
+  if (!m_params.refuted_follow) return;
+  const auto& clusters = m_finder.clusters();
+  for (Refuted& r : m_refuted) {
+    if (r.refutations == 0) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    Vec2 centre = r.centre_px;
+    for (const Cluster& c : clusters) {
+      if (c.pixel_count < m_params.min_cluster_px) continue;
+      const Vec2 at = usedCentre(c);
+      const double distance = (at - r.centre_px).norm();
+      if (distance < nearest && sameRegion(r, at, usedPixels(c))) {
+        nearest = distance;
+        centre = at;
+      }
+    }
+    r.centre_px = centre;
+  }
 }
 
 void FarRangeEstimator::setPrediction(const Vec3& direction_c, double distance_m) {
@@ -153,7 +189,10 @@ void FarRangeEstimator::searchRegion(const MonoImage& image, const Roi& roi, Far
   m_sum.apply(inputs, m_combined, m_row_max.data());
   out.timing.combine_us += elapsedUs(stamp);
   m_finder.find(m_combined, m_row_max.data(), m_t_in_q, m_t_out_q);
-  if (m_robust) prepareCandidates();
+  if (m_robust) {
+    prepareCandidates();
+    followRefuted();
+  }
   out.timing.cluster_us += elapsedUs(stamp);
   out.roi = roi;
   out.cluster_count = static_cast<int>(m_finder.clusters().size());

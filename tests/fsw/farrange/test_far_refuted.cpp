@@ -114,6 +114,46 @@ TEST(RefutedFix, AtMostFourRegionsTheOldestGoesFirst) {
   EXPECT_FALSE(estimate(e, frames[1]).valid) << "the second is still refuted";
 }
 
+// A glint drifting across the image (6 px a frame here, 4 in the campaign) leaves the region where it was
+// refuted within a few frames. refuted_follow: the region follows it, and once its refutation expired and it
+// is refuted again, it is passed over twice as long (campaign plate/23: 6 hand-overs of drifting glints,
+// 12 mode changes). Off: the glint is the fix again a few frames after its refutation.
+TEST(RefutedFix, ARefutedGlintThatDriftsIsFollowedAndPassedOverLongerWhenRefutedAgain) {
+  synthetic::RenderOptions o = test::farRender();
+  synthetic::Glint glint = glowAt(Vec2(60.0, 400.0));
+  glint.last_frame = 100;
+  glint.end_px = Vec2(660.0, 400.0);  // 6 px a frame
+  o.glints.push_back(glint);
+  Scene s(o);
+  const Pose away = test::satAt(300.0, 0.0, 80.0, 0.0);  // far outside the view
+  const auto run = [&](bool follow, std::vector<int>& fix_frames) {
+    FarRangeParams params;
+    params.refuted_fix_frames = 10;
+    params.refuted_follow = follow;
+    FarRangeEstimator e;
+    ASSERT_TRUE(e.init(s.camera, params).ok);
+    for (int frame = 0; frame < 45; ++frame) {
+      const FarRangeResult r = estimate(e, s.frame(away, 3, frame));
+      if (!r.valid) continue;
+      fix_frames.push_back(frame);
+      ASSERT_LT((r.centroid_px - glint.start_px - (glint.end_px - glint.start_px) * (frame / 100.0)).norm(),
+                3.0)
+          << frame;
+      ASSERT_TRUE(e.refuteLastFix());  // acquisition finds no edges there, each time
+      e.reset();
+    }
+  };
+  std::vector<int> followed;
+  run(true, followed);
+  // Refuted at 0 and passed over on the 9 frames after (10 frames of refuted_fix_frames, the refutation's
+  // included), the fix again at 10, refuted, passed over on 19 frames: the fix at 30, then not before 70.
+  EXPECT_EQ(followed, (std::vector<int>{0, 10, 30}));
+  std::vector<int> left_behind;
+  run(false, left_behind);
+  ASSERT_GE(left_behind.size(), 6U);  // the glint leaves its region (gate_radius_px) every few frames
+  EXPECT_LE(left_behind[1], 6);
+}
+
 // An acquisition that saw edges at the cue but confirmed nothing does not refute it: far range goes on with
 // its track over the frames the acquisition took (skipFrames), so a larger glow that appeared meanwhile does
 // not take the fix (campaign octagon/164). A fresh start (reset) takes the larger cluster, as does a track

@@ -170,76 +170,6 @@ TEST(PoseFilterRestart, AMotionThePriorCoversIsNotSeeded) {
   }
 }
 
-// The prior covers a slow velocity along the line of sight only (rate_prior_along_line_of_sight): across it a
-// fit's bearing is precise, and 1 m/s sideways at 21 m is 9 px a frame at f 918 px, which a prediction at rest
-// loses (campaign box/114). Below the prior the part across is seeded; with the switch off nothing is.
-TEST(PoseFilterRestart, AMotionAcrossTheLineOfSightIsSeededWhereThePriorCoversItOnlyAlong) {
-  const Mat6 cov = nearCovariance() * 1e-4;  // fits far tighter than the motion
-  const Pose p0 = Pose::fromYpr({0.0, 0.2, 0.0}, Vec3(4.0, -2.0, 21.0));
-  const Vec3 los = p0.t_c_m.normalized();
-  const Vec3 across = los.unitOrthogonal();
-  PoseFilterParams off;
-  off.rate_prior_along_line_of_sight = false;
-  for (const double speed : {0.5, 1.0, 1.6}) {
-    for (const bool along : {false, true}) {
-      const Vec3 velocity = (along ? los : across) * speed;
-      const Pose p1 = moved(p0, velocity, kDt);
-      const Pose p2 = moved(p1, velocity, kDt);
-      PoseFilter f = makeFilter();
-      ASSERT_EQ(f.initialiseFromThree(p0, cov, p1, cov, p2, cov, kDt, kDt), Status::kOk);
-      // Across the current fit's line of sight (the target moved, so it is 1.6 deg off p0's).
-      const Vec3 los2 = p2.t_c_m.normalized();
-      if (along)
-        EXPECT_TRUE(f.velocity().isZero()) << speed << " m/s along";
-      else
-        EXPECT_LT((f.velocity() - (velocity - los2 * los2.dot(velocity))).norm(), 1e-9) << speed << " m/s across";
-      PoseFilter g = makeFilter(off);
-      ASSERT_EQ(g.initialiseFromThree(p0, cov, p1, cov, p2, cov, kDt, kDt), Status::kOk);
-      EXPECT_TRUE(g.velocity().isZero()) << speed << " m/s, switch off";
-    }
-  }
-  // Both parts at once: the one across is kept, the one along the prior covers is not.
-  const Vec3 velocity = across * 1.0 + los * 1.0;
-  const Pose p1 = moved(p0, velocity, kDt);
-  const Pose p2 = moved(p1, velocity, kDt);
-  PoseFilter f = makeFilter();
-  ASSERT_EQ(f.initialiseFromThree(p0, cov, p1, cov, p2, cov, kDt, kDt), Status::kOk);
-  const Vec3 los2 = p2.t_c_m.normalized();
-  EXPECT_LT((f.velocity() - (velocity - los2 * los2.dot(velocity))).norm(), 1e-9) << f.velocity().transpose();
-  EXPECT_LT(los2.dot(f.velocity()), 1e-12);
-  // Beyond the prior (1.68 m/s) the whole velocity is motion, as with the switch off.
-  const Vec3 fast = across * 1.5 + los * 1.5;
-  const Pose q1 = moved(p0, fast, kDt);
-  const Pose q2 = moved(q1, fast, kDt);
-  ASSERT_EQ(f.initialiseFromThree(p0, cov, q1, cov, q2, cov, kDt, kDt), Status::kOk);
-  EXPECT_LT((f.velocity() - fast).norm(), 1e-9) << f.velocity().transpose();
-}
-
-// A target swinging sideways accelerates between the three fits (campaign box/114: 0.7 m/s^2, its step
-// velocity 0.14 m/s apart a frame, many times the fits' noise). The process noise says how far the velocity
-// may change between the steps: at the nominal density the steps disagree and the restart is at rest; where
-// the process noise is raised (here its density, as the adaptive scale does after rejections) they agree
-// and the swing's velocity is seeded.
-TEST(PoseFilterRestart, StepsThatDifferByWhatTheProcessNoiseAllowsAgree) {
-  const Mat6 cov = nearCovariance() * 1e-2;  // 2 mm across, 10 mm in depth
-  const Pose p0 = Pose::fromYpr({0.0, 0.0, 0.0}, Vec3(0.0, 2.0, 21.0));
-  const Vec3 acceleration(0.0, 0.7, 0.0);
-  const Vec3 v0(0.0, 1.0, 0.0);
-  const auto at = [&](double t) {
-    Pose p = p0;
-    p.t_c_m += v0 * t + 0.5 * acceleration * t * t;
-    return p;
-  };
-  PoseFilter nominal = makeFilter();
-  ASSERT_EQ(nominal.initialiseFromThree(at(0.0), cov, at(kDt), cov, at(2.0 * kDt), cov, kDt, kDt), Status::kOk);
-  EXPECT_TRUE(nominal.velocity().isZero()) << nominal.velocity().transpose();
-  PoseFilterParams raised;
-  raised.linear_accel_noise = 0.5;  // the nominal 0.05 at the adaptive scale's 100
-  PoseFilter f = makeFilter(raised);
-  ASSERT_EQ(f.initialiseFromThree(at(0.0), cov, at(kDt), cov, at(2.0 * kDt), cov, kDt, kDt), Status::kOk);
-  EXPECT_NEAR(f.velocity().y(), v0.y() + acceleration.y() * kDt, 0.02) << f.velocity().transpose();
-}
-
 TEST(PoseFilterRestart, RejectsInvalidInputsAndLeavesTheStateUntouched) {
   const Mat6 cov = nearCovariance();
   const Pose p0 = Pose::fromYpr({0.0, 0.0, 0.0}, Vec3(0.0, 0.0, 20.0));
@@ -334,34 +264,6 @@ TEST(PoseFilterSearch, ASlowDriftThePriorCoversIsDropped) {
   ASSERT_GT(f.velocity().dot(pv.ldlt().solve(f.velocity())), f.params().restart_rate_chi2);
   EXPECT_NE(f.dropInsignificantRates() & PoseFilter::kDroppedVelocity, 0U);
   EXPECT_TRUE(f.velocity().isZero(0.0));
-}
-
-// A drift across the line of sight the track measured is kept before a search, slow or not; the same drift
-// along the line of sight is dropped (above), and with rate_prior_along_line_of_sight off so is this one.
-TEST(PoseFilterSearch, ASidewaysDriftTheTrackMeasuredIsKept) {
-  Vec6 sigma;
-  sigma << 0.05 * kRadPerDeg, 0.05 * kRadPerDeg, 0.05 * kRadPerDeg, 0.002, 0.002, 0.005;
-  const Mat6 cov = sigma.cwiseAbs2().asDiagonal();
-  PoseFilterParams off;
-  off.rate_prior_along_line_of_sight = false;
-  for (const bool switched_off : {false, true}) {
-    Pcg32 rng(37);
-    PoseFilter f = trackedFilter(Vec3(0.8, 0.0, 0.0), Vec3::Zero(), cov, 30, rng,
-                                 switched_off ? off : PoseFilterParams{});
-    ASSERT_NEAR(f.velocity().x(), 0.8, 0.05);
-    const Vec3 v = f.velocity();
-    const std::uint32_t dropped = f.dropInsignificantRates();
-    if (switched_off) {
-      EXPECT_NE(dropped & PoseFilter::kDroppedVelocity, 0U);
-      EXPECT_TRUE(f.velocity().isZero(0.0));
-    } else {
-      // Below the prior, only the part across the line of sight stays (the fits' noise in depth, and the
-      // drift's small share along a line of sight 0.5 deg off the axis, go).
-      const Vec3 los = f.pose().t_c_m.normalized();
-      EXPECT_LT((f.velocity() - (v - los * los.dot(v))).norm(), 1e-12) << f.velocity().transpose();
-      EXPECT_NEAR(f.velocity().x(), 0.8, 0.05);
-    }
-  }
 }
 
 // A tumble is another matter: the prior of a start at rest covers 5 deg/s, but a rate the track measured

@@ -207,11 +207,18 @@ class FarRangeEstimator {
     Vec2 centre_px = Vec2::Zero();
     double radius_px = 0.0;
     double pixels = 0.0;  ///< n of the refuted fix
-    int frames_left = 0;  ///< 0: unused
+    int frames_left = 0;  ///< 0: not passed over (expired or unused)
+    int refutations = 0;  ///< times refuted (0: unused); kept after expiry while followed (refuted_follow)
   };
+  /// A refuted fix passed over for refuted_fix_frames times 2^(refutations - 1), up to this many doublings.
+  static constexpr int kMaxRefutedDoublings = 3;
   std::array<Refuted, kMaxRefuted> m_refuted{};
   /// A cluster of `pixels` (n) centred at centre_px is a refuted fix seen again.
   bool refuted(const Vec2& centre_px, double pixels) const;
+  /// A cluster of `pixels` centred at centre_px is where region r was refuted (within its radius, like size).
+  static bool sameRegion(const Refuted& r, const Vec2& centre_px, double pixels);
+  /// refuted_follow: each remembered region moves to the like-sized cluster of this search nearest its centre.
+  void followRefuted();
   /// refuted() for a candidate cluster; sets kFlagRefutedSkipped when it is.
   bool passedOver(const Cluster& c, std::uint32_t& flags) const;
   bool m_has_last_fix = false;  ///< m_last_fix_* hold the last valid fix (reset() keeps them)

@@ -50,6 +50,7 @@ struct FarRangeParams {
   double extended_enclose_ratio = 4.0;
   double extent_distance_min_px = 4.0;
   int refuted_fix_frames = 60;
+  bool refuted_follow = true;           ///< refuted regions follow their cluster; refuted again: longer
   int recheck_frames = 10;              ///< every this many fixes a track is checked against the whole frame
   double recheck_switch_ratio = 4.0;    ///< a rival that many times the tracked n (and near enough) wins
   double recheck_static_growth = 1.25;  ///< a track whose n grew more since the last check is kept
@@ -208,6 +209,17 @@ struct FarRangeParams {
          "4 such regions are kept. Campaign approaches handed over a stationary clutter region 10-40 deg "
          "off the target again and again (12 mode changes, never acquired); 0: never"},
         refuted_fix_frames);
+    v.boolean(
+        {"farrange", "refuted_follow", "-", 0, 1,
+         "robust: a refuted region follows its cluster (each searched frame it moves to the like-sized "
+         "cluster nearest its centre within its radius), and a fix refuted again in a region that was "
+         "refuted before, still followed, is passed over twice as long as the time before (up to 8x "
+         "refuted_fix_frames). Glints drifting across the image 4 px a frame left their refuted region "
+         "within 10 frames and were handed to acquisition again and again (campaign plate/23: 6 attempts, "
+         "12 mode changes, every one failing no_target). An approaching target grows out of its region "
+         "(4x in n) and is no longer followed; false: regions stay where they were refuted, for "
+         "refuted_fix_frames each time"},
+        refuted_follow);
     v.integer(
         {"farrange", "recheck_frames", "frames", 0, 100000,
          "robust: every this many fixes of a track, the whole frame is searched "
