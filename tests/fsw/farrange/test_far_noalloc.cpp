@@ -1,7 +1,7 @@
 // REQUIREMENT: the per-frame far-range call allocates nothing after init (fsw/farrange/README.md), in every
 // path: full frame, region of interest, ROI fallback, coasting, lost, both methods, 8- and 16-bit frames,
 // the flattened background (background_block_px), the outline search of an extended target, the track
-// recheck and its switch.
+// recheck and its switch, refuted regions that follow their cluster.
 #include <gtest/gtest.h>
 
 #include "../../support/alloc_counter.hpp"
@@ -146,6 +146,40 @@ TEST(FarRangeNoAlloc, TheTrackRecheckAndItsSwitch) {
   }
   EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
   EXPECT_EQ(switches, 10) << "one switch a round: the path really ran";
+}
+
+// Refuted regions that follow a drifting glint (refuted_follow) and are refuted again, many times over.
+TEST(FarRangeNoAlloc, RefutedRegionsFollowingADriftingGlint) {
+  synthetic::RenderOptions o = test::farRender();
+  synthetic::Glint glint = test::glowAt(Vec2(60.0, 400.0));
+  glint.last_frame = 100;
+  glint.end_px = Vec2(660.0, 400.0);
+  o.glints.push_back(glint);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::farCamera(), test::smallsat(), o).ok);
+  std::vector<test::FarFrame> f;
+  f.reserve(20);
+  for (int i = 0; i < 20; ++i) f.push_back(test::renderFar(renderer, test::satAt(300.0, 0.0, 80.0), 7, i));
+  FarRangeParams p;
+  p.refuted_fix_frames = 4;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(test::farCamera(), p).ok);
+  FarRangeResult r;
+  int refuted = 0;
+  int passed_over = 0;
+  const std::uint64_t before = test::allocationCount();
+  for (int i = 0; i < 120; ++i) {
+    e.estimate(f[static_cast<std::size_t>(i) % f.size()].image(), r);
+    passed_over += (r.flags & kFlagRefutedSkipped) != 0U ? 1 : 0;
+    if (r.valid && e.refuteLastFix()) {
+      ++refuted;
+      e.reset();
+    }
+    if (i % 40 == 39) e.clearRefuted();  // the doublings start over: more refutations
+  }
+  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
+  EXPECT_GE(refuted, 6) << "the glint was refuted again and again: the path really ran";
+  EXPECT_GE(passed_over, 60);
 }
 
 TEST(FarRangeNoAlloc, CounterSeesAllocations) {

@@ -217,7 +217,8 @@ class FarRangeEstimator {
   bool refuted(const Vec2& centre_px, double pixels) const;
   /// A cluster of `pixels` centred at centre_px is where region r was refuted (within its radius, like size).
   static bool sameRegion(const Refuted& r, const Vec2& centre_px, double pixels);
-  /// refuted_follow: each remembered region moves to the like-sized cluster of this search nearest its centre.
+  /// refuted_follow: each remembered region moves to the like-sized cluster of this search nearest its
+  /// centre.
   void followRefuted();
   /// refuted() for a candidate cluster; sets kFlagRefutedSkipped when it is.
   bool passedOver(const Cluster& c, std::uint32_t& flags) const;
