@@ -154,6 +154,50 @@ TEST(RefutedFix, ARefutedGlintThatDriftsIsFollowedAndPassedOverLongerWhenRefuted
   EXPECT_LE(left_behind[1], 6);
 }
 
+// Refuted again counts (the region passed over twice as long) only for a cluster that did not grow since its
+// last refutation: an approaching target grows between two (campaign octagon/172: n 96 then 180, a dim
+// octagon acquisition found no edges at twice and confirmed right the next time), clutter does not.
+TEST(RefutedFix, RefutedAgainAfterGrowingIsPassedOverNoLonger) {
+  const Pose away = test::satAt(300.0, 0.0, 80.0, 0.0);
+  const Vec2 at(150.0, 360.0);
+  synthetic::RenderOptions small_render = test::farRender();
+  small_render.glints.push_back(glowAt(at));
+  synthetic::RenderOptions grown_render = test::farRender();
+  synthetic::Glint grown_glow = glowAt(at);
+  grown_glow.sigma_px = 11.0;
+  grown_render.glints.push_back(grown_glow);
+  Scene small_scene(small_render);
+  Scene grown_scene(grown_render);
+  const test::FarFrame small = small_scene.frame(away, 3);
+  const test::FarFrame grown = grown_scene.frame(away, 3);
+  const auto run = [&](const test::FarFrame& second, std::vector<int>& fix_frames, int& second_n,
+                       int& first_n) {
+    FarRangeParams params;
+    params.refuted_fix_frames = 10;
+    FarRangeEstimator e;
+    ASSERT_TRUE(e.init(small_scene.camera, params).ok);
+    for (int frame = 0; frame < 40; ++frame) {
+      const FarRangeResult r = estimate(e, frame < 10 ? small : second);
+      if (!r.valid) continue;
+      (fix_frames.empty() ? first_n : second_n) = r.cluster_pixels;
+      fix_frames.push_back(frame);
+      ASSERT_TRUE(e.refuteLastFix());
+      e.reset();
+    }
+  };
+  std::vector<int> same_size;
+  int n0 = 0;
+  int n1 = 0;
+  run(small, same_size, n1, n0);
+  EXPECT_EQ(same_size, (std::vector<int>{0, 10, 30}));  // 10 frames, then 20
+  std::vector<int> after_growth;
+  run(grown, after_growth, n1, n0);
+  ASSERT_GT(n1, FarRangeEstimator::kRefutedStaticGrowth * n0)
+      << "the glow must have grown: " << n0 << " " << n1;
+  ASSERT_LT(n1, FarRangeEstimator::kRefutedSizeRatio * n0) << "and still be the same region";
+  EXPECT_EQ(after_growth, (std::vector<int>{0, 10, 20}));  // 10 frames, 10 again after the growth, then 20
+}
+
 // An acquisition that saw edges at the cue but confirmed nothing does not refute it: far range goes on with
 // its track over the frames the acquisition took (skipFrames), so a larger glow that appeared meanwhile does
 // not take the fix (campaign octagon/164). A fresh start (reset) takes the larger cluster, as does a track

@@ -113,6 +113,11 @@ class FarRangeEstimator {
   static constexpr int kMaxRefuted = 4;
   /// A cluster within this factor of a refuted fix's n (either way), where it was, is that fix again.
   static constexpr double kRefutedSizeRatio = 4.0;
+  /// refuted_follow: a region refuted again is passed over for refuted_fix_frames x 2^(refutations - 1)
+  /// frames, up to this many doublings ...
+  static constexpr int kMaxRefutedDoublings = 3;
+  /// ... and only when its n grew less than this factor since the region's last refutation.
+  static constexpr double kRefutedStaticGrowth = 1.25;
   /// Optional prediction for the next frame from a navigation filter: gates the robust selection like a
   /// track would (direction in the camera frame, distance for the expected size).
   void setPrediction(const Vec3& direction_c, double distance_m);
@@ -210,8 +215,6 @@ class FarRangeEstimator {
     int frames_left = 0;  ///< 0: not passed over (expired or unused)
     int refutations = 0;  ///< times refuted (0: unused); kept after expiry while followed (refuted_follow)
   };
-  /// A refuted fix passed over for refuted_fix_frames times 2^(refutations - 1), up to this many doublings.
-  static constexpr int kMaxRefutedDoublings = 3;
   std::array<Refuted, kMaxRefuted> m_refuted{};
   /// A cluster of `pixels` (n) centred at centre_px is a refuted fix seen again.
   bool refuted(const Vec2& centre_px, double pixels) const;
