@@ -213,8 +213,9 @@ struct FarRangeParams {
         {"farrange", "refuted_follow", "-", 0, 1,
          "robust: a refuted region follows its cluster (each searched frame it moves to the like-sized "
          "cluster nearest its centre within its radius), and a fix refuted again in a region that was "
-         "refuted before, still followed, is passed over twice as long as the time before (up to 8x "
-         "refuted_fix_frames). Glints drifting across the image 4 px a frame left their refuted region "
+         "refuted before, still followed, and that did not grow 1.25x in n since, is passed over twice as "
+         "long as the time before (up to 8x refuted_fix_frames). Glints drifting across the image 4 px a "
+         "frame left their refuted region "
          "within 10 frames and were handed to acquisition again and again (campaign plate/23: 6 attempts, "
          "12 mode changes, every one failing no_target). An approaching target grows out of its region "
          "(4x in n) and is no longer followed; false: regions stay where they were refuted, for "
