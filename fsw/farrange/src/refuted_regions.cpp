@@ -2,7 +2,6 @@
 // selection for refuted_fix_frames (longer when refuted again), following their cluster where it drifts
 // (refuted_follow). Design notes: fsw/farrange/README.md, "Refuted fixes".
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "visnav/farrange/far_range_estimator.hpp"
@@ -49,8 +48,9 @@ bool FarRangeEstimator::sameRegion(const Refuted& r, const Vec2& centre_px, doub
   // The same cluster again: centred within the refuted one's extent (its centre of mass wanders with the
   // threshold from frame to frame) and of a like size. A much smaller cluster beside a large clutter region
   // is something else: campaign plate/35's plate lay inside the extent of the glow refuted next to it.
-  return (centre_px - r.centre_px).norm() <= r.radius_px &&
-         std::abs(std::log(std::max(pixels, 1.0) / std::max(r.pixels, 1.0))) <= std::log(kRefutedSizeRatio);
+  const double ratio = std::max(pixels, 1.0) / std::max(r.pixels, 1.0);
+  return (centre_px - r.centre_px).norm() <= r.radius_px && ratio <= kRefutedSizeRatio &&
+         ratio * kRefutedSizeRatio >= 1.0;
 }
 
 bool FarRangeEstimator::refuted(const Vec2& centre_px, double pixels) const {
