@@ -122,6 +122,19 @@ void Acquisition::start(const Vec3& direction_c, double distance_m, double direc
   m_state = AcquisitionState::kSearching;
 }
 
+bool Acquisition::cueLacksEdges(const FarRangeSolution& cue, const MonoImage& image, double& edge_snr) {
+  edge_snr = 0.0;
+  if (image.empty() || image.width() != m_camera.width() || image.height() != m_camera.height()) return false;
+  start(cue);
+  const bool searching = m_state == AcquisitionState::kSearching;
+  if (searching) {
+    prepareWindow(image);
+    edge_snr = m_window.stats().edge_snr;
+  }
+  reset();
+  return searching && edge_snr < m_params.min_edge_snr;  // what step() fails kNoTarget on
+}
+
 void Acquisition::prepareWindow(const MonoImage& image) {
   m_window.prepare(image, m_params.fine_spread_px, m_params.coarse_spread_px, m_params.evidence_cap);
 }

@@ -24,6 +24,7 @@ void ModeManager::reset() {
   m_holdoff_frames = 0;
   m_handover_distance_m = 0.0;
   m_retry_below_m = 0.0;
+  m_refused_handovers = 0;
   m_last = ModeTransition{};
   m_last.from = m_mode;
   m_last.to = m_mode;
@@ -55,6 +56,21 @@ void ModeManager::backOff() {
   if (m_acquisition_failures < 1000) ++m_acquisition_failures;
 }
 
+bool ModeManager::handOverCondition(const ModeInputs& in, int close_count, std::uint32_t frames) const {
+  // After an acquisition that saw edges but confirmed nothing, the same target at the same size fails the
+  // same way: wait until it has come acquire_retry_growth times nearer, or for the longest back-off (a
+  // target that holds its range is tried again).
+  const bool grown = m_retry_below_m <= 0.0 || (in.far_valid && in.far_distance_m < m_retry_below_m) ||
+                     frames > static_cast<std::uint32_t>(m_params.acquire_retry_holdoff_max_frames);
+  return close_count >= m_params.enter_frames && frames > static_cast<std::uint32_t>(m_holdoff_frames) && grown;
+}
+
+bool ModeManager::handOverDue(const ModeInputs& in) const {
+  if (m_mode != NavMode::kFarRange) return false;
+  const int close = in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
+  return handOverCondition(in, close, m_frames_in_mode + 1U);
+}
+
 bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
   const NavMode before = m_mode;
   ++m_frames_in_mode;
@@ -62,17 +78,19 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
     case NavMode::kStandby: break;  // only a resume command leaves standby
     case NavMode::kFarRange: {
       m_close_count = in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
-      // After an acquisition that saw edges but confirmed nothing, the same target at the same size fails
-      // the same way: wait until it has come acquire_retry_growth times nearer, or for the longest back-off
-      // (a target that holds its range is tried again).
-      const bool grown =
-          m_retry_below_m <= 0.0 || (in.far_valid && in.far_distance_m < m_retry_below_m) ||
-          m_frames_in_mode > static_cast<std::uint32_t>(m_params.acquire_retry_holdoff_max_frames);
-      if (m_close_count >= m_params.enter_frames &&
-          m_frames_in_mode > static_cast<std::uint32_t>(m_holdoff_frames) && grown) {
-        m_handover_distance_m = in.far_distance_m;
+      if (handOverCondition(in, m_close_count, m_frames_in_mode)) {
         m_retry_below_m = 0.0;
-        transition(NavMode::kAcquisition, "far range: target close enough", frame_number);
+        if (in.cue_lacks_edges) {
+          // What the acquisition would fail on its first frame (no_target): a failure, backed off the same
+          // way, without the two mode changes (campaign approaches: 185 of 341 failed acquisitions).
+          backOff();
+          ++m_refused_handovers;
+          m_frames_in_mode = 0;
+          m_close_count = 0;
+        } else {
+          m_handover_distance_m = in.far_distance_m;
+          transition(NavMode::kAcquisition, "far range: target close enough", frame_number);
+        }
       }
       break;
     }

@@ -102,6 +102,12 @@ class Acquisition {
   /// clear it.
   void setLookReference(const Pose& reference, double tolerance_rad);
 
+  /// Whether an acquisition started at `cue` would fail kNoTarget on `image` (its window's edge SNR under
+  /// min_edge_snr), judged without starting one: the state is idle afterwards (reset()). `edge_snr` gets the
+  /// window's SNR (0 for an invalid cue, which lacks nothing: false). For a hand-over that would fail on its
+  /// first frame. Allocation-free.
+  bool cueLacksEdges(const FarRangeSolution& cue, const MonoImage& image, double& edge_snr);
+
   /// One frame. kInvalidArgument for an image of the wrong size (the step is skipped, nothing changes).
   Status step(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
 

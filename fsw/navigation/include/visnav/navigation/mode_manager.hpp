@@ -26,6 +26,9 @@ struct ModeInputs {
   bool depth_known = false;           ///< a depth estimate exists (filter or near range)
   double depth_m = 0.0;  ///< t_c_m.z (CONVENTIONS.md): what far range's distance and the thresholds measure
   bool reacquisition_timed_out = false;  ///< close-range reacquisition searched too long
+  /// far range: the cue a hand-over would take has no edge structure (Acquisition::cueLacksEdges); the
+  /// hand-over is refused as a failed acquisition would be, without leaving far range
+  bool cue_lacks_edges = false;
 };
 
 class ModeManager {
@@ -47,6 +50,10 @@ class ModeManager {
   /// After a failed acquisition: the next hand-over waits acquire_retry_holdoff_frames, doubled per
   /// consecutive failure up to acquire_retry_holdoff_max_frames.
   void backOff();
+  /// In far range: whether step() with these inputs hands over to acquisition (before cue_lacks_edges).
+  bool handOverDue(const ModeInputs& in) const;
+  /// Hand-overs refused because the cue had no edge structure (cue_lacks_edges), since init or reset.
+  std::uint64_t refusedHandOvers() const { return m_refused_handovers; }
 
   const ModeTransition& lastTransition() const { return m_last; }
   std::uint64_t transitionCount() const { return m_transitions; }
@@ -64,6 +71,10 @@ class ModeManager {
   double m_retry_below_m = 0.0;
   ModeTransition m_last;
   std::uint64_t m_transitions = 0;
+  std::uint64_t m_refused_handovers = 0;
+  /// The far-range hand-over condition for a frame with `close_count` consecutive close fixes, `frames`
+  /// frames into far range.
+  bool handOverCondition(const ModeInputs& in, int close_count, std::uint32_t frames) const;
 };
 
 }  // namespace visnav::nav

@@ -86,6 +86,9 @@ class NavigationPipeline {
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
+  /// check_cue_before_handover: when this frame's far-range fix would be handed over, whether acquisition
+  /// would find edge structure at it; if not, the fix is refuted and in.cue_lacks_edges set.
+  void checkCueBeforeHandOver(const MonoImage& image, ModeInputs& in);
   void runAcquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void coast(NavSolution& out);
