@@ -62,7 +62,8 @@ bool ModeManager::handOverCondition(const ModeInputs& in, int close_count, std::
   // target that holds its range is tried again).
   const bool grown = m_retry_below_m <= 0.0 || (in.far_valid && in.far_distance_m < m_retry_below_m) ||
                      frames > static_cast<std::uint32_t>(m_params.acquire_retry_holdoff_max_frames);
-  return close_count >= m_params.enter_frames && frames > static_cast<std::uint32_t>(m_holdoff_frames) && grown;
+  return close_count >= m_params.enter_frames && frames > static_cast<std::uint32_t>(m_holdoff_frames) &&
+         grown;
 }
 
 bool ModeManager::handOverDue(const ModeInputs& in) const {

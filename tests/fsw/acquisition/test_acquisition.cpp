@@ -148,6 +148,35 @@ TEST_F(PlateAcquisitionTest, NoTargetInTheImageFailsCleanly) {
   }
 }
 
+// Acquisition::cueLacksEdges, the pipeline's check before a hand-over: true where step() would fail
+// no_target on its first frame (no target at the cue), false on the plate, and the acquisition is idle after.
+TEST_F(PlateAcquisitionTest, ACueWithoutEdgesIsToldWithoutStartingAnAcquisition) {
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
+  const Pose expected = test::plateAt(12.0);
+  const auto with_plate = test::renderStatic(renderer, expected, 1, 41);
+  const auto without = test::renderStatic(renderer, test::plateAt(12.0, 100.0), 1, 42);
+  const FarRangeSolution cue = test::perturbedCue(expected, 0.0, 0.0, 0.0);
+  double snr_plate = 0.0;
+  double snr_empty = 0.0;
+  EXPECT_FALSE(acquisition.cueLacksEdges(cue, with_plate[0].image(), snr_plate));
+  EXPECT_EQ(acquisition.state(), AcquisitionState::kIdle);
+  EXPECT_TRUE(acquisition.cueLacksEdges(cue, without[0].image(), snr_empty));
+  EXPECT_EQ(acquisition.state(), AcquisitionState::kIdle);
+  EXPECT_GE(snr_plate, acq::AcquisitionParams{}.min_edge_snr);
+  EXPECT_LT(snr_empty, acq::AcquisitionParams{}.min_edge_snr);
+  // The same verdict as a started acquisition's first step.
+  acquisition.start(cue);
+  acq::AcquisitionResult r;
+  acquisition.step(without[0].image(), 0, r);
+  EXPECT_EQ(r.failure, AcquisitionFailure::kNoTarget);
+  EXPECT_DOUBLE_EQ(r.edge_snr, snr_empty);
+  // An invalid cue lacks nothing: the acquisition itself fails it (kInvalidCue).
+  FarRangeSolution invalid;
+  EXPECT_FALSE(acquisition.cueLacksEdges(invalid, without[0].image(), snr_empty));
+  EXPECT_EQ(snr_empty, 0.0);
+}
+
 TEST_F(PlateAcquisitionTest, InvalidCueFailsAtOnce) {
   FarRangeSolution cue;
   cue.valid = false;
@@ -229,6 +258,7 @@ TEST(AcquisitionNoAlloc, WholeAcquisitionsAllocateNothingAfterInit) {
     const std::uint64_t before = test::allocationCount();
     int steps = 0;
     bool succeeded = false, failed = false;
+    int lacking = 0;
     for (int run = 0; run < 2; ++run) {
       const auto& source = run == 0 ? frames : empty;
       acquisition.start(cue);
@@ -240,11 +270,14 @@ TEST(AcquisitionNoAlloc, WholeAcquisitionsAllocateNothingAfterInit) {
                          static_cast<std::uint64_t>(i), r);
       succeeded = succeeded || r.state == AcquisitionState::kSucceeded;
       failed = failed || r.state == AcquisitionState::kFailed;
+      double snr = 0.0;  // the pipeline's check before a hand-over, on both
+      lacking += acquisition.cueLacksEdges(cue, source[0].image(), snr) ? 1 : 0;
     }
     EXPECT_EQ(test::allocationCount() - before, 0U)
         << steps << " steps (malloc counted: " << test::countsMalloc() << ")";
     EXPECT_TRUE(succeeded);  // every state was really exercised
     EXPECT_TRUE(failed);
+    EXPECT_EQ(lacking, 1);  // the empty frame's cue, not the target's
   }
 }
 

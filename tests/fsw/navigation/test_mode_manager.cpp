@@ -118,6 +118,42 @@ TEST(ModeManager, FailedAcquisitionsBackOffExponentially) {
   EXPECT_EQ(waited, 3U);
 }
 
+// A cue the acquisition would fail on its first frame (no edge structure: check_cue_before_handover) is
+// refused in far range: no transition, the same back-off as a failed acquisition, and counted.
+TEST(ModeManager, AHandOverRefusedForACueWithoutEdgesBacksOffWithoutLeavingFarRange) {
+  ModeManager m;
+  ASSERT_TRUE(m.init(plateHandover()).ok);
+  ModeInputs bare = farAt(10.0);
+  bare.cue_lacks_edges = true;
+  std::uint64_t frame = 0;
+  std::vector<std::uint64_t> waits;  // frames in far range before each due hand-over
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    std::uint64_t waited = 0;
+    while (!m.handOverDue(farAt(10.0)) && waited < 1000) {
+      EXPECT_FALSE(m.step(farAt(10.0), ++frame));
+      ++waited;
+    }
+    EXPECT_FALSE(m.step(bare, ++frame)) << "refused: no mode change";
+    EXPECT_EQ(m.mode(), NavMode::kFarRange);
+    waits.push_back(waited + 1U);
+  }
+  // As FailedAcquisitionsBackOffExponentially's hand-overs: 3, then the hold-off (5, 10, 20) plus one.
+  EXPECT_EQ(waits, (std::vector<std::uint64_t>{3, 6, 11, 21}));
+  EXPECT_EQ(m.refusedHandOvers(), 4U);
+  EXPECT_EQ(m.transitionCount(), 0U);
+  EXPECT_FALSE(m.handOverDue(nearAt(10.0))) << "no far fix, nothing due";
+  // A cue with edges is handed over when due, as before.
+  std::uint64_t waited = 0;
+  while (m.mode() == NavMode::kFarRange && waited < 1000) {
+    m.step(farAt(10.0), ++frame);
+    ++waited;
+  }
+  EXPECT_EQ(waited, 41U);
+  EXPECT_EQ(m.mode(), NavMode::kAcquisition);
+  m.reset();
+  EXPECT_EQ(m.refusedHandOvers(), 0U);
+}
+
 TEST(ModeManager, AnUnconfirmedAcquisitionIsRetriedOnceTheTargetHasComeNearer) {
   // Case approach_smallsat: acquisition saw the satellite at 157 m but could confirm no pose (no_candidate),
   // then again at 122 m (ambiguous); at 69 m it succeeded. After such a failure the next hand-over waits

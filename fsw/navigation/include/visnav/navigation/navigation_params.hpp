@@ -74,7 +74,7 @@ struct NavigationParams {
   bool reacquire_acquisition_outline_cue = false;  ///< or look where the outline cue matched best
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
-  bool refute_unconfirmed_cue = false;  ///< an acquisition that confirmed nothing at its cue refutes it too
+  bool refute_unconfirmed_cue = false;    ///< an acquisition that confirmed nothing at its cue refutes it too
   bool check_cue_before_handover = true;  ///< a cue without edges is refused in far range, not handed over
   bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
