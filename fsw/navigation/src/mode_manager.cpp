@@ -66,10 +66,13 @@ bool ModeManager::handOverCondition(const ModeInputs& in, int close_count, std::
          grown;
 }
 
+int ModeManager::nextCloseCount(const ModeInputs& in) const {
+  return in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
+}
+
 bool ModeManager::handOverDue(const ModeInputs& in) const {
   if (m_mode != NavMode::kFarRange) return false;
-  const int close = in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
-  return handOverCondition(in, close, m_frames_in_mode + 1U);
+  return handOverCondition(in, nextCloseCount(in), m_frames_in_mode + 1U);
 }
 
 bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
@@ -78,7 +81,7 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
   switch (m_mode) {
     case NavMode::kStandby: break;  // only a resume command leaves standby
     case NavMode::kFarRange: {
-      m_close_count = in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
+      m_close_count = nextCloseCount(in);
       if (handOverCondition(in, m_close_count, m_frames_in_mode)) {
         m_retry_below_m = 0.0;
         if (in.cue_lacks_edges) {

@@ -75,6 +75,8 @@ class ModeManager {
   /// The far-range hand-over condition for a frame with `close_count` consecutive close fixes, `frames`
   /// frames into far range.
   bool handOverCondition(const ModeInputs& in, int close_count, std::uint32_t frames) const;
+  /// m_close_count after a far-range frame with these inputs (step() and handOverDue() alike).
+  int nextCloseCount(const ModeInputs& in) const;
 };
 
 }  // namespace visnav::nav
