@@ -95,7 +95,7 @@ BENCHMARK(BM_WholeAcquisition)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 void BM_PrepareWindow(benchmark::State& state) {
   const Bench& b = bench(0);
   acq::WorkingImage w;
-  w.init(256, 2048);
+  w.init(256, 2048, 1280);
   // 5 m: the largest window the defaults build (box factor 6, ~170 x 170 working px).
   w.setWindow(Vec2(320.0, 240.0), 500.0, 6);
   for (auto _ : state) {
@@ -113,7 +113,7 @@ void BM_OutlineCue(benchmark::State& state) {
   const Bench& b = bench(0);
   const double radius_px = static_cast<double>(state.range(0));
   acq::WorkingImage window;
-  window.init(160, 256);
+  window.init(160, 256, 1280);
   acq::EdgeScorer scorer;
   scorer.init(test::vgaCamera(), b.scene.model, acq::ScorerSettings{64, 0.5});
   Vec2 centre;

@@ -39,7 +39,9 @@ LoadError Acquisition::init(const PinholeCamera& camera, const PolygonModel& mod
   m_bounding_radius_m = model.boundingRadius();
   LoadError e =
       m_grid.init(model, params.view_directions, params.roll_steps, params.max_obliquity_deg * kRadPerDeg);
-  if (e.ok) e = m_window.init(params.max_working_side_px, params.max_strong_pixels);
+  if (e.ok)
+    e = m_window.init(params.max_working_side_px, params.max_strong_pixels,
+                      2 * std::max(camera.width(), camera.height()));
   if (e.ok) e = m_scorer.init(camera, model, {params.samples_per_hypothesis, params.internal_edge_weight});
   NearRangeParams wide = nearrange;
   if (params.verify_scanline_half_length_px > 0)
@@ -117,8 +119,12 @@ void Acquisition::start(const Vec3& direction_c, double distance_m, double direc
   const double half_px = m_params.window_margin * k.fx_px * m_bounding_radius_m / nearest +
                          k.fx_px * std::tan(direction_margin_deg * kRadPerDeg);
   const double expected_radius_px = k.fx_px * m_bounding_radius_m / range;
-  const int scale = std::max(1, static_cast<int>(expected_radius_px / m_params.working_radius_px + 0.5));
-  m_window.setWindow(centre_px, half_px, scale);
+  // A cue a few metres off a large target asks for more than the image holds: capped before the factor's
+  // conversion to int (the window caps the rest, WorkingImage::setWindow).
+  const double max_px = 2.0 * std::max(m_camera.width(), m_camera.height());
+  const int scale =
+      std::max(1, static_cast<int>(std::min(expected_radius_px, max_px) / m_params.working_radius_px + 0.5));
+  m_window.setWindow(centre_px, std::min(half_px, max_px), scale);
   m_state = AcquisitionState::kSearching;
 }
 

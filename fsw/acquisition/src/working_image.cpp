@@ -16,11 +16,13 @@ double pixel(const MonoImage& image, int x, int y) {
 
 }  // namespace
 
-LoadError WorkingImage::init(int max_side_px, int max_strong_pixels) {
+LoadError WorkingImage::init(int max_side_px, int max_strong_pixels, int max_window_px) {
   if (max_side_px < 16) return LoadError::failure("acquisition: working image side below 16 px");
+  if (max_window_px < 16) return LoadError::failure("acquisition: window side below 16 px");
   if (max_strong_pixels < 16) return LoadError::failure("acquisition: fewer than 16 strong pixels");
   m_strong.reserve(static_cast<std::size_t>(max_strong_pixels));
   m_max_side = max_side_px;
+  m_max_window = max_window_px;
   const auto n = static_cast<std::size_t>(max_side_px) * static_cast<std::size_t>(max_side_px);
   m_intensity.reserve(n);
   m_magnitude.reserve(n);
@@ -33,8 +35,13 @@ LoadError WorkingImage::init(int max_side_px, int max_strong_pixels) {
 }
 
 int WorkingImage::setWindow(const Vec2& centre_px, double half_size_px, int scale) {
-  m_scale = std::max(1, scale);
-  const double side_full = 2.0 * std::max(half_size_px, 8.0);
+  // Bounded work whatever is asked: a search predicted 0.3 m from the camera asked for a window of some
+  // 10^5 px a side averaged in blocks as wide, and prepare() ran for hours (campaign plate/26 with the
+  // search's rates fading). A window wider than twice the image only adds padding.
+  const double max_half = 0.5 * m_max_window;
+  const double half = half_size_px <= max_half ? std::max(half_size_px, 8.0) : max_half;
+  const double side_full = 2.0 * half;
+  m_scale = std::clamp(scale, 1, std::max(1, static_cast<int>(side_full / 16.0)));
   const int needed = static_cast<int>(std::ceil(side_full / m_max_side));
   m_scale = std::max(m_scale, needed);
   const int side = std::min(m_max_side, static_cast<int>(std::ceil(side_full / m_scale)));

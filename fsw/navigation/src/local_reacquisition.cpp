@@ -34,7 +34,7 @@ LoadError LocalReacquisition::init(const PinholeCamera& camera, const PolygonMod
   m_bounding_radius_m = model.boundingRadius();
   LoadError e = m_wide.init(camera, model, wide);
   if (e.ok) e = m_flight.init(camera, model, nearrange);
-  if (e.ok) e = m_cue_window.init(kCueWindowSidePx, 256);
+  if (e.ok) e = m_cue_window.init(kCueWindowSidePx, 256, 2 * std::max(camera.width(), camera.height()));
   m_evidence = evidence;
   if (e.ok)
     e = m_cue_scorer.init(
@@ -89,7 +89,11 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   const double range_m = predicted.t_c_m.z();
   if (capacity <= 0 || !(range_m > 0.0) || !m_camera.project(predicted.t_c_m, centre_px)) return 0;
   const double target_radius_px = m_camera.intrinsics().fx_px * m_bounding_radius_m / range_m;
-  const double half_px = radius_px + 1.2 * target_radius_px;
+  // An outline wider than the image has nothing to slide over (a prediction coasted to within a metre of the
+  // camera: campaign plate/26 hung on such a window before WorkingImage capped it).
+  const double diagonal_px = std::hypot(m_camera.width(), m_camera.height());
+  if (!(target_radius_px <= diagonal_px)) return 0;
+  const double half_px = std::min(radius_px, diagonal_px) + 1.2 * target_radius_px;
   const int scale = std::max({1, static_cast<int>(std::ceil(2.0 * half_px / kCueWindowSidePx)),
                               static_cast<int>(target_radius_px / kCueTargetRadiusPx + 0.5)});
   const int used = m_cue_window.setWindow(centre_px, half_px, scale);

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "acquisition_fixture.hpp"
@@ -60,7 +61,7 @@ TEST(WorkingImage, StepEdgeGivesEvidenceAcrossItOnly) {
   const std::vector<std::uint8_t> pixels = stepImage();
   const MonoImage image = MonoImage::from8(ImageView8(pixels.data(), 200, 160));
   WorkingImage w;
-  ASSERT_TRUE(w.init(64, 256).ok);
+  ASSERT_TRUE(w.init(64, 256, 1280).ok);
   // Window centred on the edge, 120 px wide, box factor 2 -> 60 x 60 working pixels.
   EXPECT_EQ(w.setWindow(Vec2(100.0, 80.0), 60.0, 2), 2);
   w.prepare(image, 1, 4, 1000.0);
@@ -90,6 +91,38 @@ TEST(WorkingImage, StepEdgeGivesEvidenceAcrossItOnly) {
   EXPECT_NEAR(w.evidence(on_edge, 0.0, Evidence::kCoarse), w.cap(), 1e-7);
 }
 
+// Whatever a caller asks (a prediction coasted to within a metre of the camera asked for a window of
+// 10^5 px a side in blocks as wide; campaign plate/26 ran for hours), the window covers at most
+// max_window_px raw pixels a side with at least 16 working pixels, and is read in bounded time.
+TEST(WorkingImage, AnyWindowAskedForIsBoundedByTheLargestWindow) {
+  const std::vector<std::uint8_t> pixels = stepImage();
+  const MonoImage image = MonoImage::from8(ImageView8(pixels.data(), 200, 160));
+  WorkingImage w;
+  constexpr int kMaxWindow = 400;  // twice the image's larger side
+  ASSERT_TRUE(w.init(64, 256, kMaxWindow).ok);
+  EXPECT_FALSE(w.init(64, 256, 8).ok);
+  ASSERT_TRUE(w.init(64, 256, kMaxWindow).ok);
+  struct Ask {
+    double half_px;
+    int scale;
+  };
+  for (const Ask ask :
+       {Ask{1.0e5, 1}, Ask{1.0e5, 30000}, Ask{60.0, 1 << 30},
+        Ask{std::numeric_limits<double>::quiet_NaN(), 4}, Ask{std::numeric_limits<double>::infinity(), 2}}) {
+    const int used = w.setWindow(Vec2(100.0, 80.0), ask.half_px, ask.scale);
+    EXPECT_EQ(used, w.scale());
+    EXPECT_GE(used, 1);
+    EXPECT_LE(w.width() * used, kMaxWindow + used) << ask.half_px << " " << ask.scale;  // + rounding
+    EXPECT_GE(w.width(), 7) << "a window keeps some working pixels";
+    EXPECT_EQ(w.width(), w.height());
+    w.prepare(image, 1, 4, 1000.0);
+    EXPECT_TRUE(std::isfinite(w.stats().edge_snr));
+  }
+  // An ordinary window is as asked.
+  EXPECT_EQ(w.setWindow(Vec2(100.0, 80.0), 60.0, 2), 2);
+  EXPECT_EQ(w.width(), 60);
+}
+
 TEST(WorkingImage, NoiseAloneHasLowEdgeSnrAndATargetHigh) {
   const test::Scene scene = test::makeScene(test::Target::kPlate);
   synthetic::Renderer renderer;
@@ -98,7 +131,7 @@ TEST(WorkingImage, NoiseAloneHasLowEdgeSnrAndATargetHigh) {
   const test::RenderedFrame target = test::renderFrame(renderer, truth, 3);
   const test::RenderedFrame empty = test::renderFrame(renderer, test::plateAt(15.0, 100.0), 3);
   WorkingImage w;
-  ASSERT_TRUE(w.init(256, 2048).ok);
+  ASSERT_TRUE(w.init(256, 2048, 1280).ok);
   w.setWindow(Vec2(320.0, 240.0), 120.0, 1);
   w.prepare(empty.image(), 2, 8, 4.0);
   // Rayleigh-distributed noise gradients: p99.9 / median = sqrt(2 ln 1000) / sqrt(2 ln 2) = 3.2.
@@ -116,7 +149,7 @@ class ScorerTest : public ::testing::Test {
     ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
     truth = Pose{test::tiltedAttitude(25.0, 30.0, 40.0), Vec3(0.2, -0.1, 12.0)};
     frame = test::renderFrame(renderer, truth, 21);
-    ASSERT_TRUE(window.init(256, 2048).ok);
+    ASSERT_TRUE(window.init(256, 2048, 1280).ok);
     Vec2 centre;
     test::vgaCamera().project(truth.t_c_m, centre);
     window.setWindow(centre, 200.0, 4);

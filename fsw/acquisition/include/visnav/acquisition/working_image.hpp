@@ -50,10 +50,14 @@ class WorkingImage {
   static constexpr int kLevels = 3;  ///< raw, fine spread, coarse spread
   static constexpr int kMaxSpread = 64;
 
-  /// Allocates for windows up to max_side x max_side working pixels and up to max_strong strong pixels.
-  LoadError init(int max_side_px, int max_strong_pixels);
+  /// Allocates for windows up to max_side x max_side working pixels and up to max_strong strong pixels;
+  /// no window is wider than max_window_px raw pixels (give twice the image's larger side: a wider one only
+  /// adds padding).
+  LoadError init(int max_side_px, int max_strong_pixels, int max_window_px);
   /// Places the window: centre and half-size in full-resolution raw pixels, box factor `scale` >= 1. The
-  /// factor grows if the window would exceed max_side. Returns the factor used.
+  /// factor grows if the window would exceed max_side. The half-size is capped at max_window_px / 2 (a NaN
+  /// too) and the factor at what keeps 16 working pixels a side, so prepare() reads at most about
+  /// max_window_px^2 raw pixels whatever is asked. Returns the factor used.
   int setWindow(const Vec2& centre_px, double half_size_px, int scale);
 
   /// Reads the window from the frame (outside the frame: nearest frame pixel, so no false edge), computes
@@ -92,6 +96,7 @@ class WorkingImage {
   void computeStats();
 
   int m_max_side = 0;
+  int m_max_window = 0;  ///< raw px a side (init)
   int m_width = 0;
   int m_height = 0;
   int m_scale = 1;
