@@ -35,9 +35,10 @@ LoadError WorkingImage::init(int max_side_px, int max_strong_pixels, int max_win
 }
 
 int WorkingImage::setWindow(const Vec2& centre_px, double half_size_px, int scale) {
-  // Bounded work whatever is asked: a search predicted 0.3 m from the camera asked for a window of some
-  // 10^5 px a side averaged in blocks as wide, and prepare() ran for hours (campaign plate/26 with the
-  // search's rates fading). A window wider than twice the image only adds padding.
+  // Bounded work whatever is asked: a search whose prediction had coasted past the camera (depth near zero,
+  // the target at 24 m) asked for a window many times wider than the image, averaged in blocks as wide, and
+  // prepare() ran for an hour (campaign plate/26 with the search's rates fading). A window wider than twice
+  // the image only adds padding.
   const double max_half = 0.5 * m_max_window;
   const double half = half_size_px <= max_half ? std::max(half_size_px, 8.0) : max_half;
   const double side_full = 2.0 * half;

@@ -89,8 +89,8 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   const double range_m = predicted.t_c_m.z();
   if (capacity <= 0 || !(range_m > 0.0) || !m_camera.project(predicted.t_c_m, centre_px)) return 0;
   const double target_radius_px = m_camera.intrinsics().fx_px * m_bounding_radius_m / range_m;
-  // An outline wider than the image has nothing to slide over (a prediction coasted to within a metre of the
-  // camera: campaign plate/26 hung on such a window before WorkingImage capped it).
+  // An outline wider than the image has nothing to slide over (a prediction coasted past the camera: campaign
+  // plate/26 hung on such a window before WorkingImage capped it).
   const double diagonal_px = std::hypot(m_camera.width(), m_camera.height());
   if (!(target_radius_px <= diagonal_px)) return 0;
   const double half_px = std::min(radius_px, diagonal_px) + 1.2 * target_radius_px;

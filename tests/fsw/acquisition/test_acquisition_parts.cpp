@@ -91,8 +91,8 @@ TEST(WorkingImage, StepEdgeGivesEvidenceAcrossItOnly) {
   EXPECT_NEAR(w.evidence(on_edge, 0.0, Evidence::kCoarse), w.cap(), 1e-7);
 }
 
-// Whatever a caller asks (a prediction coasted to within a metre of the camera asked for a window of
-// 10^5 px a side in blocks as wide; campaign plate/26 ran for hours), the window covers at most
+// Whatever a caller asks (a prediction coasted past the camera asked for a window many times wider than
+// the image, in blocks as wide; campaign plate/26 ran for an hour), the window covers at most
 // max_window_px raw pixels a side with at least 16 working pixels, and is read in bounded time.
 TEST(WorkingImage, AnyWindowAskedForIsBoundedByTheLargestWindow) {
   const std::vector<std::uint8_t> pixels = stepImage();
