@@ -44,9 +44,21 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     deliver(step.pose, step.covariance, step.quality, out, true);
   } else {
     coast(out);
+    fadeSearchRates();
     in.reacquisition_timed_out =
         m_reacquisition.framesSearching() >= m_params.navigation.reacquire_timeout_frames;
   }
+}
+
+void NavigationPipeline::fadeSearchRates() {
+  // The motion the track left with predicts a few frames, not a whole search: a target swinging sideways
+  // turns back, and a rate read from the last uncertain fits is wrong for good; carried in a straight line
+  // they took the search's prediction away from the target (campaign octagon/37: 8 m off 60 frames into the
+  // search where the last pose was 4 m off; box/7: 82 deg off where the last pose was 19 deg off).
+  const double tau_s = m_params.navigation.reacquire_motion_decay_s;
+  if (!(tau_s > 0.0) || m_previous_exposure_ns == 0 || !m_filter.initialised()) return;
+  const double dt_s = static_cast<double>(m_last_exposure_ns - m_previous_exposure_ns) * 1e-9;
+  if (dt_s > 0.0) (void)m_filter.scaleRates(std::exp(-dt_s / tau_s));
 }
 
 void NavigationPipeline::startFilterFromReacquisition(const ReacquisitionStep& step) {

@@ -191,6 +191,13 @@ std::uint32_t PoseFilter::dropInsignificantRates() {
   return dropped;
 }
 
+Status PoseFilter::scaleRates(double factor) {
+  if (!m_initialised || !(factor >= 0.0 && factor <= 1.0)) return Status::kInvalidArgument;
+  m_velocity *= factor;
+  m_angular_velocity *= factor;
+  return Status::kOk;
+}
+
 Status PoseFilter::initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance) {
   const Mat3 p = symmetricPart<3>(position_covariance);
   Eigen::LDLT<Mat3> ldlt;

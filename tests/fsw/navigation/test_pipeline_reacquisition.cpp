@@ -3,6 +3,8 @@
 // or by far range), and the doubt on a reacquired track.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "pipeline_fixture.hpp"
 
 namespace visnav::nav {
@@ -61,6 +63,7 @@ TEST_F(PipelineTest, ASearchCarriesOnlyTheMotionTheFilterCouldTellFromNoise) {
   for (const bool drop : {true, false}) {
     PipelineParams p = params;
     p.navigation.reacquire_drop_insignificant_rates = drop;
+    p.navigation.reacquire_motion_decay_s = 0.0;  // the rates as the search starts: none faded yet
     NavigationPipeline pipeline;
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
     pipeline.startNearRange(seq[0].truth, 0);
@@ -85,6 +88,43 @@ TEST_F(PipelineTest, ASearchCarriesOnlyTheMotionTheFilterCouldTellFromNoise) {
       EXPECT_EQ(pipeline.filter().velocity(), velocity_before);
       EXPECT_EQ(pipeline.filter().angularVelocity(), rate_before);
     }
+  }
+}
+
+TEST_F(PipelineTest, ASearchsRatesFadeWithTheDecayTimeConstant) {
+  // The same plate held still, hidden after three frames; the rates its fits' noise reads are kept
+  // (reacquire_drop_insignificant_rates off) so there is something to fade. With reacquire_motion_decay_s
+  // the search multiplies both by exp(-0.2 s / tau) on each of its frames; without, they stay.
+  const Pose still = test::plateAt(15.0, 0.3, 1.0, -1.0);
+  const std::vector<test::RenderedFrame> seq = hiddenApproach(still, still);
+  constexpr double kTauS = 1.0;
+  constexpr int kSearchedFrames = 5;
+  for (const double tau_s : {kTauS, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.reacquire_drop_insignificant_rates = false;
+    p.navigation.reacquire_motion_decay_s = tau_s;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int searched = 0;
+    Vec3 velocity_before = Vec3::Zero();
+    Vec3 rate_before = Vec3::Zero();
+    for (int i = 0; i < kHiddenUntil && searched < kSearchedFrames; ++i) {
+      if (searched == 0) {
+        velocity_before = pipeline.filter().velocity();
+        rate_before = pipeline.filter().angularVelocity();
+      }
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (pipeline.lastReacquisition().hypotheses > 0 || searched > 0) ++searched;
+    }
+    ASSERT_EQ(searched, kSearchedFrames) << "the search must run while the plate is hidden";
+    ASSERT_FALSE(velocity_before.isZero(0.0)) << "the track left no velocity: the test tests nothing";
+    ASSERT_FALSE(rate_before.isZero(0.0));
+    const double factor = tau_s > 0.0 ? std::exp(-kSearchedFrames * 0.2 / tau_s) : 1.0;
+    EXPECT_TRUE(pipeline.filter().velocity().isApprox(factor * velocity_before, 1e-9)) << tau_s;
+    EXPECT_TRUE(pipeline.filter().angularVelocity().isApprox(factor * rate_before, 1e-9)) << tau_s;
   }
 }
 

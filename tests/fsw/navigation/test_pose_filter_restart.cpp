@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <limits>
 
 #include "pose_filter_test_support.hpp"
 
@@ -283,6 +284,36 @@ TEST(PoseFilterSearch, ASlowTumbleTheTrackMeasuredIsKept) {
   const Vec3 w = f.angularVelocity();
   EXPECT_EQ(f.dropInsignificantRates() & PoseFilter::kDroppedAngularVelocity, 0U);
   EXPECT_EQ(f.angularVelocity(), w);
+}
+
+// A long search fades the rates it carries (NavigationParams::reacquire_motion_decay_s): both scaled by the
+// factor, the pose and covariance kept; a factor outside [0, 1] or an empty filter changes nothing.
+TEST(PoseFilterSearch, RatesFadeByTheFactorAndNothingElseChanges) {
+  const Mat6 cov = nearCovariance();
+  Pcg32 rng(37);
+  PoseFilter f = trackedFilter(Vec3(0.3, 0.0, -0.5), Vec3(0.0, 4.0, 0.0) * kRadPerDeg, cov, 10, rng);
+  const Vec3 v = f.velocity();
+  const Vec3 w = f.angularVelocity();
+  ASSERT_FALSE(v.isZero(0.0));
+  ASSERT_FALSE(w.isZero(0.0));
+  const Mat12 covariance = f.covariance();
+  const Pose pose = f.pose();
+  for (const double bad : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    EXPECT_EQ(f.scaleRates(bad), Status::kInvalidArgument) << bad;
+    EXPECT_EQ(f.velocity(), v);
+    EXPECT_EQ(f.angularVelocity(), w);
+  }
+  ASSERT_EQ(f.scaleRates(0.25), Status::kOk);
+  EXPECT_TRUE(f.velocity().isApprox(0.25 * v, 1e-15));
+  EXPECT_TRUE(f.angularVelocity().isApprox(0.25 * w, 1e-15));
+  EXPECT_EQ(f.covariance(), covariance);
+  EXPECT_EQ(f.pose().t_c_m, pose.t_c_m);
+  EXPECT_EQ(f.pose().R_c_m, pose.R_c_m);
+  ASSERT_EQ(f.scaleRates(0.0), Status::kOk);
+  EXPECT_TRUE(f.velocity().isZero(0.0));
+  EXPECT_TRUE(f.angularVelocity().isZero(0.0));
+  PoseFilter empty = makeFilter();
+  EXPECT_EQ(empty.scaleRates(0.5), Status::kInvalidArgument);
 }
 
 }  // namespace

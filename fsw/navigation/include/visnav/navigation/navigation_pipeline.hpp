@@ -106,6 +106,7 @@ class NavigationPipeline {
                           ModeInputs& in);
   void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   /// Restarts the filter from a reacquisition's confirmation: its last two frames give the velocity.
+  void fadeSearchRates();
   void startFilterFromReacquisition(const ReacquisitionStep& step);
   /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
   /// searches too, cued by the prediction; its find is delivered as the step's.

@@ -70,6 +70,11 @@ class PoseFilter {
   /// what the last fits could not tell from noise is not carried through it. Returns what was dropped
   /// (kDropped* bits; 0 when uninitialised or nothing was).
   std::uint32_t dropInsignificantRates();
+  /// Multiplies the velocity and the angular velocity by factor in [0, 1] (the covariance is kept): a
+  /// search coasting for many frames carries a motion that fades instead of a straight line
+  /// (NavigationParams::reacquire_motion_decay_s). kInvalidArgument (state untouched) for a factor outside
+  /// [0, 1] or when uninitialised.
+  Status scaleRates(double factor);
   /// Start from a position only (far range): attitude unknown until the first pose update adopts one.
   Status initialisePosition(const Vec3& t_c_m, const Mat3& position_covariance);
 
