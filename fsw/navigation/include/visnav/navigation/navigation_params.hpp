@@ -74,7 +74,7 @@ struct NavigationParams {
   bool reacquire_acquisition_outline_cue = false;  ///< or look where the outline cue matched best
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
-  double reacquire_motion_decay_s = 5.0;  ///< a search's rates fade with this time constant (0: kept)
+  double reacquire_motion_decay_s = 0.0;  ///< a search's rates fade with this time constant (0: kept)
   bool refute_unconfirmed_cue = false;    ///< an acquisition that confirmed nothing at its cue refutes it too
   bool check_cue_before_handover = true;  ///< a cue without edges is refused in far range, not handed over
   bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
@@ -421,8 +421,10 @@ struct NavigationParams {
             "velocity are multiplied by exp(-dt / this), so the search's prediction moves at most rate x "
             "this from where the track was lost instead of along a straight line for the whole search "
             "(campaign octagon/37: 8 m off 60 frames into the search where the last pose was 4 m off). "
-            "Seeds 1-40 (200 scenes): tracked frames 14 721 -> 14 793, confidently wrong 7 -> 7. "
-            "0: the rates are kept"},
+            "Measured at 5 s: seeds 1-40 (200 scenes) tracked frames 14 721 -> 14 793 and seeds 5001-5040 "
+            "15 022 -> 15 074, confidently wrong 7 and 13 unchanged; but campaign octagon/172 with far range "
+            "as before stop 49 (tests/tools/campaign/near_twin_rival_on.toml) then delivered 10 confidently "
+            "wrong frames where it had none, not yet understood, so off. 0: the rates are kept"},
            reacquire_motion_decay_s);
     v.boolean({"navigation", "refute_unconfirmed_cue", "-", 0, 1,
                "an acquisition that failed at far range's cue with edges there (no_candidate, not_confirmed, "
