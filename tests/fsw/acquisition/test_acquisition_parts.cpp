@@ -93,7 +93,8 @@ TEST(WorkingImage, StepEdgeGivesEvidenceAcrossItOnly) {
 
 // Whatever a caller asks (a prediction coasted past the camera asked for a window many times wider than
 // the image, in blocks as wide; campaign plate/26 ran for an hour), the window covers at most
-// max_window_px raw pixels a side with at least 16 working pixels, and is read in bounded time.
+// max_window_px raw pixels a side with at least 16 working pixels (max_side 64 here), and is read in
+// bounded time.
 TEST(WorkingImage, AnyWindowAskedForIsBoundedByTheLargestWindow) {
   const std::vector<std::uint8_t> pixels = stepImage();
   const MonoImage image = MonoImage::from8(ImageView8(pixels.data(), 200, 160));
@@ -113,7 +114,7 @@ TEST(WorkingImage, AnyWindowAskedForIsBoundedByTheLargestWindow) {
     EXPECT_EQ(used, w.scale());
     EXPECT_GE(used, 1);
     EXPECT_LE(w.width() * used, kMaxWindow + used) << ask.half_px << " " << ask.scale;  // + rounding
-    EXPECT_GE(w.width(), 7) << "a window keeps some working pixels";
+    EXPECT_GE(w.width(), 16) << "a window keeps working pixels";
     EXPECT_EQ(w.width(), w.height());
     w.prepare(image, 1, 4, 1000.0);
     EXPECT_TRUE(std::isfinite(w.stats().edge_snr));

@@ -56,7 +56,7 @@ class WorkingImage {
   LoadError init(int max_side_px, int max_strong_pixels, int max_window_px);
   /// Places the window: centre and half-size in full-resolution raw pixels, box factor `scale` >= 1. The
   /// factor grows if the window would exceed max_side. The half-size is capped at max_window_px / 2 (a NaN
-  /// too) and the factor at what keeps 16 working pixels a side, so prepare() reads at most about
+  /// too) and the asked factor at a sixteenth of the window's side, so prepare() reads at most about
   /// max_window_px^2 raw pixels whatever is asked. Returns the factor used.
   int setWindow(const Vec2& centre_px, double half_size_px, int scale);
 
