@@ -51,6 +51,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
   m_find_confirms_branch = false;
+  m_find_on_known_branch = false;
   m_track_twin_by_continuity = false;
   m_acquisition_awaits_near = false;
   m_filter.reset();

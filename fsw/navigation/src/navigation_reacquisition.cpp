@@ -39,7 +39,8 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     // before the close-range acquisition was on: wrong frames 165 -> 160 for 0.001 of tracked mean).
     m_track_doubted = true;
     m_doubt_clear_run = 0;
-    m_find_confirms_branch = m_params.navigation.doubt_clear_frames > 1;
+    m_find_on_known_branch = findOnKnownBranch(step.pose);
+    m_find_confirms_branch = m_params.navigation.doubt_clear_frames > 1 && m_find_on_known_branch;
     m_track_twin_by_continuity = step.twin_by_continuity;
     deliver(step.pose, step.covariance, step.quality, out, true);
   } else {
@@ -48,6 +49,16 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     in.reacquisition_timed_out =
         m_reacquisition.framesSearching() >= m_params.navigation.reacquire_timeout_frames;
   }
+}
+
+bool NavigationPipeline::findOnKnownBranch(const Pose& found) const {
+  // The local search is judged against its prediction, and the prediction continues the lost track: where
+  // no pose of that track was ever valid, it may be the wrong twin's (campaign octagon/172: acquired at 30 m
+  // on the near-square plate's quarter turn, withheld by the near-twin checks, lost, and re-found on the
+  // same quarter turn at 14 m). Such a find earns its branch as any unknown one does (track_branch.hpp).
+  if (!m_params.navigation.find_confirms_only_from_reference) return true;
+  return m_frames_since_branch_reference != ~0ULL &&
+         m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference, found);
 }
 
 void NavigationPipeline::fadeSearchRates() {

@@ -93,9 +93,11 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
                                            m_near_result.pose) &&
         !m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference,
                                             m_near_result.near_twin_rival));
-  const bool rival_free =
-      processed_in != NavMode::kNearRange ||
-      ((m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U && !m_near_twin_rival);
+  // A find off a known branch (findOnKnownBranch) had no near twin refitted: not rival-free either.
+  const bool find_off_branch = m_reacquisition_step.found && !m_find_on_known_branch;
+  const bool rival_free = processed_in != NavMode::kNearRange ||
+                          ((m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U &&
+                           !m_near_twin_rival && !find_off_branch);
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
@@ -106,7 +108,7 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // With doubt_clear_frames > 1 the find's own frame is withheld: its confirmation of the branch (the twin
   // chosen by continuity with the last valid pose) passes to the track's first valid pose after it.
   const bool find_confirms =
-      m_reacquisition_step.found ||
+      (m_reacquisition_step.found && m_find_on_known_branch) ||
       (m_find_confirms_branch && processed_in == NavMode::kNearRange && out.pose_valid);
   m_find_confirms_branch = m_find_confirms_branch && m_track_doubted && !out.pose_valid;
   const bool confirmed = (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) ||

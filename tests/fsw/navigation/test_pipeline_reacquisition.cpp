@@ -189,6 +189,79 @@ TEST_F(PipelineTest, BeforeAnyValidPoseTheStartPoseJudgesAFindsLook) {
   }
 }
 
+TEST_F(PipelineTest, AFindContinuingATrackNeverDeliveredEarnsItsBranchLikeAnyOther) {
+  // Acquired from far range by itself, then hidden on the frames after the acquisition's (whose pose awaits
+  // near range and is not valid): no pose was ever valid, and there is no start pose. The local search's
+  // find is judged against a prediction from that never-confirmed track, which may be the wrong twin's
+  // (campaign octagon/172: re-found on the quarter turn it was acquired on, 88 deg off). With
+  // find_confirms_only_from_reference the find confirms nothing: it and the track after it are valid only
+  // after branch_confirm_frames rival-free frames. Off: the find is valid on its own frame.
+  Pose behind = test::plateAt(26.0, 0.1, 1.0, -1.0);
+  behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+  const test::RenderedFrame hidden = test::renderFrame(renderer, behind, 998U);
+  constexpr int kHiddenFrames = 4;
+  struct Run {
+    int acquired_at = -1;
+    int found_at = -1;
+    int first_valid = -1;
+    int valid_before_find = 0;
+    int valid_after_first = 0;
+    int frames_after_first = 0;
+    std::uint64_t allocations = 0;
+  };
+  const auto run = [&](bool only_from_reference) {
+    PipelineParams p = params;
+    p.navigation.find_confirms_only_from_reference = only_from_reference;
+    // At 25 m no fit of this plate meets the doubted limit (1 deg): the find's doubt, another rule, is off.
+    p.navigation.doubted_max_attitude_sigma_deg = 0.0;
+    NavigationPipeline pipeline;
+    EXPECT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    Run r;
+    std::uint64_t allocations_before = 0;
+    for (int i = 0; i < kFrames; ++i) {
+      Frame f = frameAt(i);
+      const bool hide = r.acquired_at >= 0 && i > r.acquired_at && i <= r.acquired_at + kHiddenFrames;
+      if (hide) f.image = hidden.image();
+      NavSolution out;
+      EXPECT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (r.acquired_at < 0) {
+        if (out.mode == NavMode::kAcquisition &&
+            pipeline.lastAcquisition().state == acq::AcquisitionState::kSucceeded) {
+          r.acquired_at = i;
+          allocations_before = test::allocationCount();
+        }
+        continue;
+      }
+      if (r.found_at < 0 && pipeline.lastReacquisition().found) r.found_at = i;
+      if (r.found_at < 0) r.valid_before_find += out.pose_valid ? 1 : 0;
+      if (r.first_valid >= 0) {
+        ++r.frames_after_first;
+        r.valid_after_first += out.pose_valid ? 1 : 0;
+      } else if (out.pose_valid) {
+        r.first_valid = i;
+        const Pose& truth = frames[static_cast<std::size_t>(i)].truth;
+        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.05 * truth.t_c_m.norm()) << "frame " << i;
+      }
+    }
+    r.allocations = test::allocationCount() - allocations_before;
+    return r;
+  };
+  const int confirm_frames = params.navigation.branch_confirm_frames;
+  ASSERT_GE(confirm_frames, 2) << "the default must need more than the find's own frame";
+  const Run on = run(true);
+  ASSERT_GE(on.acquired_at, 0) << "never acquired";
+  ASSERT_GT(on.found_at, on.acquired_at + kHiddenFrames) << "never lost and re-found: the test tests nothing";
+  EXPECT_EQ(on.valid_before_find, 0) << "the acquisition's pose was valid: there is a reference after all";
+  // The find's own frame had no near twin refitted and is not rival-free: the next confirm_frames are.
+  EXPECT_EQ(on.first_valid, on.found_at + confirm_frames) << "found at " << on.found_at;
+  EXPECT_GE(on.frames_after_first, 5);
+  EXPECT_EQ(on.valid_after_first, on.frames_after_first) << "the track held once confirmed";
+  EXPECT_EQ(on.allocations, 0U) << "malloc counted: " << test::countsMalloc();
+  const Run off = run(false);
+  EXPECT_EQ(off.found_at, on.found_at) << "validity does not feed back into the search";
+  EXPECT_EQ(off.first_valid, off.found_at) << "off: the find is valid on its own frame";
+}
+
 TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRangeSeesIt) {
   // As above, but the plate also moved sideways while hidden, from 1.5 m right of the line of sight to 2.4 m
   // left of it: it reappears 17 deg (about 2.5 target radii) from the prediction's line of sight and 20 %

@@ -79,6 +79,7 @@ struct NavigationParams {
   bool check_cue_before_handover = true;  ///< a cue without edges is refused in far range, not handed over
   bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
+  bool find_confirms_only_from_reference = true;  ///< a find confirms the branch only if a valid pose kept it
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -399,6 +400,17 @@ struct NavigationParams {
                "without it, was found and its track then drifted to 12 deg (1 -> 10 wrong frames); seeds "
                "1-40 alone had shown 0.6435 -> 0.6483 and 18 -> 18. true: used"},
               reacquire_acquisition_outline_cue);
+    v.boolean({"navigation", "find_confirms_only_from_reference", "-", 0, 1,
+               "a close-range reacquisition's find confirms the track's branch only when the branch was "
+               "known before the loss: a last valid pose (or the operator's start pose) exists and the "
+               "find's look is consistent with it (reacquire_attitude_tolerance_deg widening per frame). "
+               "Otherwise the find and the track after it need branch_confirm_frames rival-free frames, "
+               "near twins refitted, like any track whose branch is unknown. The local search is judged "
+               "against its prediction, and a prediction from a track never delivered carries that "
+               "track's twin (campaign octagon/172 with reacquire_motion_decay_s: acquired at 30 m on the "
+               "quarter turn, withheld, lost, then re-found on the same quarter turn at 14 m and delivered "
+               "88 deg off for 10 frames). false: every find confirms"},
+              find_confirms_only_from_reference);
     v.boolean({"navigation", "reacquire_twin_continuity", "-", 0, 1,
                "close-range reacquisition: that acquisition does not refuse a candidate whose near twin "
                "the image cannot resolve ([acquisition] near_twin_min_separation_px) when the last valid "

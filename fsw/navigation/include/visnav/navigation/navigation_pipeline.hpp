@@ -105,9 +105,13 @@ class NavigationPipeline {
   void startReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                           ModeInputs& in);
   void runReacquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
-  /// Restarts the filter from a reacquisition's confirmation: its last two frames give the velocity.
+  /// After an unsuccessful searched frame: the filter's rates fade (reacquire_motion_decay_s).
   void fadeSearchRates();
+  /// Restarts the filter from a reacquisition's confirmation: its last two frames give the velocity.
   void startFilterFromReacquisition(const ReacquisitionStep& step);
+  /// A find may confirm the track's branch: a valid pose (or the start pose) kept one, and the find's look
+  /// agrees with it (find_confirms_only_from_reference).
+  bool findOnKnownBranch(const Pose& found) const;
   /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
   /// searches too, cued by the prediction; its find is delivered as the step's.
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
@@ -169,6 +173,7 @@ class NavigationPipeline {
   bool m_track_doubted = false;
   int m_doubt_clear_run = 0;            ///< consecutive poses of a doubted track within the doubted limit
   bool m_find_confirms_branch = false;  ///< doubt_clear_frames > 1: the find's branch waits for its doubt
+  bool m_find_on_known_branch = false;  ///< the find continues a branch a valid pose kept (findOnKnownBranch)
   Pose m_last_valid_pose;               ///< the last pose delivered as valid
   std::uint64_t m_frames_since_valid = ~0ULL;  ///< frames since then (~0: none yet)
   /// What continuity tells a near twin apart by (confirmBranch): the last valid pose, or the operator's start
