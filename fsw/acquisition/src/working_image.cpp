@@ -48,7 +48,15 @@ int WorkingImage::setWindow(const Vec2& centre_px, double half_size_px, int scal
   const int side = std::min(m_max_side, static_cast<int>(std::ceil(side_full / m_scale)));
   m_width = side;
   m_height = side;
-  m_origin = centre_px - Vec2::Constant(0.5 * side * m_scale);
+  // Nor further off the image than a window's width (only padding there): prepare() indexes from the
+  // origin in int (a coasted prediction's line of sight through a strong distortion projects 1e9 px out).
+  const double reach = static_cast<double>(m_max_window);
+  Vec2 centre = centre_px;
+  for (int k = 0; k < 2; ++k) {
+    if (!(centre[k] >= -reach)) centre[k] = -reach;  // NaN too
+    if (centre[k] > 2.0 * reach) centre[k] = 2.0 * reach;
+  }
+  m_origin = centre - Vec2::Constant(0.5 * side * m_scale);
   m_origin = m_origin.array().floor();
   return m_scale;
 }
@@ -221,9 +229,10 @@ ChannelBlend ChannelBlend::of(double normal_angle_rad) {
 }
 
 double WorkingImage::evidence(double px, double py, const ChannelBlend& blend, Evidence level) const {
-  const int x = static_cast<int>(std::floor(px));
-  const int y = static_cast<int>(std::floor(py));
-  if (x < 0 || y < 0 || x >= m_width || y >= m_height) return 0.0;
+  // In double first: a point projected far off the window must not reach the int casts (NaN fails too).
+  if (!(px >= 0.0 && py >= 0.0 && px < m_width && py < m_height)) return 0.0;
+  const int x = static_cast<int>(px);
+  const int y = static_cast<int>(py);
   const BoundedBuffer<float>* channels = m_channel[static_cast<int>(level)];
   const std::size_t i =
       static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x);

@@ -83,10 +83,11 @@ void FarRangeEstimator::skipFrames(int frames) {
 
 void FarRangeEstimator::setPrediction(const Vec3& direction_c, double distance_m) {
   Vec2 px;
-  if (!(distance_m > 0.0) || !m_camera.project(direction_c, px)) return;
+  const double sqrt_n = distance_m > 0.0 ? m_params.gamma / distance_m : 0.0;
+  // A distance so small that eq. 16's size overflows is no prediction either.
+  if (!(distance_m > 0.0) || !std::isfinite(sqrt_n * sqrt_n) || !m_camera.project(direction_c, px)) return;
   m_has_prediction = true;
   m_prediction_px = px;
-  const double sqrt_n = m_params.gamma / distance_m;
   m_prediction_size_px = sqrt_n * sqrt_n;
 }
 
@@ -172,9 +173,13 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   }
   if (selected < 0 && m_robust && m_params.use_roi && gate.active) {
     // The region holds the gate and the target's expected extent with a margin (sec. V).
-    const double half =
+    // Bounded before the int casts: a gate grown over many misses (or NaN) held to 16 image sides, as good
+    // as infinite once clipped, far within int.
+    const double image_side = 16.0 * static_cast<double>(std::max(m_camera.width(), m_camera.height()));
+    double half =
         std::max(gate.radius_px + gate.half_extent_px, m_params.roi_extent_factor * gate.half_extent_px) +
         m_params.roi_min_half_px;
+    if (!(half <= image_side)) half = image_side;
     const double cx = std::clamp(gate.centre_px.x(), -half, m_camera.width() + half);
     const double cy = std::clamp(gate.centre_px.y(), -half, m_camera.height() + half);
     const Roi roi = Roi{static_cast<int>(std::floor(cx - half)), static_cast<int>(std::floor(cy - half)),

@@ -34,6 +34,7 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
                        ? std::cos(m_params.navigation.max_valid_view_angle_deg * kRadPerDeg)
                        : 1.0;
   m_last_command = CommandAck{};
+  m_near_twins_followed = 0;
   copyBounded("none", m_last_command.reason.data(), m_last_command.reason.size());
   return LoadError::success();
 }
@@ -381,6 +382,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     }
   }
   confirmBranch(mode_before, out);
+  followNearTwin(mode_before, out);
   if (out.pose_valid) {
     m_last_valid_pose = out.pose;
     m_frames_since_valid = 0;

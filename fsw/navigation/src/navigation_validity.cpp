@@ -116,6 +116,19 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
 }
 
+void NavigationPipeline::followNearTwin(NavMode processed_in, const NavSolution& out) {
+  // A withheld track on a near twin stays there: the checks withhold it, frame after frame, and nothing
+  // moves it (campaign octagon/172: acquired on the quarter turn at 30 m, 6 of 8 lines found, the true
+  // pose's fit from the truth 8 of 8). The twin that fits the found lines as well and explains the lines
+  // the kept pose did not find is the better start; a wrong twin loses lines in turn and hands back.
+  if (!m_params.navigation.follow_near_twin || processed_in != NavMode::kNearRange || out.pose_valid ||
+      m_branch.known() || !m_near_twin_rival || (m_near_result.flags & kFlagLineRejected) == 0U)
+    return;
+  m_filter.initialise(m_near_result.near_twin_rival, m_near_result.covariance);
+  m_last_pose = m_near_result.near_twin_rival;
+  ++m_near_twins_followed;
+}
+
 bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance) const {
   // A short break is no reason to forget which twin the track follows when the fit after it is as good as
   // one can be: the tracker's status tracking (all lines, no mirrored rival), the filter's prediction

@@ -124,6 +124,36 @@ TEST(WorkingImage, AnyWindowAskedForIsBoundedByTheLargestWindow) {
   EXPECT_EQ(w.width(), 60);
 }
 
+TEST(WorkingImage, AWindowCentredFarOffTheImageIsPaddingAndNoPointReachesAnIntCast) {
+  // A coasted prediction's line of sight through a strong distortion projects 1e9 px or more off the image
+  // (or NaN): the window's origin stays within a few windows of the image, where prepare() indexes in int,
+  // and a sample point anywhere (1e300, NaN) reads no evidence.
+  const std::vector<std::uint8_t> pixels = stepImage();
+  const MonoImage image = MonoImage::from8(ImageView8(pixels.data(), 200, 160));
+  WorkingImage w;
+  constexpr int kMaxWindow = 400;
+  ASSERT_TRUE(w.init(64, 256, kMaxWindow).ok);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Vec2& centre : {Vec2(1.0e12, -1.0e12), Vec2(-1.0e300, 1.0e300), Vec2(nan, nan)}) {
+    w.setWindow(centre, 60.0, 1);
+    const Vec2 origin = w.toFull(Vec2::Zero());
+    const Vec2 far_corner = w.toFull(Vec2(w.width(), w.height()));
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_GE(origin[k], -2.0 * kMaxWindow) << centre.transpose();
+      EXPECT_LE(far_corner[k], 3.0 * kMaxWindow) << centre.transpose();
+    }
+    w.prepare(image, 1, 4, 1000.0);
+    EXPECT_TRUE(std::isfinite(w.stats().edge_snr));
+  }
+  w.setWindow(Vec2(100.0, 80.0), 60.0, 1);
+  w.prepare(image, 1, 4, 1000.0);
+  const ChannelBlend blend = ChannelBlend::of(0.0);
+  EXPECT_GT(w.evidence(w.toWorking(Vec2(100.0, 80.0)), blend, Evidence::kFine), 0.0)
+      << "on the step: a live check";
+  for (const Vec2& p : {Vec2(1.0e300, 5.0), Vec2(5.0, -1.0e300), Vec2(nan, 5.0), Vec2(-0.5, 5.0)})
+    EXPECT_EQ(w.evidence(p, blend, Evidence::kFine), 0.0) << p.transpose();
+}
+
 TEST(WorkingImage, NoiseAloneHasLowEdgeSnrAndATargetHigh) {
   const test::Scene scene = test::makeScene(test::Target::kPlate);
   synthetic::Renderer renderer;

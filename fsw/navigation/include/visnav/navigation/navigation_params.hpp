@@ -80,6 +80,7 @@ struct NavigationParams {
   bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
   bool find_confirms_only_from_reference = true;  ///< a find confirms the branch only if a valid pose kept it
+  bool follow_near_twin = false;  ///< an unconfirmed track that lost lines moves to its near twin that fits
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -411,6 +412,15 @@ struct NavigationParams {
                "quarter turn, withheld, lost, then re-found on the same quarter turn at 14 m and delivered "
                "88 deg off for 10 frames). false: every find confirms"},
               find_confirms_only_from_reference);
+    v.boolean({"navigation", "follow_near_twin", "-", 0, 1,
+               "while a track's branch is unknown, a near-range fit that left some of its selected lines "
+               "unfound (kFlagLineRejected) and whose near twin fits the lines it found as well "
+               "(kFlagNearTwinRival, not refused by the last valid pose's look) is followed by the twin: "
+               "the filter restarts from the twin's pose. The frame is withheld either way; the twin's "
+               "track earns its branch like any other (branch_confirm_frames rival-free frames). Campaign "
+               "octagon/172 with far range as before stop 49: the quarter turn acquired at 30 m found 6 "
+               "of its 8 lines on every frame, the true pose all 8. false: the track stays on its pose"},
+              follow_near_twin);
     v.boolean({"navigation", "reacquire_twin_continuity", "-", 0, 1,
                "close-range reacquisition: that acquisition does not refuse a candidate whose near twin "
                "the image cannot resolve ([acquisition] near_twin_min_separation_px) when the last valid "

@@ -81,6 +81,8 @@ class NavigationPipeline {
   /// kFlagNearTwinRival, unless continuity with the last valid or the start pose's look chose): for the
   /// gate replay.
   bool lastNearTwinRival() const { return m_near_twin_rival; }
+  /// Tracks handed to their near twin (follow_near_twin) since init.
+  std::uint64_t nearTwinsFollowed() const { return m_near_twins_followed; }
   /// Whether the last frame's near-range pose was withheld as a disputed jump (disputed_max_look_change_deg).
   bool lastPoseJumped() const { return m_pose_jumped; }
 
@@ -98,6 +100,9 @@ class NavigationPipeline {
   /// The last word on validity: a pose is valid only while the track's mirror branch is known
   /// (track_branch.hpp).
   void confirmBranch(NavMode processed_in, NavSolution& out);
+  /// follow_near_twin: after confirmBranch, an unconfirmed fit that lost lines to a near twin that fits
+  /// them as well hands the track to the twin.
+  void followNearTwin(NavMode processed_in, const NavSolution& out);
   /// Restarts the filter on a pose the image vouches for against it: from three poses when the two frames
   /// before delivered one each (PoseFilter::initialiseFromThree), else from this one.
   void restartFilter(const Pose& pose, const Mat6& covariance);
@@ -115,7 +120,9 @@ class NavigationPipeline {
   /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
   /// searches too, cued by the prediction; its find is delivered as the step's.
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
-  /// The line of sight of the next tile over the searched disc (reacquire_acquisition_tiles).
+  /// The line of sight of the next tile over the searched disc (reacquire_acquisition_tiles), at most
+  /// kMaxTileRings rings of tiles round the prediction.
+  static constexpr int kMaxTileRings = 32;
   Vec3 nextAcquisitionTile(const Vec3& predicted_direction, double spacing_px, double radius_px);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
@@ -171,8 +178,9 @@ class NavigationPipeline {
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
-  int m_doubt_clear_run = 0;            ///< consecutive poses of a doubted track within the doubted limit
-  bool m_find_confirms_branch = false;  ///< doubt_clear_frames > 1: the find's branch waits for its doubt
+  int m_doubt_clear_run = 0;                ///< consecutive poses of a doubted track within the doubted limit
+  bool m_find_confirms_branch = false;      ///< doubt_clear_frames > 1: the find's branch waits for its doubt
+  std::uint64_t m_near_twins_followed = 0;  ///< nearTwinsFollowed()
   bool m_find_on_known_branch = false;  ///< the find continues a branch a valid pose kept (findOnKnownBranch)
   Pose m_last_valid_pose;               ///< the last pose delivered as valid
   std::uint64_t m_frames_since_valid = ~0ULL;  ///< frames since then (~0: none yet)
