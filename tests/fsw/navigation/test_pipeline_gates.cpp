@@ -122,6 +122,57 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
   }
 }
 
+TEST_F(PipelineTest, AnUnconfirmedTrackThatLostLinesToItsNearTwinFollowsTheTwin) {
+  // Campaign octagon/172's near-square plate at 20 m, the track started on its quarter turn (as an
+  // acquisition on that twin would leave it), then a dropped frame: the branch is unknown. The start pose's
+  // look no longer chooses (its tolerance grows 200 deg a frame here), so the near twin checks count. With
+  // follow_near_twin the track that lost lines hands over to the twin (the truth) and earns its branch:
+  // valid and right. Without it the track stays on the quarter turn, withheld on every frame. Either way no
+  // pose off the truth is ever valid.
+  const PolygonModel octagon = makeOctagonPlate(2.658, 2.513, 0.437);
+  synthetic::Renderer octagon_renderer;
+  ASSERT_TRUE(octagon_renderer.init(test::vgaCamera(), octagon, synthetic::RenderOptions{}).ok);
+  ModelSymmetries symmetries;
+  symmetries.find(octagon);
+  symmetries.findNear(octagon, params.nearrange.near_twin_rival_max_rel);
+  int quarter = -1;
+  for (int i = 0; i < symmetries.nearCount() && quarter < 0; ++i)
+    if (std::fabs(rotationAngleRad(Mat3::Identity(), symmetries.near(i)) - 0.5 * kPi) < 1e-6) quarter = i;
+  ASSERT_GE(quarter, 0);
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < 14; ++i)
+    seq.push_back(
+        test::renderFrame(octagon_renderer, test::plateAt(20.0 - 0.05 * i, 0.2, 8.0, -5.0), 60U + i));
+  for (const bool follow : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.follow_near_twin = follow;
+    p.navigation.reacquire_tolerance_growth_deg_per_frame = 200.0;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), octagon, p).ok);
+    pipeline.startNearRange(symmetries.nearTwin(seq[0].truth, quarter), 0);
+    int valid_right = 0;
+    for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      pipeline.process(i == 1 ? nullptr : &f, f.exposure_time_ns, out);
+      if (!out.pose_valid) continue;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      const double off_deg = symmetries.attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad;
+      ASSERT_LT(off_deg, 3.0) << "follow " << follow << ", frame " << i << ": a wrong pose delivered";
+      if (i > 1) ++valid_right;
+    }
+    SCOPED_TRACE(follow);
+    if (follow) {
+      EXPECT_GE(pipeline.nearTwinsFollowed(), 1U);
+      EXPECT_GE(valid_right, 6) << "the twin's track earned its branch";
+    } else {
+      EXPECT_EQ(pipeline.nearTwinsFollowed(), 0U);
+      EXPECT_EQ(valid_right, 0)
+          << "the quarter turn's track became right without following: the test tests nothing";
+    }
+  }
+}
+
 TEST_F(PipelineTest, APoseBesideAFaceSeenEdgeOnMustMeetTheDoubtedLimit) {
   // A box nearly face-on at 26 m (campaign box/25's case): its side faces are strips of a few pixels, and
   // the lines beside them may be biased by up to that width while their scatter stays tight, so the fit's
