@@ -21,6 +21,7 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   LoadError e = m_modes.init(m_params.navigation);
   if (e.ok) e = m_filter.init(params.filter);
   if (e.ok) e = m_near.init(camera, model, params.nearrange);
+  if (e.ok && m_params.navigation.follow_near_twin) e = m_twin_probe.init(camera, model, params.nearrange);
   if (e.ok) e = m_far.init(camera, params.farrange);
   m_far.setTargetRadius(model.boundingRadius());
   m_far.setRecheckMaxDistance(m_params.navigation.acquire_below_m);
@@ -382,7 +383,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     }
   }
   confirmBranch(mode_before, out);
-  followNearTwin(mode_before, out);
+  if (out.frame_received) followNearTwin(mode_before, frame->image, out);
   if (out.pose_valid) {
     m_last_valid_pose = out.pose;
     m_frames_since_valid = 0;

@@ -116,16 +116,25 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   out.pose_valid = m_branch.step(out.pose_valid, rival_free, confirmed);
 }
 
-void NavigationPipeline::followNearTwin(NavMode processed_in, const NavSolution& out) {
+void NavigationPipeline::followNearTwin(NavMode processed_in, const MonoImage& image,
+                                        const NavSolution& out) {
   // A withheld track on a near twin stays there: the checks withhold it, frame after frame, and nothing
   // moves it (campaign octagon/172: acquired on the quarter turn at 30 m, 6 of 8 lines found, the true
-  // pose's fit from the truth 8 of 8). The twin that fits the found lines as well and explains the lines
-  // the kept pose did not find is the better start; a wrong twin loses lines in turn and hands back.
+  // pose's fit from the truth 8 of 8). The twin that fits the found lines as well is tracked on the same
+  // image; it takes the track only if it finds more lines than the kept pose. Without that second look a
+  // near-square box's right pose that lost a line went to its wrong twin and back (seeds 1-40: box/16,
+  // box/30 and cao/7 lost every valid frame).
   if (!m_params.navigation.follow_near_twin || processed_in != NavMode::kNearRange || out.pose_valid ||
       m_branch.known() || !m_near_twin_rival || (m_near_result.flags & kFlagLineRejected) == 0U)
     return;
-  m_filter.initialise(m_near_result.near_twin_rival, m_near_result.covariance);
-  m_last_pose = m_near_result.near_twin_rival;
+  NearRangeResult& probe = m_twin_probe_result;
+  m_twin_probe.reset();
+  if (m_twin_probe.track(image, m_near_result.near_twin_rival, out.frame_number, probe) != Status::kOk ||
+      probe.status == TrackStatus::kLost || probe.lines_used <= m_near_result.lines_used ||
+      (probe.flags & (kFlagAmbiguous | kFlagResidualFallback)) != 0U)
+    return;
+  m_filter.initialise(probe.pose, probe.covariance);
+  m_last_pose = probe.pose;
   ++m_near_twins_followed;
 }
 

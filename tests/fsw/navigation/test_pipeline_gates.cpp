@@ -126,9 +126,9 @@ TEST_F(PipelineTest, AnUnconfirmedTrackThatLostLinesToItsNearTwinFollowsTheTwin)
   // Campaign octagon/172's near-square plate at 20 m, the track started on its quarter turn (as an
   // acquisition on that twin would leave it), then a dropped frame: the branch is unknown. The start pose's
   // look no longer chooses (its tolerance grows 200 deg a frame here), so the near twin checks count. With
-  // follow_near_twin the track that lost lines hands over to the twin (the truth) and earns its branch:
-  // valid and right. Without it the track stays on the quarter turn, withheld on every frame. Either way no
-  // pose off the truth is ever valid.
+  // follow_near_twin the track that lost lines looks again from the twin, which finds more of them, hands
+  // over to it (the truth) and earns its branch: valid and right, nothing allocated. Without it the track
+  // stays on the quarter turn, withheld on every frame. Either way no pose off the truth is ever valid.
   const PolygonModel octagon = makeOctagonPlate(2.658, 2.513, 0.437);
   synthetic::Renderer octagon_renderer;
   ASSERT_TRUE(octagon_renderer.init(test::vgaCamera(), octagon, synthetic::RenderOptions{}).ok);
@@ -151,6 +151,7 @@ TEST_F(PipelineTest, AnUnconfirmedTrackThatLostLinesToItsNearTwinFollowsTheTwin)
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), octagon, p).ok);
     pipeline.startNearRange(symmetries.nearTwin(seq[0].truth, quarter), 0);
     int valid_right = 0;
+    const std::uint64_t allocations_before = test::allocationCount();
     for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
       const Frame f = frameOf(seq, i);
       NavSolution out;
@@ -161,7 +162,9 @@ TEST_F(PipelineTest, AnUnconfirmedTrackThatLostLinesToItsNearTwinFollowsTheTwin)
       ASSERT_LT(off_deg, 3.0) << "follow " << follow << ", frame " << i << ": a wrong pose delivered";
       if (i > 1) ++valid_right;
     }
+    const std::uint64_t allocations = test::allocationCount() - allocations_before;
     SCOPED_TRACE(follow);
+    EXPECT_EQ(allocations, 0U) << "malloc counted: " << test::countsMalloc();
     if (follow) {
       EXPECT_GE(pipeline.nearTwinsFollowed(), 1U);
       EXPECT_GE(valid_right, 6) << "the twin's track earned its branch";

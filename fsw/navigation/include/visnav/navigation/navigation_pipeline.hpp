@@ -101,8 +101,8 @@ class NavigationPipeline {
   /// (track_branch.hpp).
   void confirmBranch(NavMode processed_in, NavSolution& out);
   /// follow_near_twin: after confirmBranch, an unconfirmed fit that lost lines to a near twin that fits
-  /// them as well hands the track to the twin.
-  void followNearTwin(NavMode processed_in, const NavSolution& out);
+  /// them as well hands the track to the twin when the twin, tracked on the same image, finds more lines.
+  void followNearTwin(NavMode processed_in, const MonoImage& image, const NavSolution& out);
   /// Restarts the filter on a pose the image vouches for against it: from three poses when the two frames
   /// before delivered one each (PoseFilter::initialiseFromThree), else from this one.
   void restartFilter(const Pose& pose, const Mat6& covariance);
@@ -150,6 +150,7 @@ class NavigationPipeline {
   FdirMonitor m_fdir;
   PoseFilter m_filter;
   NearRangeTracker m_near;
+  NearRangeTracker m_twin_probe;  ///< followNearTwin's second look, from the twin (same parameters)
   far::FarRangeEstimator m_far;
   acq::Acquisition m_acquisition;
   LocalReacquisition m_reacquisition;
@@ -181,6 +182,7 @@ class NavigationPipeline {
   int m_doubt_clear_run = 0;                ///< consecutive poses of a doubted track within the doubted limit
   bool m_find_confirms_branch = false;      ///< doubt_clear_frames > 1: the find's branch waits for its doubt
   std::uint64_t m_near_twins_followed = 0;  ///< nearTwinsFollowed()
+  NearRangeResult m_twin_probe_result;      ///< followNearTwin's (a member: no large frame on the stack)
   bool m_find_on_known_branch = false;  ///< the find continues a branch a valid pose kept (findOnKnownBranch)
   Pose m_last_valid_pose;               ///< the last pose delivered as valid
   std::uint64_t m_frames_since_valid = ~0ULL;  ///< frames since then (~0: none yet)
