@@ -127,11 +127,16 @@ void NavigationPipeline::followNearTwin(NavMode processed_in, const MonoImage& i
   if (!m_params.navigation.follow_near_twin || processed_in != NavMode::kNearRange || out.pose_valid ||
       m_branch.known() || !m_near_twin_rival || (m_near_result.flags & kFlagLineRejected) == 0U)
     return;
+  // The second look must be as clean as a fit gets (status tracking: every selected line, no mirrored
+  // rival), no worse in rms, and have no near twin of its own that fits as well: campaign plate/28's
+  // 4-line plate, whose true pose found 3 lines, had a twin that found 4 on clutter and was followed away.
   NearRangeResult& probe = m_twin_probe_result;
   m_twin_probe.reset();
+  m_twin_probe.setNearTwinChecks(true);
   if (m_twin_probe.track(image, m_near_result.near_twin_rival, out.frame_number, probe) != Status::kOk ||
-      probe.status == TrackStatus::kLost || probe.lines_used <= m_near_result.lines_used ||
-      (probe.flags & (kFlagAmbiguous | kFlagResidualFallback)) != 0U)
+      probe.status != TrackStatus::kTracking || probe.lines_used <= m_near_result.lines_used ||
+      probe.rms_px > m_near_result.rms_px ||
+      (probe.flags & (kFlagAmbiguous | kFlagResidualFallback | kFlagNearTwinRival)) != 0U)
     return;
   m_filter.initialise(probe.pose, probe.covariance);
   m_last_pose = probe.pose;

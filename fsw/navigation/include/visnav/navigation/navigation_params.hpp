@@ -74,13 +74,13 @@ struct NavigationParams {
   bool reacquire_acquisition_outline_cue = false;  ///< or look where the outline cue matched best
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
-  double reacquire_motion_decay_s = 0.0;  ///< a search's rates fade with this time constant (0: kept)
+  double reacquire_motion_decay_s = 5.0;  ///< a search's rates fade with this time constant (0: kept)
   bool refute_unconfirmed_cue = false;    ///< an acquisition that confirmed nothing at its cue refutes it too
   bool check_cue_before_handover = true;  ///< a cue without edges is refused in far range, not handed over
   bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
   bool find_confirms_only_from_reference = true;  ///< a find confirms the branch only if a valid pose kept it
-  bool follow_near_twin = false;  ///< an unconfirmed track that lost lines moves to its near twin that fits
+  bool follow_near_twin = true;  ///< an unconfirmed track that lost lines moves to its near twin that fits
 
   template <typename Visitor>
   void visit(Visitor& v) {
@@ -415,11 +415,13 @@ struct NavigationParams {
     v.boolean({"navigation", "follow_near_twin", "-", 0, 1,
                "while a track's branch is unknown, a near-range fit that left some of its selected lines "
                "unfound (kFlagLineRejected) and whose near twin fits the lines it found as well "
-               "(kFlagNearTwinRival, not refused by the last valid pose's look) is followed by the twin: "
-               "the filter restarts from the twin's pose. The frame is withheld either way; the twin's "
-               "track earns its branch like any other (branch_confirm_frames rival-free frames). Campaign "
-               "octagon/172 with far range as before stop 49: the quarter turn acquired at 30 m found 6 "
-               "of its 8 lines on every frame, the true pose all 8. false: the track stays on its pose"},
+               "(kFlagNearTwinRival, not refused by the last valid pose's look) looks again: a second "
+               "tracker, from the twin, on the same image. When that fit is clean (status tracking, no "
+               "rival of either kind), finds more lines and has no higher rms, the filter restarts from it. "
+               "The frame is withheld either way; the twin's track earns its branch like any other "
+               "(branch_confirm_frames rival-free frames). Campaign octagon/172 with far range as before "
+               "stop 49: the quarter turn acquired at 30 m found 6 of its 8 lines on every frame, the true "
+               "pose all 8; tracked 0.24 -> 0.52. false: the track stays on its pose"},
               follow_near_twin);
     v.boolean({"navigation", "reacquire_twin_continuity", "-", 0, 1,
                "close-range reacquisition: that acquisition does not refuse a candidate whose near twin "
@@ -444,9 +446,9 @@ struct NavigationParams {
             "this from where the track was lost instead of along a straight line for the whole search "
             "(campaign octagon/37: 8 m off 60 frames into the search where the last pose was 4 m off). "
             "Measured at 5 s: seeds 1-40 (200 scenes) tracked frames 14 721 -> 14 793 and seeds 5001-5040 "
-            "15 022 -> 15 074, confidently wrong 7 and 13 unchanged; but campaign octagon/172 with far range "
-            "as before stop 49 (tests/tools/campaign/near_twin_rival_on.toml) then delivered 10 confidently "
-            "wrong frames where it had none, not yet understood, so off. 0: the rates are kept"},
+            "15 022 -> 15 074, confidently wrong 7 and 13 unchanged. On since stop 51: the 10 confidently "
+            "wrong frames it exposed on campaign octagon/172 (a find continuing a track never delivered) "
+            "are refused by find_confirms_only_from_reference. 0: the rates are kept"},
            reacquire_motion_decay_s);
     v.boolean({"navigation", "refute_unconfirmed_cue", "-", 0, 1,
                "an acquisition that failed at far range's cue with edges there (no_candidate, not_confirmed, "
