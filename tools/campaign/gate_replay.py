@@ -4,7 +4,9 @@
 Whether a pose is delivered as valid does not feed back into the tracking: the same frames are tracked, the
 same filter updated, whatever the gates decide (two exceptions: the close-range reacquisition checks its
 finds' look against the last valid pose, and the tracker refits near twins only while the branch is
-unconfirmed, so a withheld pose can change a later search or fit; tools/campaign/README.md).
+unconfirmed and, since stop 51, hands a withheld track that lost lines to its near twin (follow_near_twin) and
+lets a find confirm the branch only against the last valid pose, so a withheld pose can change a later
+search, fit or verdict; tools/campaign/README.md).
 frames.csv records each frame's candidate pose (delivered or
 withheld) with its errors, its own sigmas and the tracker's flags, so a gate can be judged offline over a
 whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed, with the shipped defaults:
@@ -137,11 +139,16 @@ def replay_scene(rows, a):
                     known = False
             else:
                 bad = 0
+                # A find off a known branch (find_on_branch 0; [navigation]
+                # find_confirms_only_from_reference) confirms nothing and is not rival-free either.
+                find_off_branch = r['reacquired'] == '1' and r.get('find_on_branch', '1') == '0'
                 rival_free = r['mode'] != 'near_range' or ((int(r['near_flags']) & a.rival_flags) == 0
-                                                           and r.get('near_twin_rival', '0') != '1')
+                                                           and r.get('near_twin_rival', '0') != '1'
+                                                           and not find_off_branch)
                 continuous = (not a.no_branch_continuity and r['mode'] == 'near_range'
                               and r.get('kept_branch', '0') == '1')
-                if not a.no_confirmed_sources and (acquisition_pose or r['reacquired'] == '1'
+                if not a.no_confirmed_sources and (acquisition_pose
+                                                   or (r['reacquired'] == '1' and not find_off_branch)
                                                    or (awaited and rival_free) or continuous):
                     known = True
                 if not rival_free:

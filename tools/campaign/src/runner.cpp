@@ -216,6 +216,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.twin_by_continuity = sol.twin_by_continuity;
     f.kept_branch = pipeline->lastFitKeptTheBranch();
     f.near_twin_rival = pipeline->lastNearTwinRival();
+    f.find_on_branch = !f.reacquired || pipeline->lastFindOnKnownBranch();
     f.jumped = pipeline->lastPoseJumped();
     const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
     if (u.status == Status::kOk && u.dof == 6) {

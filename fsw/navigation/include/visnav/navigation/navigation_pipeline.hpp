@@ -81,6 +81,9 @@ class NavigationPipeline {
   /// kFlagNearTwinRival, unless continuity with the last valid or the start pose's look chose): for the
   /// gate replay.
   bool lastNearTwinRival() const { return m_near_twin_rival; }
+  /// Whether the last find (lastReacquisition().found) continued a branch a valid pose kept and so confirmed
+  /// it (find_confirms_only_from_reference): for the gate replay.
+  bool lastFindOnKnownBranch() const { return m_find_on_known_branch; }
   /// Tracks handed to their near twin (follow_near_twin) since init.
   std::uint64_t nearTwinsFollowed() const { return m_near_twins_followed; }
   /// Whether the last frame's near-range pose was withheld as a disputed jump (disputed_max_look_change_deg).

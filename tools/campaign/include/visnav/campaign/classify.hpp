@@ -69,6 +69,7 @@ struct FrameOutcome {
   bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
   bool kept_branch = false;         ///< NavigationPipeline::lastFitKeptTheBranch
   bool near_twin_rival = false;     ///< NavigationPipeline::lastNearTwinRival
+  bool find_on_branch = true;       ///< a find (reacquired) that confirmed the branch: lastFindOnKnownBranch
   bool jumped = false;              ///< NavigationPipeline::lastPoseJumped
   /// --oracle (or --trace), on a visible frame without a valid pose: what a near-range tracker started at
   /// the truth makes of this image. -1 not asked, 0 no fit the pipeline would take (lost, or image evidence
