@@ -383,7 +383,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     }
   }
   confirmBranch(mode_before, out);
-  if (out.frame_received) followNearTwin(mode_before, frame->image, out);
+  if (frame != nullptr && out.frame_received) followNearTwin(mode_before, frame->image, out);
   if (out.pose_valid) {
     m_last_valid_pose = out.pose;
     m_frames_since_valid = 0;
