@@ -74,7 +74,7 @@ struct NavigationParams {
   bool reacquire_acquisition_outline_cue = false;  ///< or look where the outline cue matched best
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
-  double reacquire_motion_decay_s = 5.0;  ///< a search's rates fade with this time constant (0: kept)
+  double reacquire_motion_decay_s = 0.0;  ///< a search's rates fade with this time constant (0: kept)
   bool refute_unconfirmed_cue = false;    ///< an acquisition that confirmed nothing at its cue refutes it too
   bool check_cue_before_handover = true;  ///< a cue without edges is refused in far range, not handed over
   bool far_track_survives_unconfirmed = true;  ///< far range goes on past an unconfirmed cue
@@ -446,9 +446,13 @@ struct NavigationParams {
             "this from where the track was lost instead of along a straight line for the whole search "
             "(campaign octagon/37: 8 m off 60 frames into the search where the last pose was 4 m off). "
             "Measured at 5 s: seeds 1-40 (200 scenes) tracked frames 14 721 -> 14 793 and seeds 5001-5040 "
-            "15 022 -> 15 074, confidently wrong 7 and 13 unchanged. On since stop 51: the 10 confidently "
-            "wrong frames it exposed on campaign octagon/172 (a find continuing a track never delivered) "
-            "are refused by find_confirms_only_from_reference. 0: the rates are kept"},
+            "15 022 -> 15 074, confidently wrong 7 and 13 unchanged; the 10 wrong frames it exposed on "
+            "campaign octagon/172 (a find continuing a track never delivered) are refused by "
+            "find_confirms_only_from_reference since stop 51. Still off: on stop 51's full run (1000 "
+            "scenes, with follow_near_twin) tracked frames 74 351 -> 74 506 but confidently wrong 28 -> 34 "
+            "(cao/157: a find 5.6 deg off at 23 m; smallsat/183: a find continuing a track withheld for "
+            "30 frames, 43 deg off, within the last valid pose's look tolerance grown 1 deg a frame). "
+            "0: the rates are kept"},
            reacquire_motion_decay_s);
     v.boolean({"navigation", "refute_unconfirmed_cue", "-", 0, 1,
                "an acquisition that failed at far range's cue with edges there (no_candidate, not_confirmed, "
