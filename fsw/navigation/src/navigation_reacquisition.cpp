@@ -55,7 +55,8 @@ bool NavigationPipeline::findOnKnownBranch(const Pose& found) const {
   // The local search is judged against its prediction, and the prediction continues the lost track: where
   // no pose of that track was ever valid, it may be the wrong twin's (campaign octagon/172: acquired at 30 m
   // on the near-square plate's quarter turn, withheld by the near-twin checks, lost, and re-found on the
-  // same quarter turn at 14 m). Such a find earns its branch as any unknown one does (track_branch.hpp).
+  // same quarter turn at 14 m). Such a find, or one whose look left the last valid pose's, earns its branch
+  // as any unknown one does (track_branch.hpp).
   if (!m_params.navigation.find_confirms_only_from_reference) return true;
   return m_frames_since_branch_reference != ~0ULL &&
          m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference, found);
