@@ -49,7 +49,8 @@ int WorkingImage::setWindow(const Vec2& centre_px, double half_size_px, int scal
   m_width = side;
   m_height = side;
   // Nor further off the image than a window's width (only padding there): prepare() indexes from the
-  // origin in int (a coasted prediction's line of sight through a strong distortion projects 1e9 px out).
+  // origin in int (a coasted line of sight through a strong distortion, k3 ~ 0.1 at 85 deg off axis, projects
+  // past int by the audit's arithmetic).
   const double reach = static_cast<double>(m_max_window);
   Vec2 centre = centre_px;
   for (int k = 0; k < 2; ++k) {

@@ -22,6 +22,7 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
   if (e.ok) e = m_filter.init(params.filter);
   if (e.ok) e = m_near.init(camera, model, params.nearrange);
   if (e.ok && m_params.navigation.follow_near_twin) e = m_twin_probe.init(camera, model, params.nearrange);
+  m_twin_probe.setNearTwinChecks(true);  // its second look must have no near twin of its own
   if (e.ok) e = m_far.init(camera, params.farrange);
   m_far.setTargetRadius(model.boundingRadius());
   m_far.setRecheckMaxDistance(m_params.navigation.acquire_below_m);

@@ -115,7 +115,8 @@ Vec3 NavigationPipeline::nextAcquisitionTile(const Vec3& predicted_direction, do
   if (!tile_turn || !(spacing_px > 0.0) || !m_camera.project(predicted_direction, centre_px))
     return predicted_direction;
   // The spacing shrinks with the target's predicted size: a prediction coasting away (range 1e5 m) with
-  // direction_margin_deg 0 spaced tiles 0.02 px apart, 35 000 rings (an int overflow in the cell count).
+  // direction_margin_deg 0 and f 1000 px spaces tiles ~0.02 px apart by arithmetic, ~35 000 rings (an int
+  // overflow in the cell count).
   const double diagonal_px = std::hypot(m_camera.width(), m_camera.height());
   const int rings = static_cast<int>(std::min(std::min(std::max(radius_px, 0.0), diagonal_px) / spacing_px,
                                               static_cast<double>(kMaxTileRings)));

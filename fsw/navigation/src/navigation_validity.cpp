@@ -132,7 +132,6 @@ void NavigationPipeline::followNearTwin(NavMode processed_in, const MonoImage& i
   // 4-line plate, whose true pose found 3 lines, had a twin that found 4 on clutter and was followed away.
   NearRangeResult& probe = m_twin_probe_result;
   m_twin_probe.reset();
-  m_twin_probe.setNearTwinChecks(true);
   if (m_twin_probe.track(image, m_near_result.near_twin_rival, out.frame_number, probe) != Status::kOk ||
       probe.status != TrackStatus::kTracking || probe.lines_used <= m_near_result.lines_used ||
       probe.rms_px > m_near_result.rms_px ||

@@ -125,7 +125,7 @@ TEST(WorkingImage, AnyWindowAskedForIsBoundedByTheLargestWindow) {
 }
 
 TEST(WorkingImage, AWindowCentredFarOffTheImageIsPaddingAndNoPointReachesAnIntCast) {
-  // A coasted prediction's line of sight through a strong distortion projects 1e9 px or more off the image
+  // A coasted prediction's line of sight through a strong distortion can project past the int range
   // (or NaN): the window's origin stays within a few windows of the image, where prepare() indexes in int,
   // and a sample point anywhere (1e300, NaN) reads no evidence.
   const std::vector<std::uint8_t> pixels = stepImage();
