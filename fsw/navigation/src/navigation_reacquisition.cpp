@@ -57,8 +57,12 @@ bool NavigationPipeline::findOnKnownBranch(const Pose& found) const {
   // on the near-square plate's quarter turn, withheld by the near-twin checks, lost, and re-found on the
   // same quarter turn at 14 m). Such a find, or one whose look left the last valid pose's, earns its branch
   // as any unknown one does (track_branch.hpp).
+  // A reference old enough that its tolerance keeps a quarter turn's twin too tells neither apart
+  // (branch_reference_max_look_deg).
   if (!m_params.navigation.find_confirms_only_from_reference) return true;
   return m_frames_since_branch_reference != ~0ULL &&
+         m_reacquisition.lookToleranceRad(m_frames_since_branch_reference) <=
+             m_params.navigation.branch_reference_max_look_deg * kRadPerDeg &&
          m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference, found);
 }
 

@@ -262,6 +262,42 @@ TEST_F(PipelineTest, AFindContinuingATrackNeverDeliveredEarnsItsBranchLikeAnyOth
   EXPECT_EQ(off.first_valid, off.found_at) << "off: the find is valid on its own frame";
 }
 
+TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
+  // Tracked at 15 m, hidden for 10 frames, found turned 20 deg: the find is at least 11 frames after the
+  // last valid pose, whose look tolerance has grown to reacquire_attitude_tolerance_deg + 11 x growth.
+  // Below branch_reference_max_look_deg that pose confirms the find's branch: valid on its own frame. With
+  // the limit under that tolerance the reference is too old to tell twins apart: the find confirms nothing
+  // and the track is valid only after branch_confirm_frames rival-free frames (campaign cao/157).
+  const std::vector<test::RenderedFrame> seq = hiddenApproach();
+  const double tolerance_at_reappearance_deg =
+      params.navigation.reacquire_attitude_tolerance_deg +
+      params.navigation.reacquire_tolerance_growth_deg_per_frame * (kHiddenUntil - 2);
+  ASSERT_LE(tolerance_at_reappearance_deg, params.navigation.branch_reference_max_look_deg)
+      << "the default would already refuse: the test compares nothing";
+  const auto first_valid_after_find = [&](double max_look_deg, int& found_at) {
+    PipelineParams p = params;
+    p.navigation.branch_reference_max_look_deg = max_look_deg;
+    NavigationPipeline pipeline;
+    HiddenRun run;
+    runHiddenToAFind(seq, p, pipeline, run);
+    found_at = run.found_at;
+    EXPECT_EQ(pipeline.lastFindOnKnownBranch(), max_look_deg >= tolerance_at_reappearance_deg);
+    for (int i = run.found_at; i < static_cast<int>(seq.size()); ++i)
+      if (run.out[static_cast<std::size_t>(i)].pose_valid) return i;
+    return -1;
+  };
+  int found_default = -1;
+  int found_old = -1;
+  const int valid_default =
+      first_valid_after_find(params.navigation.branch_reference_max_look_deg, found_default);
+  const int valid_old = first_valid_after_find(tolerance_at_reappearance_deg - 2.0, found_old);
+  ASSERT_GE(found_default, kHiddenUntil);
+  EXPECT_EQ(found_old, found_default) << "validity does not feed back into the search";
+  EXPECT_EQ(valid_default, found_default) << "a find on the known branch is valid on its own frame";
+  EXPECT_EQ(valid_old, found_old + params.navigation.branch_confirm_frames)
+      << "a reference too old confirms nothing: the find earns its branch";
+}
+
 TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereFarRangeSeesIt) {
   // As above, but the plate also moved sideways while hidden, from 1.5 m right of the line of sight to 2.4 m
   // left of it: it reappears 17 deg (about 2.5 target radii) from the prediction's line of sight and 20 %
