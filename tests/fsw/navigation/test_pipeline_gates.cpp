@@ -297,6 +297,22 @@ TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   }
 }
 
+TEST_F(PipelineTest, APoseTheFilterFindsSurprisingMustMeetTheDoubtedLimit) {
+  // The same ten frames: every fit passes the innovation gate, and this plate at 26 m is known to about
+  // 2.2 deg, above the doubted limit (1 deg). A NIS limit below any fit's NIS doubts every frame after the
+  // start pose started the filter (each is a 6-DOF update): tracked, never valid. Off, and at the default
+  // (99 % of chi-square with 6 dof, which these consistent fits stay under), all ten are valid.
+  ASSERT_GT(params.navigation.doubt_nis_chi2, 0.0);
+  for (const double limit : {1e-9, 0.0, params.navigation.doubt_nis_chi2}) {
+    PipelineParams p = params;
+    p.navigation.doubt_nis_chi2 = limit;
+    p.navigation.max_valid_attitude_sigma_deg = 0.0;  // near this plate's 1-sigma (the test above)
+    NavSolution out;
+    EXPECT_EQ(validOverTenFrames(p, out), limit == 1e-9 ? 0 : 10) << "limit " << limit;
+    EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, limit " << limit;
+  }
+}
+
 TEST_F(PipelineTest, APoseShowingNoSurfaceNearFacingIsTrackedButNotValid) {
   // The plate's face turns 1.2-1.7 deg from the line of sight to its centre here (yaw 1, pitch -1 deg, 0.1 m
   // off the axis). Limits of 80 deg (edge-on only), 0.5 deg (under that angle: the plate counts as turned
