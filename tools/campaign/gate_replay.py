@@ -17,7 +17,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               fewer than --doubt-min-line-fraction of its selected lines or left out any of at most
               --doubt-every-line-up-to ([navigation] doubt_every_line_up_to), beside a face the tracker
               saw as a narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
-              ignores it), or whose track began with a reacquisition's find and has not yet had a pose
+              ignores it), that the filter accepted with a NIS above --doubt-nis-chi2 ([navigation]
+              doubt_nis_chi2, frames.csv column nis), or whose track began with a reacquisition's find and has not yet had a pose
               within the doubted limit
               needs attitude 1-sigma <=
               --doubted-attitude-sigma-deg ([navigation] doubted_max_attitude_sigma_deg /
@@ -66,9 +67,10 @@ def parse_args(argv):
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('frames_csv')
     p.add_argument('--attitude-sigma-deg', type=float, default=2.5)
-    p.add_argument('--position-sigma-rel', type=float, default=0.025)
+    p.add_argument('--position-sigma-rel', type=float, default=0.0167)
     p.add_argument('--doubted-attitude-sigma-deg', type=float, default=1.0)
     p.add_argument('--doubt-min-line-fraction', type=float, default=0.75)
+    p.add_argument('--doubt-nis-chi2', type=float, default=16.81)
     p.add_argument('--no-narrow-face-doubt', action='store_true')
     p.add_argument('--branch-confirm-frames', type=int, default=3)
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
@@ -109,6 +111,7 @@ def replay_scene(rows, a):
                 int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total'])) or (
                 not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0) or (
                 a.weak_evidence_doubt and r.get('evidence_good', '1') == '0') or (
+                a.doubt_nis_chi2 > 0 and r['nis'] != '' and float(r['nis']) > a.doubt_nis_chi2) or (
                 int(r['lines_used']) < int(r['lines_total']) <= a.doubt_every_line_up_to)
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
