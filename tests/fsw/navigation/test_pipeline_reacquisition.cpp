@@ -265,9 +265,10 @@ TEST_F(PipelineTest, AFindContinuingATrackNeverDeliveredEarnsItsBranchLikeAnyOth
 TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
   // Tracked at 15 m, hidden for 10 frames, found turned 20 deg: the find is at least 11 frames after the
   // last valid pose, whose look tolerance has grown to reacquire_attitude_tolerance_deg + 11 x growth.
-  // Below branch_reference_max_look_deg that pose confirms the find's branch: valid on its own frame. With
-  // the limit under that tolerance the reference is too old to tell twins apart: the find confirms nothing
-  // and the track is valid only after branch_confirm_frames rival-free frames (campaign cao/157).
+  // Below branch_reference_max_look_deg (180 shipped: never) that pose confirms the find's branch: valid on
+  // its own frame. With the limit under that tolerance the reference is too old to tell twins apart: the
+  // find confirms nothing and the track is valid only after branch_confirm_frames rival-free frames
+  // (campaign cao/157 with the search's fading rates).
   const std::vector<test::RenderedFrame> seq = hiddenApproach();
   const double tolerance_at_reappearance_deg =
       params.navigation.reacquire_attitude_tolerance_deg +
