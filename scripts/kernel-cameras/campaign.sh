@@ -73,6 +73,9 @@ recovery_attempts = 5
 [executive]
 major_frame_hz = 5.0
 
+[daemon]
+log_throttle = 1000  # the fault checks count event lines: none may be suppressed
+
 [telemetry]
 enabled = $5
 partition = "kernel-cameras"
@@ -209,11 +212,25 @@ hold_disconnect() {  # seconds: vivid re-registers when the last handle closes, 
 }
 act_drop_100() { sleep 2; ctl percentage_of_dropped_buffers=100; sleep 3; ctl percentage_of_dropped_buffers=0; }
 act_buf_flag() { sleep 2; ctl inject_v4l2_buf_flag_error=1; }
-act_qbuf_1() { sleep 2; ctl inject_vidioc_qbuf_error=1; }
-act_qbuf_4() { local i; sleep 2; for i in 1 2 3 4; do ctl inject_vidioc_qbuf_error=1; sleep 0.5; done; }
-# vivid's injection is one flag: a press before the previous one was consumed (the next QBUF) is lost, so
-# presses are 0.5 s (2.5 cycles) apart.
-act_qbuf_10() { local i; sleep 2; for i in $(seq 1 10); do ctl inject_vidioc_qbuf_error=1; sleep 0.5; done; }
+# vivid's injection is one flag: a press before the previous one was consumed (the next QBUF) is lost. A
+# fixed spacing is wall-clock luck under TCG on a loaded host (CI once saw 9 of 10), so each press waits until
+# visnavd logged the refusal it caused (bounded: 20 s, then the press is counted as lost and the check fails).
+press_qbuf_and_wait() {
+  local before i
+  before=$(ev_count camera_release_error)
+  ctl inject_vidioc_qbuf_error=1
+  for i in $(seq 1 200); do
+    [ "$(ev_count camera_release_error)" -gt "$before" ] && return 0
+    grep -q " event=stop " "$LOG" && { echo "visnavd stopped before the press was consumed"; return 1; }
+    sleep 0.1
+  done
+  echo "press not consumed within 20 s"
+  return 1
+}
+act_qbuf_n() { local i; sleep 2; for i in $(seq 1 "$1"); do press_qbuf_and_wait; done; }
+act_qbuf_1() { act_qbuf_n 1; }
+act_qbuf_4() { act_qbuf_n 4; }
+act_qbuf_10() { act_qbuf_n 10; }
 act_fatal() { sleep 2; ctl inject_fatal_streaming_error=1; }
 act_streamon_reopen() { sleep 2; ctl inject_vidioc_streamon_error=1; hold_disconnect 1; }
 act_reqbufs_reopen() { sleep 2; ctl inject_vidioc_reqbufs_error=1; hold_disconnect 1; }
@@ -269,7 +286,7 @@ fault_campaign() {
     name=qbuf_error_x$n
     wanted "$name" || continue
     reset_vivid
-    local cycles=$(( 30 + 7 * n ))  # each press is a v4l2-ctl run: about 1 s under TCG
+    local cycles=$(( 30 + 7 * n ))  # each press is a v4l2-ctl run and a wait for its refusal: ~1 s under TCG
     plain_run "$name" grey "$cycles" "act_qbuf_$n"
     ok=0
     # Every refused buffer is counted and retried: frames go on (a restart only when the ring runs low).
