@@ -40,6 +40,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
   jump        a near-range candidate the pipeline withheld as a disputed jump (frames.csv column jumped:
               the filter rejected it and its look turned more than [navigation] disputed_max_look_change_deg
               from the frame before's pose; as the pipeline judged it; --no-jump-gate ignores it)
+  minimal     a near-range candidate on at most 4 lines whose pose selected more than
+              --minimal-fit-max-missing lines it did not find ([navigation] minimal_fit_max_missing_lines,
+              stop 53; -1 ignores it)
   --max-nis   (not shipped) withhold frames whose filter NIS exceeds this
   evidence    (not shipped; frames.csv columns scanlines, inlier_points, evidence_good, written since
               2026-12-01) --min-line-fraction F: a near-range candidate that used fewer than F of its selected
@@ -79,6 +82,7 @@ def parse_args(argv):
     p.add_argument('--max-nis', type=float, default=0.0)
     p.add_argument('--doubt-every-line-up-to', type=int, default=6)
     p.add_argument('--min-line-fraction', type=float, default=0.0)
+    p.add_argument('--minimal-fit-max-missing', type=int, default=2)
     p.add_argument('--min-edge-support', type=float, default=0.0)
     p.add_argument('--weak-evidence-doubt', action='store_true')
     p.add_argument('--weak-evidence-invalid', action='store_true')
@@ -124,6 +128,10 @@ def replay_scene(rows, a):
                 int(r['lines_used']) < a.min_line_fraction * int(r['lines_total'])
                 or int(r.get('inlier_points', '0')) < a.min_edge_support * int(r.get('scanlines', '0'))
                 or (a.weak_evidence_invalid and r.get('evidence_good', '1') == '0')):
+            certain = False
+        if (certain and a.minimal_fit_max_missing >= 0 and r['mode'] == 'near_range'
+                and int(r['lines_used']) <= 4
+                and int(r['lines_total']) - int(r['lines_used']) > a.minimal_fit_max_missing):
             certain = False
         if certain and not a.no_view_gate and r.get('shows_face', '1') == '0':
             certain = False

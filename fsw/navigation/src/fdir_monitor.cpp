@@ -39,6 +39,13 @@ bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const Naviga
          (params.doubt_narrow_face && (r.flags & kFlagNarrowFace) != 0U);
 }
 
+bool minimalFitMissesOutline(const NearRangeResult& r, const NavigationParams& params) {
+  // Campaign box/5030 at 21 m: 4 of 7 lines, one of them fitted 2-3 px off the model's edge, 10-13 deg off
+  // at 0.6-0.9 deg 1-sigma, valid for 4 frames.
+  return params.minimal_fit_max_missing_lines >= 0 && r.lines_used <= kMinimalFitLines &&
+         r.lines_total - r.lines_used > params.minimal_fit_max_missing_lines;
+}
+
 void FdirMonitor::init(const NavigationParams& params, const PolygonModel& model, double focal_px) {
   m_params = params;
   // The camera cannot be inside the target; beyond the depth where the target spans 4 px no 6-DOF fit is

@@ -297,7 +297,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out,
             doubted || m_track_doubted);
     m_pose_jumped = jumped;
-    if (jumped) out.pose_valid = false;
+    if (jumped || minimalFitMissesOutline(r, nav)) out.pose_valid = false;
   } else if (dropped && closeRange()) {
     startReacquisition(image, frame_number, out, in);
   } else {

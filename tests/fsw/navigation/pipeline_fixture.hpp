@@ -1,6 +1,6 @@
 // The fixture of the navigation pipeline's end-to-end tests (test_pipeline.cpp,
-// test_pipeline_reacquisition.cpp): the paper's plate rendered at 5 Hz, and a plate hidden for ten frames (an
-// eclipse).
+// test_pipeline_reacquisition.cpp, test_pipeline_branch.cpp, test_pipeline_gates.cpp): the paper's plate
+// rendered at 5 Hz, and a plate hidden for ten frames (an eclipse).
 #pragma once
 
 #include <gtest/gtest.h>

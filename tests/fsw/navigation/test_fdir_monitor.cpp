@@ -248,6 +248,33 @@ TEST(Fdir, AFitThatLeftOutPartOfItsOutlineIsDoubted) {
   EXPECT_FALSE(nearFitDoubted(r, 0U, no_strip_doubt));
 }
 
+// A fit on 4 lines has no line to spare: where its pose predicts more than minimal_fit_max_missing_lines
+// (2) selected lines the image did not give, it is not valid (campaign box/5030: 4 of 7, 10-13 deg off).
+TEST(Fdir, AMinimalFitWhosePosePredictsLinesNotFoundIsNotValid) {
+  const NavigationParams params;
+  ASSERT_EQ(params.minimal_fit_max_missing_lines, 2);
+  NearRangeResult r;
+  r.status = TrackStatus::kTracking;
+  const auto missesAt = [&](int used, int total, const NavigationParams& p) {
+    r.lines_used = used;
+    r.lines_total = total;
+    return minimalFitMissesOutline(r, p);
+  };
+  EXPECT_FALSE(missesAt(4, 4, params)) << "a plate: its whole outline";
+  EXPECT_FALSE(missesAt(4, 6, params)) << "two lines missing: allowed";
+  EXPECT_TRUE(missesAt(4, 7, params)) << "the box/5030 case";
+  EXPECT_TRUE(missesAt(3, 6, params));
+  EXPECT_FALSE(missesAt(5, 9, params)) << "a fifth line checks the other four";
+  EXPECT_FALSE(missesAt(6, 12, params));
+  NavigationParams strict = params;
+  strict.minimal_fit_max_missing_lines = 0;
+  EXPECT_TRUE(missesAt(4, 5, strict));
+  EXPECT_FALSE(missesAt(4, 4, strict));
+  NavigationParams off = params;
+  off.minimal_fit_max_missing_lines = -1;
+  EXPECT_FALSE(missesAt(4, 12, off));
+}
+
 TEST(Fdir, InnovationAloneOnGoodEvidenceNeverPersists) {
   FdirMonitor f;
   initWithPersistence(f, 3);

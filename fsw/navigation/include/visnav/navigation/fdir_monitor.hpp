@@ -43,6 +43,12 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
 /// `doubted_max_attitude_sigma_deg`: its covariance knows the noise, not the bias.
 bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params);
 
+/// A minimal near-range fit (at most 4 lines: 4 vertices for 6 unknowns, so one displaced line is absorbed by
+/// the attitude instead of showing in the residual) whose pose predicts more than
+/// `minimal_fit_max_missing_lines` selected lines the image did not give: tracked, never valid.
+constexpr int kMinimalFitLines = 4;
+bool minimalFitMissesOutline(const NearRangeResult& r, const NavigationParams& params);
+
 class FdirMonitor {
  public:
   /// The model and `focal_px` derive the plausibility limits the parameters leave 0: below, the camera

@@ -1,0 +1,245 @@
+// The [navigation] table, part 1 of 2: mode hysteresis, fdir thresholds and the output gates.
+// Names, units, ranges and texts of NavigationParams' fields (navigation_params.hpp, whose visit() walks
+// both parts); apart from the struct so that each file stays readable. Reference: config/PARAMETERS.md.
+#pragma once
+
+namespace visnav::nav::detail {
+
+template <typename Visitor, typename Params>
+void visitModeAndGateParams(Visitor& v, Params& p) {
+  v.enumeration(
+      {"navigation", "start_mode", "-", 0, 3, "mode after start (standby waits for a resume command)"},
+      "standby|far_range|acquisition|near_range", p.start_mode);
+  v.real({"navigation", "handover_radius_px", "px", 5.0, 10000.0,
+          "where acquire_below_m is 0 it is derived as f x bounding radius / this: the hand-over happens "
+          "at the same apparent size for every target and camera (plate 2.3 x 1.8 m, f 1000 px: 42 m; 35 "
+          "against 50 on two 100-scene campaign subsets: tracked 0.497 -> 0.521 and 0.615 -> 0.638, "
+          "confidently wrong frames 27 -> 23 and 20 -> 23)"},
+         p.handover_radius_px);
+  v.real({"navigation", "near_range_min_radius_px", "px", 1.0, 10000.0,
+          "where far_range_above_m is 0 it is derived as f x bounding radius / this: near range gives "
+          "the target up to far range when it shrinks below this apparent radius (must be below "
+          "handover_radius_px: the gap is the hysteresis; 26.25 = 35 x 3/4, the 4/3 distance ratio it "
+          "was derived with before it became its own parameter)"},
+         p.near_range_min_radius_px);
+  v.real({"navigation", "acquire_below_m", "m", 0.0, 10000.0,
+          "far range hands over to acquisition when its distance stays below this for enter_frames"},
+         p.acquire_below_m);
+  v.real({"navigation", "far_range_above_m", "m", 0.0, 10000.0,
+          "near range falls back to far range when the distance stays above this for enter_frames "
+          "(must exceed acquire_below_m: the gap is the hysteresis)"},
+         p.far_range_above_m);
+  v.integer({"navigation", "enter_frames", "count", 1, 1000,
+             "consecutive frames a distance condition must hold before the mode changes"},
+            p.enter_frames);
+  v.integer({"navigation", "acquire_retry_holdoff_frames", "frames", 0, 100000,
+             "after a failed or timed-out acquisition, far range does not hand over again for this many "
+             "frames; the wait doubles with every consecutive failure (exponential back-off: a far-range "
+             "cue that keeps fooling acquisition must not flip the mode every few frames)"},
+            p.acquire_retry_holdoff_frames);
+  v.integer({"navigation", "acquire_retry_holdoff_max_frames", "frames", 0, 100000,
+             "upper bound of that back-off (80 frames: 16 s at 5 Hz)"},
+            p.acquire_retry_holdoff_max_frames);
+  v.real({"navigation", "acquire_retry_growth", "-", 0.0, 1000.0,
+          "after an acquisition that found edges at far range's cue but confirmed no pose there "
+          "(no_candidate, not_confirmed, ambiguous), far range hands over again only once its distance "
+          "is this many times below the one it handed over at (the target then spans as many times more "
+          "pixels), or after acquire_retry_holdoff_max_frames: the same target at the same size fails the "
+          "same way (case approach_smallsat: no_candidate at 157 m, ambiguous at 122 m, confirmed at "
+          "69 m). <= 1: the back-off alone"},
+         p.acquire_retry_growth);
+  v.integer({"navigation", "acquisition_timeout_frames", "count", 1, 10000,
+             "acquisition returns to far range when it has not succeeded within this many frames"},
+            p.acquisition_timeout_frames);
+  v.integer({"navigation", "fault_persistence_frames", "count", 1, 1000,
+             "a near-range fault held for this many consecutive frames falls back to far range"},
+            p.fault_persistence_frames);
+  v.integer({"navigation", "coast_frames", "count", 0, 1000,
+             "frames the Kalman prediction stands in for a failed near-range measurement (sec. II-H)"},
+            p.coast_frames);
+  v.real({"navigation", "min_inlier_ratio", "-", 0.0, 1.0,
+          "FDIR: edge-point inlier ratio over the used lines below this is a fault"},
+         p.min_inlier_ratio);
+  v.integer({"navigation", "min_usable_lines", "count", 0, 1000, "FDIR: fewer used lines is a fault"},
+            p.min_usable_lines);
+  v.real({"navigation", "max_rms_px", "px", 0.001, 100.0, "FDIR: pose-fit residual above this is a fault"},
+         p.max_rms_px);
+  v.real({"navigation", "min_depth_m", "m", 0.0, 100000.0,
+          "FDIR: plausible depth band, lower end; 0 derives the limit from the model: the camera cannot be "
+          "inside the model's bounding box (model frame). Not its bounding sphere: the panels of case "
+          "approach_smallsat make that 5.8 m in radius, and the approach ends at 5 m"},
+         p.min_depth_m);
+  v.real({"navigation", "max_depth_m", "m", 0.0, 100000.0,
+          "FDIR: plausible depth band, upper end; 0 derives it from the model and camera: the depth at "
+          "which the target spans 4 px (no 6-DOF fit is possible beyond)"},
+         p.max_depth_m);
+  v.real({"navigation", "max_frame_latency_ms", "ms", 0.0, 100000.0,
+          "FDIR: a frame older than one camera frame period plus this when processed is a fault (the "
+          "camera and the cycle free-run, so the newest frame is up to one period old by phase alone; the "
+          "period is the interval between the last two exposures; 0 disables the check)"},
+         p.max_frame_latency_ms);
+  v.real({"navigation", "evidence_min_line_fraction", "-", 0.0, 1.0,
+          "good image evidence: at least this share of the measured lines used (with the three below, "
+          "the measurement wins over a filter that rejects it, and the filter restarts from it)"},
+         p.evidence_min_line_fraction);
+  v.real({"navigation", "evidence_min_inlier_ratio", "-", 0.0, 1.0,
+          "good image evidence: edge-point inlier ratio over the used lines at least this"},
+         p.evidence_min_inlier_ratio);
+  v.real({"navigation", "evidence_max_rms_px", "px", 0.001, 100.0,
+          "good image evidence: pose-fit residual at most this"},
+         p.evidence_max_rms_px);
+  v.real({"navigation", "evidence_min_edge_support", "-", 0.0, 1.0,
+          "good image evidence: inlier edge points per scanline cast at least this (the model's edges are "
+          "where the image has them)"},
+         p.evidence_min_edge_support);
+  v.real({"navigation", "max_valid_attitude_sigma_deg", "deg", 0.0, 180.0,
+          "a 6-DOF pose whose own 1-sigma attitude uncertainty (square root of the trace of its attitude "
+          "covariance: the rms of the total rotation error) exceeds this is computed and tracked but not "
+          "delivered as valid: 2.5 puts the 5 deg of a confidently wrong pose 2 sigma out (campaign "
+          "plate/12: a 1.8 m plate at 21 m, 12 deg off from its true start; the paper's plate at 26 m on "
+          "VGA: 2.2 deg); 0 switches the check off"},
+         p.max_valid_attitude_sigma_deg);
+  v.real({"navigation", "max_valid_position_sigma_rel", "-", 0.0, 1.0,
+          "the same for the position: 1-sigma (square root of the trace) over the range. 0.0167 puts 5 % "
+          "of the range 3 sigma out: the position's 1-sigma rarely comes near it, so the stricter bound "
+          "costs little (campaign seeds 1-40, 200 scenes: 0.025 -> 0.0167 took tracked frames 14 721 -> "
+          "14 698 and confidently wrong frames 7 -> 4, octagon/15 and octagon/29 at 5.1-6.8 % of the "
+          "range with 1-sigma 1.8-2.3 %); 0 switches the check off"},
+         p.max_valid_position_sigma_rel);
+  v.real({"navigation", "doubted_max_attitude_sigma_deg", "deg", 0.0, 180.0,
+          "a near-range pose that is doubted (the filter's innovation gate rejects it, fewer than "
+          "doubt_min_line_fraction of its selected lines were used, or its track began with a "
+          "reacquisition's find and none of its poses met this limit yet) is valid only with an attitude "
+          "1-sigma of at most this: the track goes on with it either way, but a wrong fit has weak "
+          "geometry and a doubt (campaign smallsat/83: 5 of 8 lines, 1.5 deg 1-sigma, 12 deg off for 37 "
+          "frames). Full campaign: confidently wrong frames 396 -> 165, tracked mean 0.516 -> 0.505; on "
+          "200 other scenes 63 -> 26, 0.545 -> 0.535; 0 switches the check off"},
+         p.doubted_max_attitude_sigma_deg);
+  v.real({"navigation", "doubt_min_line_fraction", "-", 0.0, 1.0,
+          "a near-range pose is doubted when fewer than this share of its selected lines were used (the "
+          "others were not found or rejected): it rests on part of the outline. 0.85 (2 of 8 doubted) "
+          "fails case low_contrast_octagon: 1.00 -> 0.81 tracked (README, stop 47)"},
+         p.doubt_min_line_fraction);
+  v.real({"navigation", "doubt_nis_chi2", "-", 0.0, 1000.0,
+          "a near-range pose the filter accepts with a NIS (6 dof) above this is doubted: the innovation "
+          "gate ([filter] pose_gate_chi2, 99.9 %) lets through a fit one frame surprising enough that it "
+          "is more often a spike than the target's motion; the filter still takes it, only its validity "
+          "needs doubted_max_attitude_sigma_deg. 16.81 is the 99 % point. Single-frame spikes 5.2-5.9 deg "
+          "off at 1.5-1.9 deg 1-sigma and NIS 17.5-20.5 (campaign octagon/2, smallsat/5017, smallsat/5026, "
+          "octagon/5009); measured in the top-level README (stop 52); 0 switches it off"},
+         p.doubt_nis_chi2);
+  v.integer({"navigation", "doubt_every_line_up_to", "lines", 0, 1000,
+             "a near-range pose with at most this many selected lines is doubted when any of them was not "
+             "used: a small outline has no line to spare (campaign box/191: 4 of 5 lines, 5.0-5.5 deg off "
+             "at 1.7-2.3 deg 1-sigma). Full campaign: confidently wrong frames 33 -> 28 (box/191 4 -> 0, "
+             "cao/197 1 -> 0), tracked mean 0.622 -> 0.620; replayed on 200 other scenes and on the named "
+             "cases, no change (5 instead of 6 the same); 0 switches it off"},
+            p.doubt_every_line_up_to);
+  v.integer({"navigation", "minimal_fit_max_missing_lines", "lines", -1, 1000,
+             "a near-range pose fitted on 4 lines or fewer (4 vertices for 6 unknowns: a line fitted on "
+             "the wrong edge is absorbed by the attitude instead of showing in the residual) is not valid "
+             "when more than this many of its selected lines were not found: the pose predicts an outline "
+             "the image does not show (campaign box/5030 at 21 m: 4 of 7 lines, 10-13 deg off at 0.6-0.9 "
+             "deg 1-sigma). Tracked on; measured in the top-level README (stop 53); -1 switches it off"},
+            p.minimal_fit_max_missing_lines);
+  v.boolean({"navigation", "doubt_narrow_face", "-", 0, 1,
+             "a near-range pose is doubted when a tracked face is seen nearly edge-on, as a strip "
+             "narrower than [nearrange] confusable_edge_separation_px (the tracker's narrow-face flag): "
+             "the lines beside it may be biased by up to the strip's width with a tight scatter, and "
+             "a pose on them looks certain (campaign box/25: 5 of 6 lines at 0.02-0.08 px rms, 1.0-1.5 "
+             "deg 1-sigma, 4.7-5.9 deg off)"},
+            p.doubt_narrow_face);
+  v.integer({"navigation", "doubt_clear_frames", "count", 1, 1000,
+             "a track that began with a reacquisition's find stays doubted, and none of its poses is "
+             "valid, until this many consecutive poses met doubted_max_attitude_sigma_deg (1: the first "
+             "such pose ends the doubt and is valid). A find the image does not pin down alternates "
+             "between certain and uncertain fits as its lines come and go (campaign box/191: found 1.6 m "
+             "and 12 deg off, 1-sigma 0.30, 1.99, 0.36, 1.84, 1.95, 0.98, 0.39, 2.10 deg on consecutive "
+             "frames; 13 confidently wrong frames with 1 or 2, none with 3). Measured, off: with 3 on seeds "
+             "1-40, tracked 0.6500 -> 0.6358 and confidently wrong frames 18 -> 18 (a right find waits two "
+             "frames more)"},
+            p.doubt_clear_frames);
+  v.real({"navigation", "disputed_max_look_change_deg", "deg", 0.0, 180.0,
+          "a near-range pose the innovation gate rejects but the image supports (the measurement wins "
+          "and the filter restarts from it) is not valid on that frame when its look (attitude along its "
+          "line of sight, modulo symmetries: a slew does not change it) is more than this from the "
+          "prediction's: no target tumbles that fast between two frames, a fit jumping to the wrong "
+          "faces of a box does (campaign box/58: 10.7 deg in one frame, NIS 777, 0.4 deg 1-sigma). The "
+          "track goes on from it; 0 switches the check off"},
+         p.disputed_max_look_change_deg);
+  v.real({"navigation", "disputed_max_range_change_rel", "-", 0.0, 10.0,
+          "the same for the range: a disputed pose whose range differs from the prediction's by more "
+          "than this share of it is not valid on that frame. The prediction carries the approach's speed, "
+          "and a slew does not change the range; the image constrains depth least, and a fit that locks "
+          "on another pair of edges jumps in it (campaign box/44: 8.6 % in one frame, NIS 2097, valid "
+          "and wrong on that frame and the next). Full campaign: confidently wrong frames 96 -> 88, "
+          "tracked 0.6237 -> 0.6228. The track goes on from it; 0 switches the check off"},
+         p.disputed_max_range_change_rel);
+  v.real({"navigation", "max_valid_view_angle_deg", "deg", 0.0, 90.0,
+          "a 6-DOF pose on which no surface of the model faces the camera within this angle (between its "
+          "outward normal and the line of sight to its centre) is tracked but not valid: seen edge-on, a "
+          "plate's outline is a sliver whose opposite edges lie a few pixels apart, and its fit locks "
+          "biased with a small covariance (stop 32's full run: 47 of its 139 confidently wrong frames, "
+          "plates turning edge-on, 5-19 % of the range off with a 0.5-2.3 % 1-sigma; with the check on "
+          "that run's plates, octagons and cao models: 71 -> 23 wrong frames for 22 of 64 239 expected "
+          "frames). A box always shows a face within 55 deg (the cube's worst view, along a diagonal), so "
+          "boxes and the satellite are not affected, flat models are; 0 switches the check off"},
+         p.max_valid_view_angle_deg);
+  v.real({"navigation", "start_pose_sigma_deg", "deg", 0.0, 180.0,
+          "a start pose given by the operator (startNearRange, visnav-replay --initial-pose) starts the "
+          "filter with this 1-sigma attitude uncertainty (square root of the trace), so the first "
+          "measurements are checked against it instead of starting a track on their own: an ambiguous "
+          "first fit no longer leaves the filter empty and the prediction frozen at the start pose "
+          "(campaign box/26: lost on frame 3 of a 0.5 m/frame approach, then 180 frames of search at "
+          "the start range); a measurement it rejects still wins with good image evidence; 0: the first "
+          "measurement starts the filter, as before"},
+         p.start_pose_sigma_deg);
+  v.real({"navigation", "start_pose_sigma_rel", "-", 0.0, 1.0,
+          "the same for the start pose's position: 1-sigma (square root of the trace) over the range"},
+         p.start_pose_sigma_rel);
+  v.integer({"navigation", "branch_confirm_frames", "count", 0, 1000,
+             "a track's branch (which of two mirror poses, e.g. a plate's two tilts) is known from the given "
+             "start pose, an acquisition or reacquisition confirmation, or this many consecutive valid "
+             "frames whose fit had corners and no mirrored rival; any frame without a valid pose loses it. "
+             "While it is unknown no pose is valid: a track carried through withheld frames can come out "
+             "on the mirror branch, fitting the image as well with a tight covariance (campaign "
+             "octagon/174: 26 withheld frames, then 66 valid ones 34-140 deg off); 0 switches the check "
+             "off"},
+            p.branch_confirm_frames);
+  v.boolean(
+      {"navigation", "acquisition_awaits_near_range", "-", 0, 1,
+       "the pose an acquisition confirms is delivered tracked but not valid on its own frame, and the "
+       "track's branch becomes known only when the first near-range frame after it delivers a valid, "
+       "rival-free fit the filter (started from the acquisition) does not reject as a jump; otherwise "
+       "branch_confirm_frames rival-free frames are needed as after any break. The acquisition's "
+       "confirmation frames all look at one small target: on stop 33's full campaign all 5 of its wrong "
+       "frames (5.6-159 deg off) were on the acquisition's own frame; in the three traced (box/89, /40, "
+       "/16) the near-range fits after it disagreed (NIS 38-146) and were withheld. Costs one frame per "
+       "acquisition; false: valid on its own frame"},
+      p.acquisition_awaits_near_range);
+  v.integer({"navigation", "branch_continuity_frames", "count", 0, 1000,
+             "after a break of at most this many frames without a valid pose, a near-range fit confirms "
+             "the track's branch at once when it is as good as a fit gets: status tracking (every "
+             "selected line, no mirrored rival), accepted by the filter's prediction, attitude 1-sigma "
+             "within doubted_max_attitude_sigma_deg, and its look (attitude seen along its own line of "
+             "sight, modulo the model's symmetries) within branch_continuity_look_deg of the last valid "
+             "pose's, widened by reacquire_tolerance_growth_deg_per_frame per frame since. On seeds "
+             "1-40: 84 frames more tracked (14 720 -> 14 804), none wrong; on the full campaign 406 "
+             "more and 4 more confidently wrong, each continuing a track already 2.7-6.7 deg off; with "
+             "ambiguous and degraded fits allowed, seeds 1-40 gave 547 more and 13 more confidently "
+             "wrong. 0: only branch_confirm_frames rival-free frames confirm"},
+            p.branch_continuity_frames);
+  v.real({"navigation", "branch_continuity_look_deg", "deg", 0.0, 180.0,
+          "see branch_continuity_frames: the look tolerance on the frame right after the last valid "
+          "pose"},
+         p.branch_continuity_look_deg);
+  v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
+             "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
+             "filter from it"},
+            p.filter_diverged_rejections);
+  v.integer({"navigation", "far_filter_reset_rejections", "count", 1, 1000,
+             "far range: the filter restarts from the next fix after this many rejected fixes in a row"},
+            p.far_filter_reset_rejections);
+}
+
+}  // namespace visnav::nav::detail
