@@ -129,7 +129,7 @@ def replay_scene(rows, a):
                 or int(r.get('inlier_points', '0')) < a.min_edge_support * int(r.get('scanlines', '0'))
                 or (a.weak_evidence_invalid and r.get('evidence_good', '1') == '0')):
             certain = False
-        if (certain and a.minimal_fit_max_missing >= 0 and r['mode'] == 'near_range'
+        if (certain and a.minimal_fit_max_missing >= 0 and r['mode'] == 'near_range' and r['reacquired'] != '1'
                 and int(r['lines_used']) <= 4
                 and int(r['lines_total']) - int(r['lines_used']) > a.minimal_fit_max_missing):
             certain = False
