@@ -18,7 +18,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               --doubt-every-line-up-to ([navigation] doubt_every_line_up_to), beside a face the tracker
               saw as a narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
               ignores it), that the filter accepted with a NIS above --doubt-nis-chi2 ([navigation]
-              doubt_nis_chi2, frames.csv column nis), or whose track began with a reacquisition's find and has not yet had a pose
+              doubt_nis_chi2, frames.csv column nis), of the first --start-pose-doubt-frames frames of a
+              scene that starts in near range from the operator's pose ([navigation] start_pose_doubt_frames,
+              stop 53), or whose track began with a reacquisition's find and has not yet had a pose
               within the doubted limit
               needs attitude 1-sigma <=
               --doubted-attitude-sigma-deg ([navigation] doubted_max_attitude_sigma_deg /
@@ -83,6 +85,7 @@ def parse_args(argv):
     p.add_argument('--doubt-every-line-up-to', type=int, default=6)
     p.add_argument('--min-line-fraction', type=float, default=0.0)
     p.add_argument('--minimal-fit-max-missing', type=int, default=2)
+    p.add_argument('--start-pose-doubt-frames', type=int, default=1)
     p.add_argument('--min-edge-support', type=float, default=0.0)
     p.add_argument('--weak-evidence-doubt', action='store_true')
     p.add_argument('--weak-evidence-invalid', action='store_true')
@@ -100,6 +103,8 @@ def replay_scene(rows, a):
     track_doubted = False  # the track began with a find and none of its poses met the doubted limit yet
     awaiting = False  # an acquisition's pose waits for the next near-range frame
     out = []
+    # A near scene starts from the operator's pose (startNearRange) on its first frame.
+    started_near = bool(rows) and rows[0]['mode'] == 'near_range'
     for r in rows:
         awaited = awaiting and r['mode'] == 'near_range'
         if r['mode'] != 'acquisition':
@@ -116,7 +121,8 @@ def replay_scene(rows, a):
                 not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0) or (
                 a.weak_evidence_doubt and r.get('evidence_good', '1') == '0') or (
                 a.doubt_nis_chi2 > 0 and r['nis'] != '' and float(r['nis']) > a.doubt_nis_chi2) or (
-                int(r['lines_used']) < int(r['lines_total']) <= a.doubt_every_line_up_to)
+                int(r['lines_used']) < int(r['lines_total']) <= a.doubt_every_line_up_to) or (
+                started_near and int(r['frame']) - int(rows[0]['frame']) < a.start_pose_doubt_frames)
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
         if (r['mode'] == 'near_range' and r['candidate'] == '1' and a.doubted_attitude_sigma_deg > 0
