@@ -37,6 +37,28 @@ class PipelineTest : public ::testing::Test {
     return f;
   }
   Frame frameAt(int i) const { return frameOf(frames, i); }
+  /// A still `sequence` of `target` tracked from its `truth` (the given start pose) under `p`: how many
+  /// frames were valid. Every frame must stay in near range with a fit (not lost) within 2 deg of the truth;
+  /// `each(pipeline, out, i)` checks the case on every frame.
+  template <typename EachFrame>
+  static int validFromTruth(const PolygonModel& target, const std::vector<test::RenderedFrame>& sequence,
+                            const Pose& truth, const PipelineParams& p, EachFrame each) {
+    NavigationPipeline pipeline;
+    EXPECT_TRUE(pipeline.init(test::vgaCamera(), target, p).ok);
+    pipeline.startNearRange(truth, 0);
+    int valid = 0;
+    for (int i = 0; i < static_cast<int>(sequence.size()); ++i) {
+      const Frame f = frameOf(sequence, i);
+      NavSolution out;
+      EXPECT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      EXPECT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
+      EXPECT_NE(pipeline.lastNearRange().status, TrackStatus::kLost) << "frame " << i;
+      EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 2.0) << "tracked: frame " << i;
+      each(pipeline, out, i);
+      valid += out.pose_valid ? 1 : 0;
+    }
+    return valid;
+  }
   /// Ten frames of the plate from its true start at 26 m under `p`: how many were valid; `out` is the last
   /// solution. Every frame stays in near range, and symmetric_twins is set exactly on the valid ones (the
   /// plate's half turn).

@@ -196,23 +196,13 @@ TEST_F(PipelineTest, APoseBesideAFaceSeenEdgeOnMustMeetTheDoubtedLimit) {
     PipelineParams p;
     p.navigation.start_pose_doubt_frames = 0;  // counted from frame 0: the start doubt has its own test
     p.navigation.doubt_narrow_face = doubt;
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), box, p).ok);
-    pipeline.startNearRange(truth, 0);
-    int valid = 0;
-    for (int i = 0; i < 10; ++i) {
-      const Frame f = frameOf(box_frames, i);
-      NavSolution out;
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      ASSERT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
-      ASSERT_NE(pipeline.lastNearRange().status, TrackStatus::kLost) << "frame " << i;
-      EXPECT_NE(pipeline.lastNearRange().flags & kFlagNarrowFace, 0U) << "frame " << i;
-      const double sigma_deg = poseSigmas(out.pose, out.covariance).attitude_deg;
-      EXPECT_GT(sigma_deg, p.navigation.doubted_max_attitude_sigma_deg) << "the case: frame " << i;
-      EXPECT_LE(sigma_deg, p.navigation.max_valid_attitude_sigma_deg) << "the case: frame " << i;
-      EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 2.0) << "tracked: frame " << i;
-      valid += out.pose_valid ? 1 : 0;
-    }
+    const int valid = validFromTruth(
+        box, box_frames, truth, p, [&](const NavigationPipeline& pipeline, const NavSolution& out, int i) {
+          EXPECT_NE(pipeline.lastNearRange().flags & kFlagNarrowFace, 0U) << "frame " << i;
+          const double sigma_deg = poseSigmas(out.pose, out.covariance).attitude_deg;
+          EXPECT_GT(sigma_deg, p.navigation.doubted_max_attitude_sigma_deg) << "the case: frame " << i;
+          EXPECT_LE(sigma_deg, p.navigation.max_valid_attitude_sigma_deg) << "the case: frame " << i;
+        });
     if (doubt)
       EXPECT_EQ(valid, 0);
     else
@@ -346,22 +336,12 @@ TEST_F(PipelineTest, AFourLineFitWhosePoseShowsMoreLinesThanFoundIsTrackedButNot
   for (const int limit : {PipelineParams{}.navigation.minimal_fit_max_missing_lines, -1}) {
     PipelineParams p;
     p.navigation.minimal_fit_max_missing_lines = limit;
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), box, p).ok);
-    pipeline.startNearRange(truth, 0);
-    int valid = 0;
-    for (int i = 0; i < 10; ++i) {
-      const Frame f = frameOf(box_frames, i);
-      NavSolution out;
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      ASSERT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
-      const NearRangeResult& r = pipeline.lastNearRange();
-      ASSERT_NE(r.status, TrackStatus::kLost) << "frame " << i;
-      EXPECT_LE(r.lines_used, kMinimalFitLines) << "the case: frame " << i;
-      EXPECT_GT(r.lines_total - r.lines_used, 2) << "the case: frame " << i;
-      EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 2.0) << "tracked: frame " << i;
-      valid += out.pose_valid ? 1 : 0;
-    }
+    const int valid = validFromTruth(box, box_frames, truth, p,
+                                     [](const NavigationPipeline& pipeline, const NavSolution&, int i) {
+                                       const NearRangeResult& r = pipeline.lastNearRange();
+                                       EXPECT_LE(r.lines_used, kMinimalFitLines) << "the case: frame " << i;
+                                       EXPECT_GT(r.lines_total - r.lines_used, 2) << "the case: frame " << i;
+                                     });
     if (limit >= 0)
       EXPECT_EQ(valid, 0);
     else
