@@ -19,8 +19,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               saw as a narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
               ignores it), that the filter accepted with a NIS above --doubt-nis-chi2 ([navigation]
               doubt_nis_chi2, frames.csv column nis), of the first --start-pose-doubt-frames frames of a
-              scene that starts in near range from the operator's pose ([navigation] start_pose_doubt_frames,
-              stop 53), or whose track began with a reacquisition's find and has not yet had a pose
+              scene that starts in near range from the operator's pose (not shipped: built and measured in
+              stop 53, README), or whose track began with a reacquisition's find and has not yet had a pose
               within the doubted limit
               needs attitude 1-sigma <=
               --doubted-attitude-sigma-deg ([navigation] doubted_max_attitude_sigma_deg /
@@ -85,7 +85,7 @@ def parse_args(argv):
     p.add_argument('--doubt-every-line-up-to', type=int, default=6)
     p.add_argument('--min-line-fraction', type=float, default=0.0)
     p.add_argument('--minimal-fit-max-missing', type=int, default=2)
-    p.add_argument('--start-pose-doubt-frames', type=int, default=1)
+    p.add_argument('--start-pose-doubt-frames', type=int, default=0)
     p.add_argument('--min-edge-support', type=float, default=0.0)
     p.add_argument('--weak-evidence-doubt', action='store_true')
     p.add_argument('--weak-evidence-invalid', action='store_true')

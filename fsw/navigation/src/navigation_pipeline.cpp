@@ -62,7 +62,6 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   // Without it an ambiguous first fit (which never starts a track) left the filter empty and the prediction
   // frozen at the start pose while the target approached (campaign box/26).
   const NavigationParams& nav = m_params.navigation;
-  m_start_frames_doubted = nav.start_pose_doubt_frames;
   const double range = pose.t_c_m.norm();
   if (nav.start_pose_sigma_deg > 0.0 && nav.start_pose_sigma_rel > 0.0 && range > 0.0) {
     // sqrt(trace) is the configured sigma: a third of its square on each axis.
@@ -280,10 +279,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     // spike than the target's motion (campaign smallsat/5017: 5.2 deg off for one frame at NIS 20).
     const bool surprising = m_params.navigation.doubt_nis_chi2 > 0.0 && m_last_pose_update.dof == 6 &&
                             m_last_pose_update.nis > m_params.navigation.doubt_nis_chi2;
-    // The first fits after an operator's start pose have no track behind them, like a find (campaign
-    // octagon/7, plate/7032, octagon/7028: the first fit 5.5-7 deg off at 1.6-2.5 deg 1-sigma).
-    const bool doubted =
-        nearFitDoubted(r, faults, m_params.navigation) || surprising || m_start_frames_doubted > 0;
+    const bool doubted = nearFitDoubted(r, faults, m_params.navigation) || surprising;
     // Disputed by the filter and turned further since the frame before than a target turns in one frame:
     // tracked, not valid. Against the last pose, not the prediction: a filter restarted from two alternating
     // fits predicts a rate they do not have (slew_box: 13.6 deg/s). Until deliver() below, m_last_pose is the
@@ -390,7 +386,6 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
       case NavMode::kAcquisition: runAcquisition(frame->image, out.frame_number, out, in); break;
       case NavMode::kNearRange: runNearRange(frame->image, out.frame_number, out, in); break;
     }
-    if (m_start_frames_doubted > 0) --m_start_frames_doubted;
   }
   confirmBranch(mode_before, out);
   if (frame != nullptr && out.frame_received) followNearTwin(mode_before, frame->image, out);

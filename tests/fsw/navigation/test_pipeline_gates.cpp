@@ -97,7 +97,6 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
                           Variant{3, 0.0, 0.0, 3.0, 1, 9 - waited}, Variant{3, 3.0, 1.0, 1.0, 1, 9 - waited},
                           Variant{1, 3.0, 1.0, 3.0, 2, 8 - waited}}) {
     PipelineParams p = params;
-    p.navigation.start_pose_doubt_frames = 0;  // counted from frame 0: the start doubt has its own test
     p.navigation.branch_continuity_frames = v.frames;
     p.navigation.branch_continuity_look_deg = v.look_deg;
     p.navigation.reacquire_tolerance_growth_deg_per_frame = v.growth_deg;
@@ -194,7 +193,6 @@ TEST_F(PipelineTest, APoseBesideAFaceSeenEdgeOnMustMeetTheDoubtedLimit) {
   for (int i = 0; i < 10; ++i) box_frames.push_back(test::renderFrame(box_renderer, truth, 700U + i));
   for (const bool doubt : {true, false}) {
     PipelineParams p;
-    p.navigation.start_pose_doubt_frames = 0;  // counted from frame 0: the start doubt has its own test
     p.navigation.doubt_narrow_face = doubt;
     const int valid = validFromTruth(
         box, box_frames, truth, p, [&](const NavigationPipeline& pipeline, const NavSolution& out, int i) {
@@ -278,7 +276,6 @@ TEST_F(PipelineTest, APoseLessCertainThanTheLimitIsTrackedButNotValid) {
   // switched off.
   for (const double limit_deg : {180.0, 1e-9, 0.0}) {
     PipelineParams p = params;
-    p.navigation.start_pose_doubt_frames = 0;  // counted from frame 0: the start doubt has its own test
     p.navigation.max_valid_attitude_sigma_deg = limit_deg;
     NavSolution out;
     const int valid = validOverTenFrames(p, out);
@@ -298,7 +295,6 @@ TEST_F(PipelineTest, APoseTheFilterFindsSurprisingMustMeetTheDoubtedLimit) {
   ASSERT_GT(params.navigation.doubt_nis_chi2, 0.0);
   for (const double limit : {1e-9, 0.0, params.navigation.doubt_nis_chi2}) {
     PipelineParams p = params;
-    p.navigation.start_pose_doubt_frames = 0;  // counted from frame 0: the start doubt has its own test
     p.navigation.doubt_nis_chi2 = limit;
     p.navigation.max_valid_attitude_sigma_deg = 0.0;  // near this plate's 1-sigma (the test above)
     NavSolution out;
@@ -349,28 +345,6 @@ TEST_F(PipelineTest, AFourLineFitWhosePoseShowsMoreLinesThanFoundIsTrackedButNot
   }
 }
 
-TEST_F(PipelineTest, TheFirstFitsAfterAStartPoseMustMeetTheDoubtedLimit) {
-  // The plate at 26 m is known to about 2.2 deg (under the valid limit, above the doubted one): with the
-  // first frame doubted its fit is withheld, which breaks the branch, so validity returns once
-  // branch_confirm_frames rival-free frames confirmed it again (frames 1-3: 7 of 10 valid). Off: all ten;
-  // with the whole run doubted: none. Tracked throughout.
-  for (const int doubt_frames : {PipelineParams{}.navigation.start_pose_doubt_frames, 0, 10}) {
-    PipelineParams p = params;
-    p.navigation.start_pose_doubt_frames = doubt_frames;
-    p.navigation.max_valid_attitude_sigma_deg = 0.0;  // near this plate's 1-sigma (the tests above)
-    NavSolution out;
-    const int valid = validOverTenFrames(p, out);
-    if (doubt_frames == 0)
-      EXPECT_EQ(valid, 10);
-    else if (doubt_frames >= 10)
-      EXPECT_EQ(valid, 0);
-    else
-      EXPECT_EQ(valid, 10 - doubt_frames - (p.navigation.branch_confirm_frames - 1))
-          << "frames " << doubt_frames;
-    EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, frames " << doubt_frames;
-  }
-}
-
 TEST_F(PipelineTest, APoseShowingNoSurfaceNearFacingIsTrackedButNotValid) {
   // The plate's face turns 1.2-1.7 deg from the line of sight to its centre here (yaw 1, pitch -1 deg, 0.1 m
   // off the axis). Limits of 80 deg (edge-on only), 0.5 deg (under that angle: the plate counts as turned
@@ -378,7 +352,6 @@ TEST_F(PipelineTest, APoseShowingNoSurfaceNearFacingIsTrackedButNotValid) {
   // at 26 m is near it (the test above).
   for (const double limit_deg : {80.0, 0.5, 0.0}) {
     PipelineParams p = params;
-    p.navigation.start_pose_doubt_frames = 0;  // counted from frame 0: the start doubt has its own test
     p.navigation.max_valid_view_angle_deg = limit_deg;
     p.navigation.max_valid_attitude_sigma_deg = 0.0;
     NavSolution out;

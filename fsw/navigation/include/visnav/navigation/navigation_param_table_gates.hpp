@@ -197,13 +197,6 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
   v.real({"navigation", "start_pose_sigma_rel", "-", 0.0, 1.0,
           "the same for the start pose's position: 1-sigma (square root of the trace) over the range"},
          p.start_pose_sigma_rel);
-  v.integer({"navigation", "start_pose_doubt_frames", "frames", 0, 1000,
-             "the near-range fits of this many frames after a start pose given by the operator are doubted "
-             "(valid only within doubted_max_attitude_sigma_deg): the start pose is a prior, not a track, "
-             "and a first fit has no predicted motion to agree with, like a reacquisition's find (campaign "
-             "octagon/7, octagon/7028, plate/7032: the first fit 5.5-7.1 deg off at 1.6-2.5 deg 1-sigma). "
-             "Measured in the top-level README (stop 53); 0 switches it off"},
-            p.start_pose_doubt_frames);
   v.integer({"navigation", "branch_confirm_frames", "count", 0, 1000,
              "a track's branch (which of two mirror poses, e.g. a plate's two tilts) is known from the given "
              "start pose, an acquisition or reacquisition confirmation, or this many consecutive valid "

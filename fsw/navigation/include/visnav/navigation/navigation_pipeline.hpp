@@ -193,8 +193,6 @@ class NavigationPipeline {
   /// pose when none was valid since it, and the frames since (~0: neither).
   Pose m_branch_reference_pose;
   std::uint64_t m_frames_since_branch_reference = ~0ULL;
-  int m_start_frames_doubted =
-      0;                 ///< frames after the operator's start pose still doubted (start_pose_doubt_frames)
   TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;
