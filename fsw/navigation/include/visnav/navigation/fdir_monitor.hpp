@@ -43,10 +43,11 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
 /// `doubted_max_attitude_sigma_deg`: its covariance knows the noise, not the bias.
 bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params);
 
-/// A minimal near-range fit (at most 4 lines: 4 vertices for 6 unknowns, so one displaced line is absorbed by
-/// the attitude instead of showing in the residual) whose pose predicts more than
-/// `minimal_fit_max_missing_lines` selected lines the image did not give: tracked, never valid.
+/// The most lines a minimal near-range fit uses: 4 lines give 4 vertices for 6 unknowns, so one displaced
+/// line is absorbed by the attitude instead of showing in the residual.
 constexpr int kMinimalFitLines = 4;
+/// A minimal fit (at most kMinimalFitLines lines) whose pose predicts more than
+/// `minimal_fit_max_missing_lines` selected lines the image did not give: tracked, never valid.
 bool minimalFitMissesOutline(const NearRangeResult& r, const NavigationParams& params);
 
 class FdirMonitor {
