@@ -53,6 +53,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_delivered = {};  // given, not measured on a frame
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
+  m_start_fit_pending = true;
   m_find_confirms_branch = false;
   m_find_on_known_branch = false;
   m_track_twin_by_continuity = false;
@@ -271,6 +272,9 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     accepted = fuseNearRange(r, check);
   }
   const std::uint32_t faults = m_fdir.checkNearRange(check);
+  m_near_range_faults = faults;
+  const bool start_fit = measured && m_start_fit_pending;  // checked against the start pose alone
+  if (measured) m_start_fit_pending = false;
   const bool dropped = !measured || m_fdir.faultPersisted();
   if (!dropped && accepted) {
     // A fault (e.g. the innovation gate on a measurement the image supports) is flagged in fault_bits and
@@ -279,7 +283,13 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     // spike than the target's motion (campaign smallsat/5017: 5.2 deg off for one frame at NIS 20).
     const bool surprising = m_params.navigation.doubt_nis_chi2 > 0.0 && m_last_pose_update.dof == 6 &&
                             m_last_pose_update.nis > m_params.navigation.doubt_nis_chi2;
-    const bool doubted = nearFitDoubted(r, faults, m_params.navigation) || surprising;
+    // The first fit after an operator's start pose has no track behind it, only a prior: one that disagrees
+    // with it (start_pose_doubt_nis_chi2) is doubted like a find (campaign octagon/7, octagon/7028,
+    // plate/7032: 5.5-7.1 deg off at NIS 9.0-9.7).
+    const bool start_disputed = start_fit && m_params.navigation.start_pose_doubt_nis_chi2 > 0.0 &&
+                                m_last_pose_update.dof == 6 &&
+                                m_last_pose_update.nis > m_params.navigation.start_pose_doubt_nis_chi2;
+    const bool doubted = nearFitDoubted(r, faults, m_params.navigation) || surprising || start_disputed;
     // Disputed by the filter and turned further since the frame before than a target turns in one frame:
     // tracked, not valid. Against the last pose, not the prediction: a filter restarted from two alternating
     // fits predicts a rate they do not have (slew_box: 13.6 deg/s). Until deliver() below, m_last_pose is the
@@ -309,6 +319,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
 
 void NavigationPipeline::enterMode(NavMode mode) {
   m_fdir.resetPersistence();
+  m_start_fit_pending = false;
   m_coasted = 0;
   const bool far_track_kept = m_far_track_kept;
   m_far_track_kept = false;
@@ -377,6 +388,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     m_previous_exposure_ns = m_have_last_exposure ? m_last_exposure_ns : 0;
     m_have_last_exposure = true;
     m_last_exposure_ns = frame->exposure_time_ns;
+    m_near_range_faults = 0U;
     switch (mode_before) {
       case NavMode::kStandby: break;
       case NavMode::kFarRange:

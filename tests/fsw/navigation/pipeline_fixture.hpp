@@ -62,10 +62,11 @@ class PipelineTest : public ::testing::Test {
   /// Ten frames of the plate from its true start at 26 m under `p`: how many were valid; `out` is the last
   /// solution. Every frame stays in near range, and symmetric_twins is set exactly on the valid ones (the
   /// plate's half turn).
-  int validOverTenFrames(const PipelineParams& p, NavSolution& out) {
+  int validOverTenFrames(const PipelineParams& p, NavSolution& out,
+                         const Pose& start = test::plateAt(26.0, 0.1, 1.0, -1.0)) {
     NavigationPipeline pipeline;
     EXPECT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
+    pipeline.startNearRange(start, 0);
     int valid = 0;
     for (int i = 0; i < 10; ++i) {
       const Frame f = frameAt(i);

@@ -155,5 +155,42 @@ TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
       << "a reference too old confirms nothing: the find earns its branch";
 }
 
+
+TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
+  // The plate still at 10 m for 3 frames, then 5 % farther (a jump: withheld, the branch breaks) and still
+  // again, with an innovation gate nothing passes: the filter rejects every fit the image supports, restarts
+  // on it and rejects the next. With branch_confirm_needs_filter the rejected fits count toward no
+  // confirmation, so none is valid again while the filter disagrees (campaign box/5001: a track confirmed
+  // 13.6 % off by three frames, the last rejected at NIS 56); without it branch_confirm_frames rival-free
+  // fits confirm the branch as after any break.
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < 12; ++i)
+    seq.push_back(test::renderFrame(renderer, test::plateAt(i < 3 ? 10.0 : 10.5, 0.1, 1.0, -1.0), 900U + i));
+  for (const bool needs_filter : {true, false}) {
+    PipelineParams p = params;
+    p.filter.pose_gate_chi2 = 1e-9;
+    p.navigation.branch_confirm_needs_filter = needs_filter;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int valid_after_jump = 0;
+    for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      ASSERT_EQ(out.mode, NavMode::kNearRange) << i;
+      EXPECT_LT((out.pose.t_c_m - seq[static_cast<std::size_t>(i)].truth.t_c_m).norm(), 0.1) << i;
+      EXPECT_NE(out.fault_bits & kFaultInnovation, 0U) << "every fit rejected, frame " << i;
+      if (i < 3) {
+        EXPECT_TRUE(out.pose_valid) << "before the jump, frame " << i;
+      } else if (i == 3) {
+        EXPECT_FALSE(out.pose_valid) << "the jump";
+      }
+      if (i > 3 && out.pose_valid) ++valid_after_jump;
+    }
+    EXPECT_EQ(valid_after_jump, needs_filter ? 0 : 8 - (p.navigation.branch_confirm_frames - 1));
+  }
+}
+
 }  // namespace
 }  // namespace visnav::nav

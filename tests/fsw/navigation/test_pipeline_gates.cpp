@@ -303,6 +303,26 @@ TEST_F(PipelineTest, APoseTheFilterFindsSurprisingMustMeetTheDoubtedLimit) {
   }
 }
 
+TEST_F(PipelineTest, AFirstFitThatDisagreesWithTheStartPoseMustMeetTheDoubtedLimit) {
+  // The operator's start pose 4 deg off in yaw and in pitch: the first fit finds the plate (26 m, about
+  // 2.2 deg 1-sigma, above the doubted limit) and disagrees with the start pose by a NIS above the chi-square
+  // median. Doubted, it is withheld, which breaks the branch: validity returns once branch_confirm_frames
+  // rival-free frames confirmed it again (7 of 10). With the check off all ten are valid, and a start pose
+  // on the truth (NIS near 0) is not doubted at all. Tracked throughout.
+  const Pose off_start = test::plateAt(26.0, 0.1, 5.0, -5.0);
+  ASSERT_GT(PipelineParams{}.navigation.start_pose_doubt_nis_chi2, 0.0);
+  for (const double limit : {PipelineParams{}.navigation.start_pose_doubt_nis_chi2, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.start_pose_doubt_nis_chi2 = limit;
+    p.navigation.max_valid_attitude_sigma_deg = 0.0;  // near this plate's 1-sigma (the tests above)
+    NavSolution out;
+    const int valid = validOverTenFrames(p, out, off_start);
+    EXPECT_EQ(valid, limit > 0.0 ? 10 - 1 - (p.navigation.branch_confirm_frames - 1) : 10) << "limit " << limit;
+    EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, limit " << limit;
+    EXPECT_EQ(validOverTenFrames(p, out), 10) << "a start pose on the truth, limit " << limit;
+  }
+}
+
 TEST_F(PipelineTest, AFourLineFitWhosePoseShowsMoreLinesThanFoundIsTrackedButNotValid) {
   // A box seen on its corner at 10 m with only its nearest face lit (the other two as dark as space): the
   // image gives that face's 4 lines, the pose predicts the other faces' outline too. A 4-line fit has no line

@@ -197,6 +197,15 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
   v.real({"navigation", "start_pose_sigma_rel", "-", 0.0, 1.0,
           "the same for the start pose's position: 1-sigma (square root of the trace) over the range"},
          p.start_pose_sigma_rel);
+  v.real({"navigation", "start_pose_doubt_nis_chi2", "-", 0.0, 1000.0,
+          "the first near-range fit after a start pose given by the operator is doubted (valid only "
+          "within doubted_max_attitude_sigma_deg) when its NIS (6 dof) against that pose exceeds this: a "
+          "start pose is a prior, not a track, and a first fit that disagrees with it more than half of "
+          "consistent fits would has no motion to agree with, like a find. 5.35 is the chi-square median. "
+          "Wrong first fits in the campaign (octagon/7, octagon/7028, plate/7032: 5.5-7.1 deg off at "
+          "1.6-2.5 deg 1-sigma) had NIS 9.0-9.7; right ones 0.0-1.1 (90 %); the paper's plate 0.08. "
+          "Measured in the top-level README (stop 54); 0 switches it off"},
+         p.start_pose_doubt_nis_chi2);
   v.integer({"navigation", "branch_confirm_frames", "count", 0, 1000,
              "a track's branch (which of two mirror poses, e.g. a plate's two tilts) is known from the given "
              "start pose, an acquisition or reacquisition confirmation, or this many consecutive valid "
@@ -206,6 +215,14 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "octagon/174: 26 withheld frames, then 66 valid ones 34-140 deg off); 0 switches the check "
              "off"},
             p.branch_confirm_frames);
+  v.boolean({"navigation", "branch_confirm_needs_filter", "-", 0, 1,
+             "a near-range fit the filter's innovation gate rejected (fault bit 0x10) counts toward none of "
+             "the branch_confirm_frames: a confirmation needs consistency with the predicted motion, as an "
+             "acquisition's does. Campaign box/5001: the tracker jumped at frame 173, the filter restarted "
+             "from the fits it had rejected, and three rival-free frames confirmed that track 13.6 % off in "
+             "range, the third of them rejected at NIS 56. Measured in the top-level README (stop 54); "
+             "false: rejected fits count"},
+            p.branch_confirm_needs_filter);
   v.boolean(
       {"navigation", "acquisition_awaits_near_range", "-", 0, 1,
        "the pose an acquisition confirms is delivered tracked but not valid on its own frame, and the "
