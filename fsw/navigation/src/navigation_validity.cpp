@@ -114,9 +114,11 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   const bool confirmed = (processed_in == NavMode::kAcquisition && !m_acquisition_awaits_near) ||
                          find_confirms || awaited || m_fit_kept_the_branch;
   // A confirmation also needs the predicted motion's agreement, as an acquisition's does (campaign box/5001:
-  // a track the filter restarted from rejected fits, confirmed 13.6 % off by three frames, the last rejected).
+  // a track the filter restarted from rejected fits, confirmed 13.6 % off by three frames, the last
+  // rejected).
   const bool motion_agrees = !m_params.navigation.branch_confirm_needs_filter ||
-                             processed_in != NavMode::kNearRange || (m_near_range_faults & kFaultInnovation) == 0U;
+                             processed_in != NavMode::kNearRange ||
+                             (m_near_range_faults & kFaultInnovation) == 0U;
   out.pose_valid = m_branch.step(out.pose_valid, rival_free && motion_agrees, confirmed);
 }
 

@@ -155,7 +155,6 @@ TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
       << "a reference too old confirms nothing: the find earns its branch";
 }
 
-
 TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
   // The plate still at 10 m for 3 frames, then 5 % farther (a jump: withheld, the branch breaks) and still
   // again, with an innovation gate nothing passes: the filter rejects every fit the image supports, restarts

@@ -317,7 +317,8 @@ TEST_F(PipelineTest, AFirstFitThatDisagreesWithTheStartPoseMustMeetTheDoubtedLim
     p.navigation.max_valid_attitude_sigma_deg = 0.0;  // near this plate's 1-sigma (the tests above)
     NavSolution out;
     const int valid = validOverTenFrames(p, out, off_start);
-    EXPECT_EQ(valid, limit > 0.0 ? 10 - 1 - (p.navigation.branch_confirm_frames - 1) : 10) << "limit " << limit;
+    EXPECT_EQ(valid, limit > 0.0 ? 10 - 1 - (p.navigation.branch_confirm_frames - 1) : 10)
+        << "limit " << limit;
     EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, limit " << limit;
     EXPECT_EQ(validOverTenFrames(p, out), 10) << "a start pose on the truth, limit " << limit;
   }

@@ -182,8 +182,10 @@ class NavigationPipeline {
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
+  /// No fit measured since the operator's start pose (start_pose_doubt_nis_chi2).
   bool m_start_fit_pending = false;
-  std::uint32_t m_near_range_faults = 0U;  ///< this frame's near-range fault bits (checkNearRange), else 0  ///< no fit measured since the operator's start pose (start_pose_doubt_*)
+  /// This frame's near-range fault bits (checkNearRange), 0 on a frame not processed in near range.
+  std::uint32_t m_near_range_faults = 0U;
   int m_doubt_clear_run = 0;                ///< consecutive poses of a doubted track within the doubted limit
   bool m_find_confirms_branch = false;      ///< doubt_clear_frames > 1: the find's branch waits for its doubt
   std::uint64_t m_near_twins_followed = 0;  ///< nearTwinsFollowed()
