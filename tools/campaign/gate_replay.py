@@ -18,7 +18,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               --doubt-every-line-up-to ([navigation] doubt_every_line_up_to), beside a face the tracker
               saw as a narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
               ignores it), that the filter accepted with a NIS above --doubt-nis-chi2 ([navigation]
-              doubt_nis_chi2, frames.csv column nis), of the first --start-pose-doubt-frames frames of a
+              doubt_nis_chi2, frames.csv column nis), the first fit after the operator's start pose whose
+              NIS exceeds --start-pose-doubt-nis ([navigation] start_pose_doubt_nis_chi2, stop 54), of the
+              first --start-pose-doubt-frames frames of a
               scene that starts in near range from the operator's pose (not shipped: built and measured in
               stop 53, README), or whose track began with a reacquisition's find and has not yet had a pose
               within the doubted limit
@@ -27,8 +29,10 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               doubt_min_line_fraction; 0 switches it off)
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
-              frames whose tracker flags have none of --rival-flags and without a near-twin rival the
-              pipeline counted (frames.csv column near_twin_rival), or an acquisition / reacquisition
+              frames whose tracker flags have none of --rival-flags, without a near-twin rival the
+              pipeline counted (frames.csv column near_twin_rival) and not rejected by the filter (fault bit
+              0x10; [navigation] branch_confirm_needs_filter, stop 54; --no-branch-confirm-needs-filter
+              counts them), or an acquisition / reacquisition
               confirmation (unless --no-confirmed-sources), or a certain near-range frame the pipeline
               judged to have kept the branch by continuity (frames.csv column kept_branch: a clean fit,
               accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
@@ -86,6 +90,8 @@ def parse_args(argv):
     p.add_argument('--min-line-fraction', type=float, default=0.0)
     p.add_argument('--minimal-fit-max-missing', type=int, default=2)
     p.add_argument('--start-pose-doubt-frames', type=int, default=0)
+    p.add_argument('--start-pose-doubt-nis', type=float, default=5.35)
+    p.add_argument('--no-branch-confirm-needs-filter', action='store_true')
     p.add_argument('--min-edge-support', type=float, default=0.0)
     p.add_argument('--weak-evidence-doubt', action='store_true')
     p.add_argument('--weak-evidence-invalid', action='store_true')
@@ -105,7 +111,12 @@ def replay_scene(rows, a):
     out = []
     # A near scene starts from the operator's pose (startNearRange) on its first frame.
     started_near = bool(rows) and rows[0]['mode'] == 'near_range'
+    start_fit_pending = started_near
     for r in rows:
+        # The first near-range fit after the start pose (the first with a filter update) is judged against it.
+        start_fit = start_fit_pending and r['mode'] == 'near_range' and r['nis'] != ''
+        if start_fit or r['mode'] != 'near_range':
+            start_fit_pending = False
         awaited = awaiting and r['mode'] == 'near_range'
         if r['mode'] != 'acquisition':
             awaiting = False
@@ -122,7 +133,8 @@ def replay_scene(rows, a):
                 a.weak_evidence_doubt and r.get('evidence_good', '1') == '0') or (
                 a.doubt_nis_chi2 > 0 and r['nis'] != '' and float(r['nis']) > a.doubt_nis_chi2) or (
                 int(r['lines_used']) < int(r['lines_total']) <= a.doubt_every_line_up_to) or (
-                started_near and int(r['frame']) - int(rows[0]['frame']) < a.start_pose_doubt_frames)
+                started_near and int(r['frame']) - int(rows[0]['frame']) < a.start_pose_doubt_frames) or (
+                start_fit and a.start_pose_doubt_nis > 0 and float(r['nis']) > a.start_pose_doubt_nis)
             if doubted and float(r['attitude_sigma_deg']) > a.doubted_attitude_sigma_deg:
                 certain = False
         if (r['mode'] == 'near_range' and r['candidate'] == '1' and a.doubted_attitude_sigma_deg > 0
@@ -161,7 +173,10 @@ def replay_scene(rows, a):
                 find_off_branch = r['reacquired'] == '1' and r.get('find_on_branch', '1') == '0'
                 rival_free = r['mode'] != 'near_range' or ((int(r['near_flags']) & a.rival_flags) == 0
                                                            and r.get('near_twin_rival', '0') != '1'
-                                                           and not find_off_branch)
+                                                           and not find_off_branch
+                                                           and not (not a.no_branch_confirm_needs_filter
+                                                                    and int(r['fault_bits'])
+                                                                    & FAULT_INNOVATION))
                 continuous = (not a.no_branch_continuity and r['mode'] == 'near_range'
                               and r.get('kept_branch', '0') == '1')
                 if not a.no_confirmed_sources and (acquisition_pose
