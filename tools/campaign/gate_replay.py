@@ -173,17 +173,17 @@ def replay_scene(rows, a):
                 find_off_branch = r['reacquired'] == '1' and r.get('find_on_branch', '1') == '0'
                 rival_free = r['mode'] != 'near_range' or ((int(r['near_flags']) & a.rival_flags) == 0
                                                            and r.get('near_twin_rival', '0') != '1'
-                                                           and not find_off_branch
-                                                           and not (not a.no_branch_confirm_needs_filter
-                                                                    and int(r['fault_bits'])
-                                                                    & FAULT_INNOVATION))
+                                                           and not find_off_branch)
+                # A fit the filter rejected counts toward no confirmation run (branch_confirm_needs_filter).
+                motion_agrees = (a.no_branch_confirm_needs_filter or r['mode'] != 'near_range'
+                                 or (int(r['fault_bits']) & FAULT_INNOVATION) == 0)
                 continuous = (not a.no_branch_continuity and r['mode'] == 'near_range'
                               and r.get('kept_branch', '0') == '1')
                 if not a.no_confirmed_sources and (acquisition_pose
                                                    or (r['reacquired'] == '1' and not find_off_branch)
                                                    or (awaited and rival_free) or continuous):
                     known = True
-                if not rival_free:
+                if not (rival_free and motion_agrees):
                     run = 0
                 elif run < a.branch_confirm_frames:
                     run += 1

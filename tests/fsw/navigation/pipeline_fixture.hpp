@@ -59,6 +59,24 @@ class PipelineTest : public ::testing::Test {
     }
     return valid;
   }
+  /// The plate's `sequence` tracked under `p` from its first frame's truth (the given start pose): every
+  /// frame stays in near range with a pose within 0.1 m of that frame's truth; `each(pipeline, out, i)`
+  /// checks the case on every frame.
+  template <typename EachFrame>
+  void trackFromFirstTruth(const std::vector<test::RenderedFrame>& sequence, const PipelineParams& p,
+                           EachFrame each) {
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(sequence.front().truth, 0);
+    for (int i = 0; i < static_cast<int>(sequence.size()); ++i) {
+      const Frame f = frameOf(sequence, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      ASSERT_EQ(out.mode, NavMode::kNearRange) << i;
+      EXPECT_LT((out.pose.t_c_m - sequence[static_cast<std::size_t>(i)].truth.t_c_m).norm(), 0.1) << i;
+      each(pipeline, out, i);
+    }
+  }
   /// Ten frames of the plate from its true start at 26 m under `p`: how many were valid; `out` is the last
   /// solution. Every frame stays in near range, and symmetric_twins is set exactly on the valid ones (the
   /// plate's half turn).

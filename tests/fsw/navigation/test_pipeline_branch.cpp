@@ -169,16 +169,8 @@ TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
     PipelineParams p = params;
     p.filter.pose_gate_chi2 = 1e-9;
     p.navigation.branch_confirm_needs_filter = needs_filter;
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
     int valid_after_jump = 0;
-    for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
-      const Frame f = frameOf(seq, i);
-      NavSolution out;
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      ASSERT_EQ(out.mode, NavMode::kNearRange) << i;
-      EXPECT_LT((out.pose.t_c_m - seq[static_cast<std::size_t>(i)].truth.t_c_m).norm(), 0.1) << i;
+    trackFromFirstTruth(seq, p, [&](const NavigationPipeline&, const NavSolution& out, int i) {
       EXPECT_NE(out.fault_bits & kFaultInnovation, 0U) << "every fit rejected, frame " << i;
       if (i < 3) {
         EXPECT_TRUE(out.pose_valid) << "before the jump, frame " << i;
@@ -186,7 +178,7 @@ TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
         EXPECT_FALSE(out.pose_valid) << "the jump";
       }
       if (i > 3 && out.pose_valid) ++valid_after_jump;
-    }
+    });
     EXPECT_EQ(valid_after_jump, needs_filter ? 0 : 8 - (p.navigation.branch_confirm_frames - 1));
   }
 }
