@@ -79,7 +79,7 @@ def parse_args(argv):
     p.add_argument('--position-sigma-rel', type=float, default=0.0167)
     p.add_argument('--doubted-attitude-sigma-deg', type=float, default=1.0)
     p.add_argument('--doubt-min-line-fraction', type=float, default=0.75)
-    p.add_argument('--doubt-nis-chi2', type=float, default=16.81)
+    p.add_argument('--doubt-nis-chi2', type=float, default=12.59)
     p.add_argument('--no-narrow-face-doubt', action='store_true')
     p.add_argument('--branch-confirm-frames', type=int, default=3)
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
