@@ -199,6 +199,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.has_candidate = sol.quality > 0.0 && sol.covariance(0, 0) > 0.0;
     if (f.has_candidate) {
       f.candidate_position_error_m = (sol.pose.t_c_m - truth.t_c_m).norm();
+      f.candidate_range_m = sol.pose.t_c_m.norm();
       f.candidate_attitude_error_deg = attitudeErrorModuloDeg(sol.pose.R_c_m, truth.R_c_m, scene.symmetries);
       const nav::PoseSigmas sigma = nav::poseSigmas(sol.pose, sol.covariance);  // as the pipeline judged it
       f.attitude_sigma_deg = sigma.attitude_deg;
