@@ -92,6 +92,7 @@ def parse_args(argv):
     p.add_argument('--start-pose-doubt-frames', type=int, default=0)
     p.add_argument('--start-pose-doubt-nis', type=float, default=5.35)
     p.add_argument('--no-branch-confirm-needs-filter', action='store_true')
+    p.add_argument('--no-branch-range-after-jump', action='store_true')
     p.add_argument('--min-edge-support', type=float, default=0.0)
     p.add_argument('--weak-evidence-doubt', action='store_true')
     p.add_argument('--weak-evidence-invalid', action='store_true')
@@ -177,6 +178,10 @@ def replay_scene(rows, a):
                 # A fit the filter rejected counts toward no confirmation run (branch_confirm_needs_filter).
                 motion_agrees = (a.no_branch_confirm_needs_filter or r['mode'] != 'near_range'
                                  or (int(r['fault_bits']) & FAULT_INNOVATION) == 0)
+                # Nor one that left the last valid pose's range after a jump (branch_range_after_jump; as the
+                # pipeline judged it, frames.csv column range_broken, written since stop 54).
+                if not a.no_branch_range_after_jump and r.get('range_broken', '0') == '1':
+                    motion_agrees = False
                 continuous = (not a.no_branch_continuity and r['mode'] == 'near_range'
                               and r.get('kept_branch', '0') == '1')
                 if not a.no_confirmed_sources and (acquisition_pose

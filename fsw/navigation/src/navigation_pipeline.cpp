@@ -54,6 +54,8 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
   m_start_fit_pending = true;
+  m_have_valid_range = false;  // a new track: no valid pose's range to keep yet
+  m_range_check_active = false;
   m_find_confirms_branch = false;
   m_find_on_known_branch = false;
   m_track_twin_by_continuity = false;
@@ -320,6 +322,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
 void NavigationPipeline::enterMode(NavMode mode) {
   m_fdir.resetPersistence();
   m_start_fit_pending = false;
+  m_range_check_active = false;
   m_coasted = 0;
   const bool far_track_kept = m_far_track_kept;
   m_far_track_kept = false;
@@ -350,6 +353,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_fit_kept_the_branch = false;
   m_near_twin_rival = false;
   m_pose_jumped = false;
+  m_range_broken = false;
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;
   out.frame_number = m_last_frame_number;
@@ -401,6 +405,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   }
   confirmBranch(mode_before, out);
   if (frame != nullptr && out.frame_received) followNearTwin(mode_before, frame->image, out);
+  noteRangeReference(out);
   if (out.pose_valid) {
     m_last_valid_pose = out.pose;
     m_frames_since_valid = 0;

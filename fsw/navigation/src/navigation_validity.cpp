@@ -103,8 +103,11 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
   if (processed_in != NavMode::kAcquisition) m_acquisition_awaits_near = false;
   // Evaluated whatever the branch's state, for the campaign's gate replay (lastFitKeptTheBranch).
-  m_fit_kept_the_branch =
-      processed_in == NavMode::kNearRange && out.pose_valid && keptTheBranch(out.pose, out.covariance);
+  // After a jump a fit must also keep the last valid pose's range to count toward the branch, by continuity
+  // or by the count (fitLeftTheValidRange).
+  m_range_broken = processed_in == NavMode::kNearRange && fitLeftTheValidRange(out.pose);
+  m_fit_kept_the_branch = processed_in == NavMode::kNearRange && out.pose_valid && !m_range_broken &&
+                          keptTheBranch(out.pose, out.covariance);
   // With doubt_clear_frames > 1 the find's own frame is withheld: its confirmation of the branch (the twin
   // chosen by continuity with the last valid pose) passes to the track's first valid pose after it.
   const bool find_confirms =
@@ -119,7 +122,7 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   const bool motion_agrees = !m_params.navigation.branch_confirm_needs_filter ||
                              processed_in != NavMode::kNearRange ||
                              (m_near_range_faults & kFaultInnovation) == 0U;
-  out.pose_valid = m_branch.step(out.pose_valid, rival_free && motion_agrees, confirmed);
+  out.pose_valid = m_branch.step(out.pose_valid, rival_free && motion_agrees && !m_range_broken, confirmed);
 }
 
 void NavigationPipeline::followNearTwin(NavMode processed_in, const MonoImage& image,
@@ -169,6 +172,38 @@ bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance)
        nav.reacquire_tolerance_growth_deg_per_frame * static_cast<double>(m_frames_since_valid + 1)) *
       kRadPerDeg;
   return m_reacquisition.symmetries().lookDistanceRad(m_last_valid_pose, pose) <= tolerance_rad;
+}
+
+bool NavigationPipeline::fitLeftTheValidRange(const Pose& pose) const {
+  // After a disputed jump the filter restarts on the jumped track and agrees with it; the range the last
+  // valid pose was heading for does not (campaign smallsat/7023: 13 % in one frame, then confirmed 16-17 %
+  // off). A slew or a turn leaves the range alone.
+  const NavigationParams& nav = m_params.navigation;
+  if (!m_range_check_active || m_frames_since_valid == ~0ULL || m_near_result.status == TrackStatus::kLost)
+    return false;
+  const double dt_s = static_cast<double>(m_last_exposure_ns - m_valid_exposure_ns) * 1e-9;
+  const double expected_m = m_valid_range_m + m_valid_range_rate_mps * dt_s;
+  if (expected_m <= 0.0) return false;
+  const double tolerance =
+      nav.disputed_max_range_change_rel +
+      nav.branch_range_growth_rel_per_frame * static_cast<double>(m_frames_since_valid + 1);
+  return std::fabs(pose.t_c_m.norm() / expected_m - 1.0) > tolerance;
+}
+
+void NavigationPipeline::noteRangeReference(const NavSolution& out) {
+  if (out.pose_valid) {
+    const double range_m = out.pose.t_c_m.norm();
+    m_valid_range_m = range_m;
+    m_valid_range_rate_mps =
+        m_filter.initialised() && range_m > 0.0 ? m_filter.velocity().dot(out.pose.t_c_m) / range_m : 0.0;
+    m_valid_exposure_ns = m_last_exposure_ns;
+    m_have_valid_range = true;
+    m_range_check_active = false;
+    return;
+  }
+  if (m_reacquisition_step.found) m_range_check_active = false;  // a find has its own confirmation
+  if (m_pose_jumped && m_have_valid_range && m_params.navigation.branch_range_after_jump)
+    m_range_check_active = true;
 }
 
 }  // namespace visnav::nav

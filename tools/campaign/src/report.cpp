@@ -374,7 +374,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
        "error_m,candidate_attitude_error_deg,attitude_sigma_deg,position_sigma_rel,near_flags,lines_used,"
        "lines_"
        "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch,jumped,"
-       "oracle,near_twin_rival,scanlines,inlier_points,evidence_good,find_on_branch,candidate_range_m\n";
+       "oracle,near_twin_rival,scanlines,inlier_points,evidence_good,find_on_branch,candidate_range_m,range_"
+       "broken\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
@@ -394,7 +395,7 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << "," << f.shows_face << "," << f.twin_by_continuity << "," << f.kept_branch << "," << f.jumped
         << "," << f.oracle << "," << f.near_twin_rival << "," << f.scanlines << "," << f.inlier_points << ","
         << f.evidence_good << "," << f.find_on_branch << ","
-        << (f.has_candidate ? num(f.candidate_range_m) : "") << "\n";
+        << (f.has_candidate ? num(f.candidate_range_m) : "") << "," << f.range_broken << "\n";
     }
   }
 }

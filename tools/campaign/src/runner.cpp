@@ -219,6 +219,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.near_twin_rival = pipeline->lastNearTwinRival();
     f.find_on_branch = !f.reacquired || pipeline->lastFindOnKnownBranch();
     f.jumped = pipeline->lastPoseJumped();
+    f.range_broken = pipeline->lastFitBrokeRange();
     const nav::FilterUpdate& u = pipeline->lastPoseUpdate();
     if (u.status == Status::kOk && u.dof == 6) {
       f.has_nis = true;

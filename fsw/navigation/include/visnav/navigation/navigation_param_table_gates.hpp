@@ -225,6 +225,18 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "range, the third of them rejected at NIS 56. Measured in the top-level README (stop 54); "
              "false: rejected fits count"},
             p.branch_confirm_needs_filter);
+  v.boolean({"navigation", "branch_range_after_jump", "-", 0, 1,
+             "after a disputed jump breaks the branch, a near-range fit counts toward none of the "
+             "branch_confirm_frames unless its range stays within disputed_max_range_change_rel (widened "
+             "by branch_range_growth_rel_per_frame per frame since) of the last valid pose's range carried "
+             "on at the filter's range rate then: the filter restarted on the jumped track has lost that "
+             "reference. Campaign smallsat/7023: the tracker jumped 13 % in range at frame 95, the filter "
+             "restarted there and accepted the frames after, and three of them were confirmed 16-17 % off. "
+             "Measured in the top-level README (stop 54); false: no range check"},
+            p.branch_range_after_jump);
+  v.real({"navigation", "branch_range_growth_rel_per_frame", "-", 0.0, 1.0,
+          "the widening of branch_range_after_jump's range tolerance per frame since the last valid pose"},
+         p.branch_range_growth_rel_per_frame);
   v.boolean(
       {"navigation", "acquisition_awaits_near_range", "-", 0, 1,
        "the pose an acquisition confirms is delivered tracked but not valid on its own frame, and the "

@@ -88,6 +88,9 @@ class NavigationPipeline {
   std::uint64_t nearTwinsFollowed() const { return m_near_twins_followed; }
   /// Whether the last frame's near-range pose was withheld as a disputed jump (disputed_max_look_change_deg).
   bool lastPoseJumped() const { return m_pose_jumped; }
+  /// Whether this frame's fit left the range the last valid pose predicts after a jump
+  /// (branch_range_after_jump).
+  bool lastFitBrokeRange() const { return m_range_broken; }
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -132,6 +135,11 @@ class NavigationPipeline {
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
   /// last valid pose's look (confirms the branch).
   bool keptTheBranch(const Pose& pose, const Mat6& covariance) const;
+  /// After a disputed jump: whether `pose` left the range the last valid pose predicts
+  /// (branch_range_after_jump).
+  bool fitLeftTheValidRange(const Pose& pose) const;
+  /// Keeps the last valid pose's range and rate, and starts the range check after a disputed jump.
+  void noteRangeReference(const NavSolution& out);
   /// Some surface of the model faces the camera within [navigation] max_valid_view_angle_deg on `pose`.
   bool showsAFace(const Pose& pose) const;
   /// Fills out.symmetric_twins and out.twin_by_continuity for a valid pose.
@@ -186,6 +194,14 @@ class NavigationPipeline {
   bool m_start_fit_pending = false;
   /// This frame's near-range fault bits (checkNearRange), 0 on a frame not processed in near range.
   std::uint32_t m_near_range_faults = 0U;
+  /// The last valid pose's range, range rate (the filter's) and exposure time; after a disputed jump
+  /// (branch_range_after_jump) a fit's range is checked against them until a pose is valid again.
+  double m_valid_range_m = 0.0;
+  double m_valid_range_rate_mps = 0.0;
+  std::int64_t m_valid_exposure_ns = 0;
+  bool m_have_valid_range = false;
+  bool m_range_check_active = false;
+  bool m_range_broken = false;              ///< lastFitBrokeRange()
   int m_doubt_clear_run = 0;                ///< consecutive poses of a doubted track within the doubted limit
   bool m_find_confirms_branch = false;      ///< doubt_clear_frames > 1: the find's branch waits for its doubt
   std::uint64_t m_near_twins_followed = 0;  ///< nearTwinsFollowed()

@@ -70,9 +70,10 @@ struct FrameOutcome {
   bool kept_branch = false;         ///< NavigationPipeline::lastFitKeptTheBranch
   bool near_twin_rival = false;     ///< NavigationPipeline::lastNearTwinRival
   bool find_on_branch = true;       ///< a find (reacquired) that confirmed the branch: lastFindOnKnownBranch
-  double candidate_range_m =
-      0.0;              ///< the candidate's distance |t| (has_candidate), for range-continuity replays
-  bool jumped = false;  ///< NavigationPipeline::lastPoseJumped
+  /// The candidate's distance |t| (has_candidate), for range-continuity replays.
+  double candidate_range_m = 0.0;
+  bool jumped = false;        ///< NavigationPipeline::lastPoseJumped
+  bool range_broken = false;  ///< NavigationPipeline::lastFitBrokeRange
   /// --oracle (or --trace), on a visible frame without a valid pose: what a near-range tracker started at
   /// the truth makes of this image. -1 not asked, 0 no fit the pipeline would take (lost, or image evidence
   /// too weak: nav::imageEvidenceGood), 1 a fit, but wrong or not certain enough
