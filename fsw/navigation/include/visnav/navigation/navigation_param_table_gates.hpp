@@ -232,7 +232,10 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "on at the filter's range rate then: the filter restarted on the jumped track has lost that "
              "reference. Campaign smallsat/7023: the tracker jumped 13 % in range at frame 95, the filter "
              "restarted there and accepted the frames after, and three of them were confirmed 16-17 % off. "
-             "Measured in the top-level README (stop 54); false: no range check"},
+             "Off (experimental): on seeds 7001-7040 it removed those 3 wrong frames but withheld the right "
+             "track after a jump for the rest of box/7036 (49 -> 24 tracked frames, a loss never "
+             "recovered): the last valid pose's range, carried on at its rate, is no reference over tens "
+             "of frames. Top-level README, stop 54; false: no range check"},
             p.branch_range_after_jump);
   v.real({"navigation", "branch_range_growth_rel_per_frame", "-", 0.0, 1.0,
           "the widening of branch_range_after_jump's range tolerance per frame since the last valid pose"},
