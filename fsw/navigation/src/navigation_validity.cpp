@@ -191,6 +191,7 @@ bool NavigationPipeline::fitLeftTheValidRange(const Pose& pose) const {
 }
 
 void NavigationPipeline::noteRangeReference(const NavSolution& out) {
+  if (!m_params.navigation.branch_range_after_jump) return;  // off: no per-frame work, the check never starts
   if (out.pose_valid) {
     const double range_m = out.pose.t_c_m.norm();
     m_valid_range_m = range_m;
@@ -202,8 +203,7 @@ void NavigationPipeline::noteRangeReference(const NavSolution& out) {
     return;
   }
   if (m_reacquisition_step.found) m_range_check_active = false;  // a find has its own confirmation
-  if (m_pose_jumped && m_have_valid_range && m_params.navigation.branch_range_after_jump)
-    m_range_check_active = true;
+  if (m_pose_jumped && m_have_valid_range) m_range_check_active = true;
 }
 
 }  // namespace visnav::nav

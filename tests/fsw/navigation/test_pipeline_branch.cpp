@@ -155,6 +155,28 @@ TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
       << "a reference too old confirms nothing: the find earns its branch";
 }
 
+/// The plate still at 10 m for kJumpFrame frames, then 5 % farther and still again (12 frames): the fit on
+/// the jump frame is withheld as a disputed jump and breaks the branch.
+constexpr int kJumpFrame = 3;
+std::vector<test::RenderedFrame> rangeJump(synthetic::Renderer& renderer, std::uint64_t seed) {
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < 12; ++i)
+    seq.push_back(test::renderFrame(renderer, test::plateAt(i < kJumpFrame ? 10.0 : 10.5, 0.1, 1.0, -1.0),
+                                    seed + static_cast<std::uint64_t>(i)));
+  return seq;
+}
+
+/// Checks frame `i` of rangeJump (valid before the jump, not on it) and counts the valid frames after it.
+void countValidAfterJump(const NavSolution& out, int i, int& valid_after_jump) {
+  if (i < kJumpFrame) {
+    EXPECT_TRUE(out.pose_valid) << "before the jump, frame " << i;
+  } else if (i == kJumpFrame) {
+    EXPECT_FALSE(out.pose_valid) << "the jump";
+  } else if (out.pose_valid) {
+    ++valid_after_jump;
+  }
+}
+
 TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
   // The plate still at 10 m for 3 frames, then 5 % farther (a jump: withheld, the branch breaks) and still
   // again, with an innovation gate nothing passes: the filter rejects every fit the image supports, restarts
@@ -162,9 +184,7 @@ TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
   // confirmation, so none is valid again while the filter disagrees (campaign box/5001: a track confirmed
   // 13.6 % off by three frames, the last rejected at NIS 56); without it branch_confirm_frames rival-free
   // fits confirm the branch as after any break.
-  std::vector<test::RenderedFrame> seq;
-  for (int i = 0; i < 12; ++i)
-    seq.push_back(test::renderFrame(renderer, test::plateAt(i < 3 ? 10.0 : 10.5, 0.1, 1.0, -1.0), 900U + i));
+  const std::vector<test::RenderedFrame> seq = rangeJump(renderer, 900U);
   for (const bool needs_filter : {true, false}) {
     PipelineParams p = params;
     p.filter.pose_gate_chi2 = 1e-9;
@@ -173,12 +193,7 @@ TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
     int valid_after_jump = 0;
     trackFromFirstTruth(seq, p, [&](const NavigationPipeline&, const NavSolution& out, int i) {
       EXPECT_NE(out.fault_bits & kFaultInnovation, 0U) << "every fit rejected, frame " << i;
-      if (i < 3) {
-        EXPECT_TRUE(out.pose_valid) << "before the jump, frame " << i;
-      } else if (i == 3) {
-        EXPECT_FALSE(out.pose_valid) << "the jump";
-      }
-      if (i > 3 && out.pose_valid) ++valid_after_jump;
+      countValidAfterJump(out, i, valid_after_jump);
     });
     EXPECT_EQ(valid_after_jump, needs_filter ? 0 : 8 - (p.navigation.branch_confirm_frames - 1));
   }
@@ -191,9 +206,7 @@ TEST_F(PipelineTest, AfterAJumpAFitOffTheLastValidRangeDoesNotConfirmTheBranch) 
   // of the run: with branch_range_after_jump no fit after the jump is valid (campaign smallsat/7023: a
   // track 13 % off in range after a jump, confirmed 16-17 % off); without it the next fit confirms the
   // branch at once by continuity (its look kept the last valid pose's).
-  std::vector<test::RenderedFrame> seq;
-  for (int i = 0; i < 12; ++i)
-    seq.push_back(test::renderFrame(renderer, test::plateAt(i < 3 ? 10.0 : 10.5, 0.1, 1.0, -1.0), 950U + i));
+  const std::vector<test::RenderedFrame> seq = rangeJump(renderer, 950U);
   for (const bool range_check : {true, false}) {
     PipelineParams p = params;
     p.navigation.branch_range_after_jump = range_check;
@@ -201,13 +214,10 @@ TEST_F(PipelineTest, AfterAJumpAFitOffTheLastValidRangeDoesNotConfirmTheBranch) 
     int valid_after_jump = 0;
     int range_broken = 0;
     trackFromFirstTruth(seq, p, [&](const NavigationPipeline& pipeline, const NavSolution& out, int i) {
-      if (i < 3) {
-        EXPECT_TRUE(out.pose_valid) << "before the jump, frame " << i;
-      } else if (i == 3) {
-        EXPECT_FALSE(out.pose_valid) << "the jump";
+      countValidAfterJump(out, i, valid_after_jump);
+      if (i == kJumpFrame) {
         EXPECT_TRUE(pipeline.lastPoseJumped());
       }
-      if (i > 3 && out.pose_valid) ++valid_after_jump;
       if (pipeline.lastFitBrokeRange()) ++range_broken;
     });
     if (range_check) {
