@@ -281,16 +281,17 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   if (!dropped && accepted) {
     // A fault (e.g. the innovation gate on a measurement the image supports) is flagged in fault_bits and
     // halves the quality; it does not swap the measurement for the prediction.
+    // A 6-DOF update above a chi-square limit (0: off).
+    const auto nis_above = [this](double limit) {
+      return limit > 0.0 && m_last_pose_update.dof == 6 && m_last_pose_update.nis > limit;
+    };
     // A fit the gate let through but the filter found surprising (doubt_nis_chi2) is more often a one-frame
     // spike than the target's motion (campaign smallsat/5017: 5.2 deg off for one frame at NIS 20).
-    const bool surprising = m_params.navigation.doubt_nis_chi2 > 0.0 && m_last_pose_update.dof == 6 &&
-                            m_last_pose_update.nis > m_params.navigation.doubt_nis_chi2;
+    const bool surprising = nis_above(m_params.navigation.doubt_nis_chi2);
     // The first fit after an operator's start pose has no track behind it, only a prior: one that disagrees
     // with it (start_pose_doubt_nis_chi2) is doubted like a find (campaign octagon/7, octagon/7028,
     // plate/7032: 5.5-7.1 deg off at NIS 9.0-9.7).
-    const bool start_disputed = start_fit && m_params.navigation.start_pose_doubt_nis_chi2 > 0.0 &&
-                                m_last_pose_update.dof == 6 &&
-                                m_last_pose_update.nis > m_params.navigation.start_pose_doubt_nis_chi2;
+    const bool start_disputed = start_fit && nis_above(m_params.navigation.start_pose_doubt_nis_chi2);
     const bool doubted = nearFitDoubted(r, faults, m_params.navigation) || surprising || start_disputed;
     // Disputed by the filter and turned further since the frame before than a target turns in one frame:
     // tracked, not valid. Against the last pose, not the prediction: a filter restarted from two alternating
