@@ -40,9 +40,15 @@ void ClusterFinder::init(int width, int height, int max_clusters, int max_pixels
   std::fill(m_label.data(), m_label.data() + n, static_cast<std::uint16_t>(0));
   m_clusters.reserve(static_cast<std::size_t>(max_clusters));
   m_pixels.reserve(static_cast<std::size_t>(max_pixels));
-  const auto padded = static_cast<std::size_t>(width + 2) * static_cast<std::size_t>(height + 2);
+  // The padded box of fillHoles (one free ring) or of outlineHull (kMaxReachPx + 1).
+  const auto padded = static_cast<std::size_t>(width + 2 + 2 * kMaxReachPx) *
+                      static_cast<std::size_t>(height + 2 + 2 * kMaxReachPx);
   m_fill.reserve(padded);
   m_fill_stack.reserve(padded);
+  // A hull's input: at most two points per image row; the monotone chain holds at most twice that.
+  m_hull.reserve(4 * static_cast<std::size_t>(height) + 2);
+  m_row_lo.reserve(static_cast<std::size_t>(height));
+  m_row_hi.reserve(static_cast<std::size_t>(height));
 }
 
 void ClusterFinder::find(const ResponseImage& response, const std::uint8_t* row_max, std::uint8_t t_in_q,

@@ -140,6 +140,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   for (Refuted& r : m_refuted) r.frames_left = r.frames_left > 0 ? r.frames_left - 1 : 0;
   const Roi full = Roi::full(m_camera.width(), m_camera.height());
   Gate gate = m_robust ? currentGate() : Gate{};
+  const bool untracked = m_robust && !gate.active;
   int selected = -1;
   // recheck_frames: this frame is searched whole, and the track is checked against its largest cluster.
   const bool recheck = m_robust && m_params.recheck_frames > 0 && m_track.active && !m_has_prediction &&
@@ -219,8 +220,11 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     out.timing.select_us += elapsedUs(stamp);
     if (selected >= 0) out.flags |= kFlagFlattened;
   }
-  if (selected >= 0 && m_robust && (out.flags & kFlagExtended) == 0U)
+  if (untracked) {
+    selected = preferSilhouette(selected, out.flags);
+  } else if (selected >= 0 && m_robust && (out.flags & kFlagExtended) == 0U) {
     selected = preferEnclosingOutline(gate, selected, out.flags);
+  }
   if (selected >= 0) {
     out.cluster_count = static_cast<int>(m_finder.clusters().size());
     out.selected = selected;
@@ -240,81 +244,6 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
   m_has_prediction = false;  // a filter prediction holds for one frame
   out.timing.total_us = elapsedUs(start);
   return Status::kOk;
-}
-
-int FarRangeEstimator::preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags) {
-  // eq. 13 may hold only a fragment of a target that grew (plate/50: n = 1 to 3 at 50 m in noise 0.11, read
-  // as 1200-2100 m), and the gate's size consistency then keeps the fragment. An outline on the edge response
-  // that encloses the fragment and is extended_enclose_ratio times its size is the target; a smaller ratio
-  // is a whole target's own outline with its halo, or with parts eq. 13 rightly leaves out (a satellite's
-  // dark panels), whose n gamma was not calibrated on.
-  if (!gate.active || !(m_params.extended_min_half_px > 0.0)) return selected;
-  const Cluster fragment = m_finder.clusters()[static_cast<std::size_t>(selected)];
-  const Vec2 at = usedCentre(fragment);
-  std::uint32_t outline_flags = 0;
-  const int outline = searchExtended(gate, outline_flags);
-  if (outline >= 0) {
-    const Cluster& c = m_finder.clusters()[static_cast<std::size_t>(outline)];
-    if (at.x() >= c.x_min && at.x() <= c.x_max + 1.0 && at.y() >= c.y_min && at.y() <= c.y_max + 1.0 &&
-        usedPixels(c) >= m_params.extended_enclose_ratio * usedPixels(fragment)) {
-      flags |= outline_flags;
-      return outline;
-    }
-  }
-  // The fragment stays: the eq. 13 clusters are found again (same response, same thresholds, same result).
-  m_finder.find(m_combined, m_row_max.data(), m_t_in_q, m_t_out_q);
-  prepareCandidates();
-  std::uint32_t again = 0;
-  return selectRobust(gate, again);
-}
-
-int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
-  // Close in, the target's own grey levels fill the histogram and eq. 12 no longer calls them rare: with
-  // t_in 0.9 and equal weights no pixel spawns a cluster although the outline is a strong edge (campaign
-  // octagon/26: tracked from 750 m to 48 m, then nothing), or only a fragment of the target does, and the
-  // track then holds that fragment's size (plate/3: n = 42 at 53 m, read as 408 m). A tracked target is then
-  // looked for by its outline alone: clusters of strong edge response, holes filled, inside the gate. Only
-  // with a track: without one, a strong edge anywhere (limb, glow) would do.
-  if (!(m_params.extended_min_half_px > 0.0) || !gate.active) return -1;
-  const Roi& roi = m_edge_response.roi();
-  std::uint8_t* row_max = m_edge_row_max.data();
-  for (int ry = 0; ry < roi.height; ++ry) {
-    const std::uint8_t* s = m_edge_response.row(ry);
-    row_max[ry] = *std::max_element(s, s + roi.width);
-  }
-  m_finder.find(m_edge_response, row_max, m_ext_spawn_q, m_ext_grow_q, m_params.min_cluster_px);
-  // The gate as in selectRobust, but the silhouette may be up to extended_max_growth times the tracked
-  // size (a fragment's track), never smaller than max_size_ratio allows, at least extended_min_half_px in
-  // half extent (a small outline is the eq. 13 search's job), and not cut by the image border (the limb's
-  // arc is).
-  auto& clusters = m_finder.clusters();
-  const double down_limit = std::log(std::max(m_params.max_size_ratio, 1.000001));
-  const double up_limit = std::log(std::max(m_params.extended_max_growth, m_params.max_size_ratio));
-  int best = -1;
-  double best_score = 0.0;
-  for (std::size_t i = 0; i < clusters.size(); ++i) {
-    Cluster& c = clusters[i];
-    if (c.pixel_count < m_params.min_cluster_px || c.halfExtentPx() < m_params.extended_min_half_px) continue;
-    if (touchesImageBorder(c)) continue;
-    // Holes are filled (twice the bounding box's area) only for an outline that can reach the gate: the
-    // filled centre lies in the bounding box.
-    const double gap_x = std::max({c.x_min - gate.centre_px.x(), gate.centre_px.x() - (c.x_max + 1.0), 0.0});
-    const double gap_y = std::max({c.y_min - gate.centre_px.y(), gate.centre_px.y() - (c.y_max + 1.0), 0.0});
-    if (std::hypot(gap_x, gap_y) > gate.radius_px) continue;
-    if (m_params.fill_holes) m_finder.fillHoles(c);
-    const double offset = (usedCentre(c) - gate.centre_px).norm();
-    if (offset > gate.radius_px) continue;
-    if (passedOver(c, flags)) continue;
-    const double log_ratio = std::log(usedPixels(c) / std::max(gate.size_px, 1.0));
-    if (log_ratio < -down_limit || log_ratio > up_limit) continue;
-    const double score = offset / gate.radius_px + std::abs(log_ratio) / up_limit;  // lower is better
-    if (best < 0 || score < best_score) {
-      best = static_cast<int>(i);
-      best_score = score;
-    }
-  }
-  if (best >= 0) flags |= kFlagExtended | kFlagGated;
-  return best;
 }
 
 FarRangeEstimator::ClusterDistances FarRangeEstimator::distancesOf(const Cluster& c) const {

@@ -139,7 +139,7 @@ int FarRangeEstimator::recheckTrack(const MonoImage& image, const Gate& gate, Fa
   if (grown > m_params.recheck_static_growth) return -1;
   searchRegion(image, Roi::full(m_camera.width(), m_camera.height()), out);
   std::uint32_t untracked_flags = 0U;
-  const int rival = selectRobust(Gate{}, untracked_flags);
+  const int rival = preferSilhouette(selectRobust(Gate{}, untracked_flags), untracked_flags);
   if (!takesTheTrackOver(rival, gate, tracked_n)) return -1;
   m_track = Track{};
   out.flags |= untracked_flags | kFlagRecheckSwitched;

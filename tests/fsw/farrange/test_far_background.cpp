@@ -40,9 +40,12 @@ FarRangeParams backgroundParams(int block_px, bool fallback_only) {
   return p;
 }
 
-FarRangeResult estimate(const test::FarFrame& frame, int block_px, bool fallback_only = false) {
+FarRangeResult estimate(const test::FarFrame& frame, int block_px, bool fallback_only = false,
+                        bool silhouette = true) {
   FarRangeEstimator far;
-  EXPECT_TRUE(far.init(test::farCamera(640, 480, false), backgroundParams(block_px, fallback_only)).ok);
+  FarRangeParams p = backgroundParams(block_px, fallback_only);
+  if (!silhouette) p.untracked_outline_fill_ratio = 0.0;
+  EXPECT_TRUE(far.init(test::farCamera(640, 480, false), p).ok);
   FarRangeResult out;
   EXPECT_EQ(far.estimate(frame.image(), out), Status::kOk);
   return out;
@@ -60,9 +63,14 @@ TEST(FarRangeBackground, ATargetInsideABrightRampsSpreadIsFoundOnceTheRampIsTake
   // combined response stay below t_out (eq. 16 then reads 4 % far).
   EXPECT_LE(flat.cluster_pixels / 5468.0, 1.0);
   EXPECT_GE(flat.cluster_pixels / 5468.0, 0.85);
-  const FarRangeResult raw = estimate(frame, 0);
+  const FarRangeResult raw = estimate(frame, 0, false, false);
   EXPECT_FALSE(raw.valid && test::angleDeg(raw.direction_c, truth) < 0.2)
       << "against the frame's own histogram the body's grey level is common: no fix on it";
+  // Without a track, the whole frame's outline search finds it by its silhouette instead.
+  const FarRangeResult outline = estimate(frame, 0);
+  ASSERT_TRUE(outline.valid);
+  EXPECT_NE(outline.flags & kFlagExtended, 0U);
+  EXPECT_LT(test::angleDeg(outline.direction_c, truth), 0.2);
 }
 
 TEST(FarRangeBackground, AsAFallbackTheFlattenedSearchRunsOnlyWhereThePrintedOneFindsNothing) {

@@ -1,6 +1,7 @@
 // Cluster analysis (sec. III-B): spawn/grow thresholds, 8-connectivity, eq. 15, hole filling, capacities.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -111,6 +112,80 @@ TEST(ClusterFinder, FillHolesCountsTheEnclosedAreaAndItsOutline) {
   Cluster& open = finder.clusters()[0];
   finder.fillHoles(open);
   EXPECT_EQ(open.filled_count, open.pixel_count);
+}
+
+// A 20 x 16 rectangle outline, 1 px wide, at (5, 5)..(24, 20), without the pixels of `gaps` on its bottom row.
+Response rectangleOutline(const std::vector<int>& gaps) {
+  Response r(40, 40);
+  for (int x = 5; x < 25; ++x) {
+    r.set(x, 5, 255);
+    if (std::find(gaps.begin(), gaps.end(), x) == gaps.end()) r.set(x, 20, 255);
+  }
+  for (int y = 6; y < 20; ++y) {
+    r.set(5, y, 255);
+    r.set(24, y, 255);
+  }
+  return r;
+}
+
+TEST(ClusterFinder, TheHullOfAnOutlineWithAGapIsItsSilhouetteAndTheGapIsWhatItMisses) {
+  // 8 px missing from the bottom side: the flood fill encloses nothing, the hull is the 20 x 16 block.
+  Response r = rectangleOutline({11, 12, 13, 14, 15, 16, 17, 18});
+  ClusterFinder finder;
+  finder.init(40, 40, 8, 1000);
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 1U);
+  Cluster& c = finder.clusters()[0];
+  EXPECT_EQ(c.pixel_count, 2 * 20 + 2 * 14 - 8);
+  finder.fillHoles(c);
+  EXPECT_EQ(c.filled_count, c.pixel_count);
+  const int members[1] = {0};
+  OutlineHull h;
+  ASSERT_TRUE(finder.outlineHull(members, 1, 2, h));
+  EXPECT_NEAR(h.area_px, 20.0 * 16.0, 1e-9);  // 19 x 15 over pixel centres, plus half the perimeter and 1
+  EXPECT_NEAR(h.perimeter_px, 2.0 * (19.0 + 15.0), 1e-9);
+  EXPECT_NEAR(h.centre_px.x(), 15.0, 1e-9);
+  EXPECT_NEAR(h.centre_px.y(), 13.0, 1e-9);
+  EXPECT_NEAR(h.max_radius_px, std::hypot(9.5, 7.5), 1e-9);
+  EXPECT_EQ(h.pixel_count, c.pixel_count);
+  // Of the 68 1-px steps around it, those more than 2 px from an outline pixel: x = 13..16 on the bottom.
+  EXPECT_NEAR(h.coverage, 64.0 / 68.0, 1e-12);
+  EXPECT_EQ(h.x_min, 5);
+  EXPECT_EQ(h.y_min, 5);
+  EXPECT_EQ(h.x_max, 24);
+  EXPECT_EQ(h.y_max, 20);
+}
+
+TEST(ClusterFinder, AnOpenArcCoversLittleOfItsHullAndTwoPartsOfAnOutlineCoverTheirs) {
+  // The top and left sides only (an "L"): the hull is a triangle whose long side has no outline near it.
+  Response arc(40, 40);
+  for (int x = 5; x < 25; ++x) arc.set(x, 5, 255);
+  for (int y = 6; y < 21; ++y) arc.set(5, y, 255);
+  ClusterFinder finder;
+  finder.init(40, 40, 8, 1000);
+  finder.find(arc.image, arc.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 1U);
+  const int one[1] = {0};
+  OutlineHull h;
+  ASSERT_TRUE(finder.outlineHull(one, 1, 2, h));
+  EXPECT_LT(h.coverage, 0.75);  // [farrange] outline_min_coverage is 0.8
+  EXPECT_NEAR(h.area_px, 0.5 * 19.0 * 15.0 + 0.5 * h.perimeter_px + 1.0, 1e-9);
+  // The rectangle broken on its bottom and on its right side: two clusters, whose joint hull is the block.
+  Response broken = rectangleOutline({14, 15, 16});
+  broken.image.row(12)[24] = 0;
+  broken.image.row(13)[24] = 0;
+  finder.find(broken.image, broken.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 2U);
+  const int both[2] = {0, 1};
+  ASSERT_TRUE(finder.outlineHull(both, 2, 2, h));
+  EXPECT_NEAR(h.area_px, 20.0 * 16.0, 1e-9);
+  EXPECT_EQ(h.pixel_count, 2 * 20 + 2 * 14 - 3 - 2);
+  EXPECT_DOUBLE_EQ(h.coverage, 1.0);  // no gap wider than twice the reach
+  // A line has no hull.
+  Response line(40, 40);
+  for (int x = 5; x < 25; ++x) line.set(x, 9, 255);
+  finder.find(line.image, line.row_max.data(), kIn, kOut);
+  EXPECT_FALSE(finder.outlineHull(one, 1, 2, h));
 }
 
 TEST(ClusterFinder, CapacitiesAreReportedNotExceeded) {

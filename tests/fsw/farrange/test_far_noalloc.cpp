@@ -120,6 +120,39 @@ TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
 
 // The track recheck (recheck_frames): the whole-frame search, and the switch from a glow tracked alone to
 // the satellite at 40 m (test_far_refuted.cpp, TrackRecheck), many times over.
+TEST(FarRangeNoAlloc, TheSilhouetteSearchWithoutATrackAndTheHullOfAnOutlineWithGaps) {
+  // The plate above in noise 0.09, which breaks its outline: each frame searched without a track (reset),
+  // so the whole frame's silhouette search and the hulls of its outline fragments run on every frame.
+  synthetic::RenderOptions o;
+  o.background = 0.28;
+  o.target_brightness = 0.87;
+  o.noise_sigma = 0.09;
+  o.blur_sigma_px = 0.33;
+  CameraIntrinsics k = CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320.0, 240.0);
+  k.fx_px = k.fy_px = 1180.0;
+  const PinholeCamera camera(k);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(camera, makeRectanglePlate(2.0, 2.2), o).ok);
+  std::vector<test::FarFrame> f;
+  f.reserve(8);
+  for (int i = 0; i < 8; ++i)
+    f.push_back(test::renderFar(renderer, test::satAt(25.0 - i, 1.0, -0.5, 30.0 + i), 70 + i, i));
+  FarRangeParams p;
+  p.background_block_px = 0;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(camera, p).ok);
+  FarRangeResult r;
+  int extended = 0;
+  const std::uint64_t before = test::allocationCount();
+  for (int i = 0; i < 32; ++i) {
+    e.reset();
+    e.estimate(f[static_cast<std::size_t>(i) % f.size()].image(), r);
+    extended += (r.flags & kFlagExtended) != 0U ? 1 : 0;
+  }
+  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
+  EXPECT_GE(extended, 8) << "the silhouette search found the plate";
+}
+
 TEST(FarRangeNoAlloc, TheTrackRecheckAndItsSwitch) {
   synthetic::RenderOptions o = test::farRender();
   o.glints.push_back(test::glowAt(Vec2(150.0, 360.0)));

@@ -37,6 +37,17 @@ struct Cluster {
   }
 };
 
+/// The convex hull of an outline's clusters (ClusterFinder::outlineHull).
+struct OutlineHull {
+  double area_px = 0.0;        ///< pixels inside the hull: polygon area over pixel centres + half its perimeter
+  double perimeter_px = 0.0;   ///< of the polygon over pixel centres
+  double coverage = 0.0;       ///< share of 1-px steps along the hull with a member pixel within reach
+  Vec2 centre_px = Vec2::Zero();  ///< the polygon's centroid (pixel centres at +0.5)
+  double max_radius_px = 0.0;  ///< farthest hull vertex from it
+  int x_min = 0, y_min = 0, x_max = 0, y_max = 0;  ///< bounding box of the members, inclusive
+  int pixel_count = 0;                             ///< the members' pixels
+};
+
 class ClusterFinder {
  public:
   /// Init-time: label image and work buffers for an image of width x height.
@@ -52,6 +63,11 @@ class ClusterFinder {
   /// Fills the cluster's enclosed holes (exterior flood fill, 4-connected, of its padded bounding box) and
   /// sets filled_count / filled_com_px. Cost: twice the bounding-box area.
   void fillHoles(Cluster& cluster);
+  static constexpr int kMaxReachPx = 4;
+  /// The convex hull of clusters `members` (1 or 2 indices into clusters()) and its coverage by their pixels
+  /// within `reach_px` (0 .. kMaxReachPx). False for a degenerate hull (a line). Cost: the members' pixels,
+  /// their bounding box twice, and (2 reach + 1)^2 per pixel of the hull's perimeter.
+  bool outlineHull(const int* members, int count, int reach_px, OutlineHull& out);
 
   BoundedBuffer<Cluster>& clusters() { return m_clusters; }
   const BoundedBuffer<Cluster>& clusters() const { return m_clusters; }
@@ -70,7 +86,10 @@ class ClusterFinder {
   BoundedBuffer<Cluster> m_clusters;
   BoundedBuffer<std::uint32_t> m_pixels;  ///< all clusters' pixels (y << 16 | x); the growth queue
   BoundedBuffer<std::uint8_t> m_fill;     ///< padded bounding box for fillHoles
-  BoundedBuffer<std::uint32_t> m_fill_stack;
+  BoundedBuffer<std::uint32_t> m_fill_stack;  ///< also the hull's input points
+  BoundedBuffer<std::uint32_t> m_hull;        ///< hull vertices, (x << 16) | y
+  BoundedBuffer<int> m_row_lo;                ///< per row of a hull's box: leftmost and rightmost member
+  BoundedBuffer<int> m_row_hi;
   int m_seeds_skipped = 0;
   bool m_pixel_capacity_hit = false;
 };

@@ -166,6 +166,27 @@ class FarRangeEstimator {
   void prepareCandidates();
   int searchExtended(const Gate& gate, std::uint32_t& flags);
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
+  /// Clusters of this frame's edge response (eq. 10) alone, for the outline searches (outline_search.cpp);
+  /// clusters under min_keep_px are dropped as they are found.
+  void clusterEdgeResponse(int min_keep_px);
+  /// After an outline search: eq. 13's clusters found again from the same response; returns the selection.
+  int restoreEq13Clusters(const Gate& gate);
+  /// Without a track: the largest closed, sharp outline (untracked_outline_fill_ratio), or -1.
+  int searchSilhouette(std::uint32_t& flags);
+  /// Without a track: eq. 13's choice, or a closed outline extended_enclose_ratio times its n.
+  int preferSilhouette(int selected, std::uint32_t& flags);
+  struct HullChoice {
+    int index = -1;       ///< the first member's cluster, -1: none
+    double n = 0.0;       ///< the hull's n (area less its outline, as usedPixels)
+    double second_n = 0.0;
+    OutlineHull shape;
+  };
+  static constexpr int kHullReachPx = 2;  ///< an outline pixel this near the hull covers it
+  /// The best hull of one or two outline fragments (outline_min_coverage, untracked_outline_fill_ratio):
+  /// the largest without a gate, else scored as searchExtended scores.
+  void bestHullShape(const Gate& gate, std::uint32_t& flags, HullChoice& choice);
+  /// The hull as the cluster's filled shape, for report() and the track.
+  void adoptHull(Cluster& c, const OutlineHull& h) const;
   int recheckTrack(const MonoImage& image, const Gate& gate, FarRangeResult& out);
   bool takesTheTrackOver(int rival, const Gate& gate, double tracked_n) const;
   struct ClusterDistances {

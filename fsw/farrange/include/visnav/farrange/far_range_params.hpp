@@ -48,6 +48,8 @@ struct FarRangeParams {
   double extended_grow = 0.6;
   double extended_max_growth = 64.0;
   double extended_enclose_ratio = 4.0;
+  double untracked_outline_fill_ratio = 2.0;  ///< without a track, a closed outline this solid (0: off)
+  double outline_min_coverage = 0.8;  ///< an outline with gaps: its hull, when it runs along this share
   double extent_distance_min_px = 4.0;
   int refuted_fix_frames = 60;
   bool refuted_follow = true;           ///< refuted regions follow their cluster; refuted again: longer
@@ -191,6 +193,22 @@ struct FarRangeParams {
             "times its n (a fragment: plate/50 kept 1-3 px of a plate at 50 m); at 2 a satellite's body "
             "(28 px at 745 m, far_range_ci) gave way to the outline with its panels, read 33 % too near"},
            extended_enclose_ratio);
+    v.real({"farrange", "untracked_outline_fill_ratio", "-", 0.0, 1.0e6,
+            "robust, without a track: the outline search also runs on the whole frame, and a closed outline "
+            "(not cut by the image border, at least extended_min_half_px in half extent, filled area at least "
+            "this many times its own edge pixels: an open arc, a glow or noise is not) replaces eq. 13's "
+            "largest cluster when it is extended_enclose_ratio times its n. On a background of the target's "
+            "grey levels eq. 13 keeps noise specks (campaign box/13: read at 1190 m from 750 m to 8 m, never "
+            "handed over); 0 switches it off"},
+           untracked_outline_fill_ratio);
+    v.real({"farrange", "outline_min_coverage", "-", 0.0, 2.0,
+            "robust: an outline with gaps (in noise, or where the target's contrast against a gradient "
+            "passes near zero, the edge response leaves gaps and the outline fills nothing: campaign box/13 "
+            "at 40-10 m) stands for its convex hull, in both outline searches, when the outline's pixels lie "
+            "within 2 px of at least this share of the hull's boundary and the hull holds "
+            "untracked_outline_fill_ratio times their number; one or two fragments (an outline broken "
+            "twice); above 1 switches the hull off"},
+           outline_min_coverage);
     v.real(
         {"farrange", "extent_distance_min_px", "px", 0.0, 100000.0,
          "a target whose cluster reaches at least this far from its centre of mass is put at the nearer of "
