@@ -114,7 +114,8 @@ TEST(ClusterFinder, FillHolesCountsTheEnclosedAreaAndItsOutline) {
   EXPECT_EQ(open.filled_count, open.pixel_count);
 }
 
-// A 20 x 16 rectangle outline, 1 px wide, at (5, 5)..(24, 20), without the pixels of `gaps` on its bottom row.
+// A 20 x 16 rectangle outline, 1 px wide, at (5, 5)..(24, 20), without the pixels of `gaps` on its bottom
+// row.
 Response rectangleOutline(const std::vector<int>& gaps) {
   Response r(40, 40);
   for (int x = 5; x < 25; ++x) {

@@ -67,7 +67,8 @@ TEST(FarRangeEstimator, AnExtendedTargetIsPutAtItsDistanceByItsExtentWhenItsRadi
   double last_gamma = 0.0;
   const std::vector<FarRangeResult> gamma = approach(scene, params, last_gamma);
   double last_extent = 0.0;
-  const std::vector<FarRangeResult> extent = approach(scene, params, last_extent, scene.model.boundingRadius());
+  const std::vector<FarRangeResult> extent =
+      approach(scene, params, last_extent, scene.model.boundingRadius());
   int good_gamma = 0;
   int good_extent = 0;
   int rescued = 0;
@@ -99,12 +100,13 @@ TEST(FarRangeEstimator, AnExtendedTargetIsPutAtItsDistanceByItsExtentWhenItsRadi
 }
 
 // box/13 in kind: a plate whose grey level (0.6) lies inside a gradient that rises from about 0.15 to 0.7
-// across the image (a very soft limb's edge), so eq. 12 never calls it rare; noise as given, 1024 x 768, f 900
-// px; and a small glint (sigma 1.5 px) far from it, whose bright pixels are rare and sharp. Each frame is
+// across the image (a very soft limb's edge), so eq. 12 never calls it rare; noise as given, 1024 x 768, f
+// 900 px; and a small glint (sigma 1.5 px) far from it, whose bright pixels are rare and sharp. Each frame is
 // searched without a track.
 struct PlateOnGradientWithGlint {
   ApproachScene a;
-  explicit PlateOnGradientWithGlint(double noise) : a(plateScene(2.0, 2.2, 0.6, 0.1, noise, 0.6, 1024, 768, 900.0)) {
+  explicit PlateOnGradientWithGlint(double noise)
+      : a(plateScene(2.0, 2.2, 0.6, 0.1, noise, 0.6, 1024, 768, 900.0)) {
     a.render.limb.enabled = true;
     a.render.limb.center_x_px = 512.0 - 6000.0;  // the limb's edge runs vertically through the image centre
     a.render.limb.center_y_px = 384.0;
@@ -188,4 +190,3 @@ TEST(FarRangeEstimator, ATinyClusterKeepsEq16) {
 
 }  // namespace
 }  // namespace visnav::far
-

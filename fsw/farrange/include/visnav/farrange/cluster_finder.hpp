@@ -39,11 +39,11 @@ struct Cluster {
 
 /// The convex hull of an outline's clusters (ClusterFinder::outlineHull).
 struct OutlineHull {
-  double area_px = 0.0;        ///< pixels inside the hull: polygon area over pixel centres + half its perimeter
-  double perimeter_px = 0.0;   ///< of the polygon over pixel centres
-  double coverage = 0.0;       ///< share of 1-px steps along the hull with a member pixel within reach
+  double area_px = 0.0;  ///< pixels inside the hull: polygon area over pixel centres + half its perimeter
+  double perimeter_px = 0.0;      ///< of the polygon over pixel centres
+  double coverage = 0.0;          ///< share of 1-px steps along the hull with a member pixel within reach
   Vec2 centre_px = Vec2::Zero();  ///< the polygon's centroid (pixel centres at +0.5)
-  double max_radius_px = 0.0;  ///< farthest hull vertex from it
+  double max_radius_px = 0.0;     ///< farthest hull vertex from it
   int x_min = 0, y_min = 0, x_max = 0, y_max = 0;  ///< bounding box of the members, inclusive
   int pixel_count = 0;                             ///< the members' pixels
 };
@@ -84,8 +84,8 @@ class ClusterFinder {
   int m_height = 0;
   BoundedBuffer<std::uint16_t> m_label;  ///< cluster id + 1 per image pixel, 0 = none
   BoundedBuffer<Cluster> m_clusters;
-  BoundedBuffer<std::uint32_t> m_pixels;  ///< all clusters' pixels (y << 16 | x); the growth queue
-  BoundedBuffer<std::uint8_t> m_fill;     ///< padded bounding box for fillHoles
+  BoundedBuffer<std::uint32_t> m_pixels;      ///< all clusters' pixels (y << 16 | x); the growth queue
+  BoundedBuffer<std::uint8_t> m_fill;         ///< padded bounding box for fillHoles
   BoundedBuffer<std::uint32_t> m_fill_stack;  ///< also the hull's input points
   BoundedBuffer<std::uint32_t> m_hull;        ///< hull vertices, (x << 16) | y
   BoundedBuffer<int> m_row_lo;                ///< per row of a hull's box: leftmost and rightmost member

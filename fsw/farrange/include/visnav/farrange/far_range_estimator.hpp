@@ -176,8 +176,8 @@ class FarRangeEstimator {
   /// Without a track: eq. 13's choice, or a closed outline extended_enclose_ratio times its n.
   int preferSilhouette(int selected, std::uint32_t& flags);
   struct HullChoice {
-    int index = -1;       ///< the first member's cluster, -1: none
-    double n = 0.0;       ///< the hull's n (area less its outline, as usedPixels)
+    int index = -1;  ///< the first member's cluster, -1: none
+    double n = 0.0;  ///< the hull's n (area less its outline, as usedPixels)
     double second_n = 0.0;
     OutlineHull shape;
   };

@@ -193,14 +193,15 @@ struct FarRangeParams {
             "times its n (a fragment: plate/50 kept 1-3 px of a plate at 50 m); at 2 a satellite's body "
             "(28 px at 745 m, far_range_ci) gave way to the outline with its panels, read 33 % too near"},
            extended_enclose_ratio);
-    v.real({"farrange", "untracked_outline_fill_ratio", "-", 0.0, 1.0e6,
-            "robust, without a track: the outline search also runs on the whole frame, and a closed outline "
-            "(not cut by the image border, at least extended_min_half_px in half extent, filled area at least "
-            "this many times its own edge pixels: an open arc, a glow or noise is not) replaces eq. 13's "
-            "largest cluster when it is extended_enclose_ratio times its n. On a background of the target's "
-            "grey levels eq. 13 keeps noise specks (campaign box/13: read at 1190 m from 750 m to 8 m, never "
-            "handed over); 0 switches it off"},
-           untracked_outline_fill_ratio);
+    v.real(
+        {"farrange", "untracked_outline_fill_ratio", "-", 0.0, 1.0e6,
+         "robust, without a track: the outline search also runs on the whole frame, and a closed outline "
+         "(not cut by the image border, at least extended_min_half_px in half extent, filled area at least "
+         "this many times its own edge pixels: an open arc, a glow or noise is not) replaces eq. 13's "
+         "largest cluster when it is extended_enclose_ratio times its n. On a background of the target's "
+         "grey levels eq. 13 keeps noise specks (campaign box/13: read at 1190 m from 750 m to 8 m, never "
+         "handed over); 0 switches it off"},
+        untracked_outline_fill_ratio);
     v.real({"farrange", "outline_min_coverage", "-", 0.0, 2.0,
             "robust: an outline with gaps (in noise, or where the target's contrast against a gradient "
             "passes near zero, the edge response leaves gaps and the outline fills nothing: campaign box/13 "
