@@ -240,6 +240,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     m_last_fix_px = out.centroid_px;
     m_last_fix_extent_px = out.extent_px;
     m_last_fix_pixels = out.cluster_pixels;
+    m_last_fix_outline = (out.flags & kFlagExtended) != 0U;
   }
   m_has_prediction = false;  // a filter prediction holds for one frame
   out.timing.total_us = elapsedUs(start);

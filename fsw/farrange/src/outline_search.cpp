@@ -242,6 +242,7 @@ int FarRangeEstimator::preferSilhouette(int selected, std::uint32_t& flags) {
     flags = (flags & ~(kFlagAmbiguous | kFlagFlattened)) | outline_flags;
     return outline;
   }
+  flags |= outline_flags & kFlagRefutedSkipped;  // a refuted outline passed over is still reported
   return restoreEq13Clusters(Gate{});
 }
 

@@ -173,6 +173,32 @@ TEST(FarRangeEstimator, AnOutlineWithGapsStandsForItsHullWhenItRunsAlongMostOfIt
   EXPECT_GE(good_on, good_closed + 3) << "of 12 frames";
 }
 
+TEST(FarRangeEstimator, AFixFoundByItsOutlineIsEdgeStructureAndNotRefuted) {
+  // Acquisition refutes a cue whose window's edge SNR is low (no_target); an outline is edge structure, and
+  // a dim target far off has a low window SNR too. Unless outline_fix_refutable, refuteLastFix() leaves such
+  // a fix alone and the next frame finds the same plate; with it, the plate is passed over.
+  const PlateOnGradientWithGlint frames(0.05);
+  Scene s(frames.a.render, frames.a.camera, frames.a.model);
+  const test::FarFrame f = s.frame(test::satAt(30.0, 0.3, 0.2, 5.0), 300, 0);
+  for (const bool refutable : {false, true}) {
+    FarRangeParams p;
+    p.outline_fix_refutable = refutable;
+    FarRangeEstimator e;
+    ASSERT_TRUE(e.init(s.camera, p).ok);
+    FarRangeResult first;
+    ASSERT_EQ(e.estimate(f.image(), first), Status::kOk);
+    ASSERT_TRUE(first.valid);
+    ASSERT_NE(first.flags & kFlagExtended, 0U);
+    EXPECT_EQ(e.refuteLastFix(), refutable);
+    e.reset();
+    FarRangeResult again;
+    ASSERT_EQ(e.estimate(f.image(), again), Status::kOk);
+    const bool same = again.valid && (again.centroid_px - first.centroid_px).norm() < 1.0;
+    EXPECT_EQ(same, !refutable) << "outline_fix_refutable " << refutable;
+    EXPECT_EQ((again.flags & kFlagRefutedSkipped) != 0U, refutable);
+  }
+}
+
 TEST(FarRangeEstimator, ATinyClusterKeepsEq16) {
   // Below extent_distance_min_px the cluster is a few pixels of blur: its extent says little, eq. 16 holds.
   Scene s;

@@ -250,6 +250,7 @@ class FarRangeEstimator {
   Vec2 m_last_fix_px = Vec2::Zero();
   double m_last_fix_extent_px = 0.0;
   double m_last_fix_pixels = 0.0;
+  bool m_last_fix_outline = false;  ///< the last fix was found by an outline search (kFlagExtended)
   bool m_has_prediction = false;
   Vec2 m_prediction_px = Vec2::Zero();
   double m_prediction_size_px = 0.0;

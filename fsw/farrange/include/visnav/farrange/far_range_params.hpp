@@ -49,7 +49,8 @@ struct FarRangeParams {
   double extended_max_growth = 64.0;
   double extended_enclose_ratio = 4.0;
   double untracked_outline_fill_ratio = 2.0;  ///< without a track, a closed outline this solid (0: off)
-  double outline_min_coverage = 0.8;  ///< an outline with gaps: its hull, when it runs along this share
+  double outline_min_coverage = 0.8;   ///< an outline with gaps: its hull, when it runs along this share
+  bool outline_fix_refutable = false;  ///< refuteLastFix() also refutes a fix found by its outline
   double extent_distance_min_px = 4.0;
   int refuted_fix_frames = 60;
   bool refuted_follow = true;           ///< refuted regions follow their cluster; refuted again: longer
@@ -210,6 +211,13 @@ struct FarRangeParams {
             "untracked_outline_fill_ratio times their number; one or two fragments (an outline broken "
             "twice); above 1 switches the hull off"},
            outline_min_coverage);
+    v.boolean({"farrange", "outline_fix_refutable", "-", 0, 1,
+               "robust: whether a fix found by an outline search may be refuted (refuted_fix_frames) when "
+               "acquisition finds its window's edge SNR too low (no_target): an outline is edge structure, "
+               "and a dim target still far off has a low window SNR too (campaign octagon/7022, handed over "
+               "at 40 m, was refuted and a fragment found next was tracked instead); false: only the mode "
+               "manager's back-off applies to it"},
+              outline_fix_refutable);
     v.real(
         {"farrange", "extent_distance_min_px", "px", 0.0, 100000.0,
          "a target whose cluster reaches at least this far from its centre of mass is put at the nearer of "
