@@ -1,7 +1,7 @@
-// The convex hull of one or two clusters of an outline search, and how much of the hull's boundary the
-// clusters cover: an outline with gaps (a contrast that passes near zero against a gradient, noise) fills
-// nothing, but its hull is the silhouette of a convex target when the outline runs along most of it.
-// Design notes: fsw/farrange/README.md, robust method item 9.
+// The convex hull of one or two clusters of an outline search, how much of the hull's boundary the clusters
+// cover, and how much of the clusters lies along it: an outline with gaps (a contrast that passes near zero
+// against a gradient, noise) fills nothing, but its hull is the silhouette of a convex target when the
+// outline runs along most of it. Design notes: fsw/farrange/README.md, robust method item 9.
 #include <algorithm>
 #include <cmath>
 
@@ -27,7 +27,8 @@ std::int64_t cross(std::uint32_t o, std::uint32_t a, std::uint32_t b) {
 
 }  // namespace
 
-bool ClusterFinder::outlineHull(const int* members, int count, int reach_px, OutlineHull& out) {
+bool ClusterFinder::outlineHull(const int* members, int count, int reach_px, double min_coverage,
+                                OutlineHull& out) {
   out = OutlineHull{};
   if (count <= 0 || count > 2) return false;
   const Cluster& first = m_clusters[static_cast<std::size_t>(members[0])];
@@ -134,6 +135,33 @@ bool ClusterFinder::outlineHull(const int* members, int count, int reach_px, Out
     }
   }
   out.coverage = steps_total > 0 ? static_cast<double>(covered) / steps_total : 0.0;
+  // Concentration: the members' pixels within reach of the hull's boundary (an outline lies along its hull;
+  // a line with noise attached spreads over it). Only when the coverage leaves it worth knowing.
+  if (out.coverage < min_coverage) return true;
+  int near = 0;
+  const double limit2 = static_cast<double>(reach + 1) * (reach + 1);
+  for (int m = 0; m < count; ++m) {
+    const Cluster& c = m_clusters[static_cast<std::size_t>(members[m])];
+    for (int i = 0; i < c.pixel_count; ++i) {
+      const std::uint32_t p = m_pixels[static_cast<std::size_t>(c.first_pixel) + static_cast<std::size_t>(i)];
+      const double px = storedX(p);
+      const double py = storedY(p);
+      bool close = false;
+      for (int v = 0; v < vertices && !close; ++v) {
+        const double ax = packedX(hull[v]);
+        const double ay = packedY(hull[v]);
+        const double ex = packedX(hull[v + 1]) - ax;
+        const double ey = packedY(hull[v + 1]) - ay;
+        const double len2 = ex * ex + ey * ey;
+        const double t = len2 > 0.0 ? std::clamp(((px - ax) * ex + (py - ay) * ey) / len2, 0.0, 1.0) : 0.0;
+        const double dx = px - (ax + t * ex);
+        const double dy = py - (ay + t * ey);
+        close = dx * dx + dy * dy <= limit2;
+      }
+      near += close ? 1 : 0;
+    }
+  }
+  out.concentration = static_cast<double>(near) / out.pixel_count;
   return true;
 }
 

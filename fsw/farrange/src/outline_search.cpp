@@ -184,12 +184,16 @@ void FarRangeEstimator::bestHullShape(const Gate& gate, std::uint32_t& flags, Hu
         if (gap > std::max(ca.halfExtentPx(), cb.halfExtentPx())) continue;
       }
       OutlineHull h;
-      if (!m_finder.outlineHull(members, member_count, kHullReachPx, h)) continue;
+      if (!m_finder.outlineHull(members, member_count, kHullReachPx, m_params.outline_min_coverage, h))
+        continue;
       const double half = 0.5 * std::max(h.x_max - h.x_min + 1, h.y_max - h.y_min + 1);
       const double aspect = static_cast<double>(std::max(h.x_max - h.x_min + 1, h.y_max - h.y_min + 1)) /
                             std::min(h.x_max - h.x_min + 1, h.y_max - h.y_min + 1);
       if (half < m_params.extended_min_half_px || aspect > m_params.max_axis_ratio) continue;
-      if (h.coverage < m_params.outline_min_coverage) continue;
+      // The outline runs along the hull, and the hull along the outline (a line with noise attached covers
+      // its hull's boundary with the noise, but most of its pixels lie inside).
+      if (h.coverage < m_params.outline_min_coverage || h.concentration < m_params.outline_min_concentration)
+        continue;
       if (h.area_px < m_params.untracked_outline_fill_ratio * h.pixel_count) continue;
       const double n = std::max(1.0, h.area_px - m_params.outline_discount * h.perimeter_px);
       if (refuted(h.centre_px, n)) {

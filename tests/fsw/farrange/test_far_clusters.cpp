@@ -142,7 +142,7 @@ TEST(ClusterFinder, TheHullOfAnOutlineWithAGapIsItsSilhouetteAndTheGapIsWhatItMi
   EXPECT_EQ(c.filled_count, c.pixel_count);
   const int members[1] = {0};
   OutlineHull h;
-  ASSERT_TRUE(finder.outlineHull(members, 1, 2, h));
+  ASSERT_TRUE(finder.outlineHull(members, 1, 2, 0.0, h));
   EXPECT_NEAR(h.area_px, 20.0 * 16.0, 1e-9);  // 19 x 15 over pixel centres, plus half the perimeter and 1
   EXPECT_NEAR(h.perimeter_px, 2.0 * (19.0 + 15.0), 1e-9);
   EXPECT_NEAR(h.centre_px.x(), 15.0, 1e-9);
@@ -151,6 +151,7 @@ TEST(ClusterFinder, TheHullOfAnOutlineWithAGapIsItsSilhouetteAndTheGapIsWhatItMi
   EXPECT_EQ(h.pixel_count, c.pixel_count);
   // Of the 68 1-px steps around it, those more than 2 px from an outline pixel: x = 13..16 on the bottom.
   EXPECT_NEAR(h.coverage, 64.0 / 68.0, 1e-12);
+  EXPECT_DOUBLE_EQ(h.concentration, 1.0);  // every outline pixel lies on the hull
   EXPECT_EQ(h.x_min, 5);
   EXPECT_EQ(h.y_min, 5);
   EXPECT_EQ(h.x_max, 24);
@@ -168,7 +169,7 @@ TEST(ClusterFinder, AnOpenArcCoversLittleOfItsHullAndTwoPartsOfAnOutlineCoverThe
   ASSERT_EQ(finder.clusters().size(), 1U);
   const int one[1] = {0};
   OutlineHull h;
-  ASSERT_TRUE(finder.outlineHull(one, 1, 2, h));
+  ASSERT_TRUE(finder.outlineHull(one, 1, 2, 0.0, h));
   EXPECT_LT(h.coverage, 0.75);  // [farrange] outline_min_coverage is 0.8
   EXPECT_NEAR(h.area_px, 0.5 * 19.0 * 15.0 + 0.5 * h.perimeter_px + 1.0, 1e-9);
   // The rectangle broken on its bottom and on its right side: two clusters, whose joint hull is the block.
@@ -178,7 +179,7 @@ TEST(ClusterFinder, AnOpenArcCoversLittleOfItsHullAndTwoPartsOfAnOutlineCoverThe
   finder.find(broken.image, broken.row_max.data(), kIn, kOut);
   ASSERT_EQ(finder.clusters().size(), 2U);
   const int both[2] = {0, 1};
-  ASSERT_TRUE(finder.outlineHull(both, 2, 2, h));
+  ASSERT_TRUE(finder.outlineHull(both, 2, 2, 0.0, h));
   EXPECT_NEAR(h.area_px, 20.0 * 16.0, 1e-9);
   EXPECT_EQ(h.pixel_count, 2 * 20 + 2 * 14 - 3 - 2);
   EXPECT_DOUBLE_EQ(h.coverage, 1.0);  // no gap wider than twice the reach
@@ -186,7 +187,35 @@ TEST(ClusterFinder, AnOpenArcCoversLittleOfItsHullAndTwoPartsOfAnOutlineCoverThe
   Response line(40, 40);
   for (int x = 5; x < 25; ++x) line.set(x, 9, 255);
   finder.find(line.image, line.row_max.data(), kIn, kOut);
-  EXPECT_FALSE(finder.outlineHull(one, 1, 2, h));
+  EXPECT_FALSE(finder.outlineHull(one, 1, 2, 0.0, h));
+}
+
+TEST(ClusterFinder, MostPixelsOfAnOutlineLieAlongItsHullNotThoseOfAFrameAroundABlob) {
+  // A 40 x 40 frame (156 px) holding a 20 x 20 block (400 px) joined to its top side by a 9 px line: the
+  // frame covers the hull's whole boundary, but of the 565 pixels only the frame's and the line's first 3
+  // lie within 3 px of it. With a min_coverage the hull does not reach, the concentration is not computed.
+  Response r(60, 60);
+  for (int i = 5; i < 45; ++i) {
+    r.set(i, 5, 255);
+    r.set(i, 44, 255);
+    r.set(5, i, 255);
+    r.set(44, i, 255);
+  }
+  for (int y = 6; y < 15; ++y) r.set(24, y, 255);
+  for (int y = 15; y < 35; ++y)
+    for (int x = 15; x < 35; ++x) r.set(x, y, 255);
+  ClusterFinder finder;
+  finder.init(60, 60, 8, 4000);
+  finder.find(r.image, r.row_max.data(), kIn, kOut);
+  ASSERT_EQ(finder.clusters().size(), 1U);
+  ASSERT_EQ(finder.clusters()[0].pixel_count, 565);
+  const int one[1] = {0};
+  OutlineHull h;
+  ASSERT_TRUE(finder.outlineHull(one, 1, 2, 0.8, h));
+  EXPECT_DOUBLE_EQ(h.coverage, 1.0);
+  EXPECT_NEAR(h.concentration, 159.0 / 565.0, 1e-12);
+  ASSERT_TRUE(finder.outlineHull(one, 1, 2, 1.5, h));
+  EXPECT_EQ(h.concentration, 0.0);
 }
 
 TEST(ClusterFinder, CapacitiesAreReportedNotExceeded) {

@@ -42,6 +42,7 @@ struct OutlineHull {
   double area_px = 0.0;  ///< pixels inside the hull: polygon area over pixel centres + half its perimeter
   double perimeter_px = 0.0;      ///< of the polygon over pixel centres
   double coverage = 0.0;          ///< share of 1-px steps along the hull with a member pixel within reach
+  double concentration = 0.0;     ///< share of the members' pixels within reach + 1 of the hull's boundary
   Vec2 centre_px = Vec2::Zero();  ///< the polygon's centroid (pixel centres at +0.5)
   double max_radius_px = 0.0;     ///< farthest hull vertex from it
   int x_min = 0, y_min = 0, x_max = 0, y_max = 0;  ///< bounding box of the members, inclusive
@@ -64,10 +65,12 @@ class ClusterFinder {
   /// sets filled_count / filled_com_px. Cost: twice the bounding-box area.
   void fillHoles(Cluster& cluster);
   static constexpr int kMaxReachPx = 4;
-  /// The convex hull of clusters `members` (1 or 2 indices into clusters()) and its coverage by their pixels
-  /// within `reach_px` (0 .. kMaxReachPx). False for a degenerate hull (a line). Cost: the members' pixels,
-  /// their bounding box twice, and (2 reach + 1)^2 per pixel of the hull's perimeter.
-  bool outlineHull(const int* members, int count, int reach_px, OutlineHull& out);
+  /// The convex hull of clusters `members` (1 or 2 indices into clusters()), its coverage by their pixels
+  /// within `reach_px` (0 .. kMaxReachPx) and, when that coverage reaches `min_coverage`, the share of their
+  /// pixels within reach_px + 1 of its boundary. False for a degenerate hull (a line). Cost: the members'
+  /// pixels, their bounding box twice, (2 reach + 1)^2 per pixel of the hull's perimeter, and the members'
+  /// pixels times the hull's vertices.
+  bool outlineHull(const int* members, int count, int reach_px, double min_coverage, OutlineHull& out);
 
   BoundedBuffer<Cluster>& clusters() { return m_clusters; }
   const BoundedBuffer<Cluster>& clusters() const { return m_clusters; }

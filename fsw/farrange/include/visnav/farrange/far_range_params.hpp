@@ -49,8 +49,9 @@ struct FarRangeParams {
   double extended_max_growth = 64.0;
   double extended_enclose_ratio = 4.0;
   double untracked_outline_fill_ratio = 2.0;  ///< without a track, a closed outline this solid (0: off)
-  double outline_min_coverage = 0.8;   ///< an outline with gaps: its hull, when it runs along this share
-  bool outline_fix_refutable = false;  ///< refuteLastFix() also refutes a fix found by its outline
+  double outline_min_coverage = 0.8;       ///< an outline with gaps: its hull, when it runs along this share
+  double outline_min_concentration = 0.4;  ///< ... and this share of its pixels lies along the hull
+  bool outline_fix_refutable = false;      ///< refuteLastFix() also refutes a fix found by its outline
   double extent_distance_min_px = 4.0;
   int refuted_fix_frames = 60;
   bool refuted_follow = true;           ///< refuted regions follow their cluster; refuted again: longer
@@ -211,6 +212,12 @@ struct FarRangeParams {
             "untracked_outline_fill_ratio times their number; one or two fragments (an outline broken "
             "twice); above 1 switches the hull off"},
            outline_min_coverage);
+    v.real({"farrange", "outline_min_concentration", "-", 0.0, 1.0,
+            "robust: ... and at least this share of the outline's pixels lies within 3 px of the hull's "
+            "boundary (an outline lies along its hull; a line with noise attached covers its hull's boundary "
+            "with the noise, but most of its pixels lie inside; a frame around a blob of twice its pixels: "
+            "0.28). The noise an outline gathers in noise 0.07 takes a plate's to 0.4-0.6; 0: no test"},
+           outline_min_concentration);
     v.boolean({"farrange", "outline_fix_refutable", "-", 0, 1,
                "robust: whether a fix found by an outline search may be refuted (refuted_fix_frames) when "
                "acquisition finds its window's edge SNR too low (no_target): an outline is edge structure, "
