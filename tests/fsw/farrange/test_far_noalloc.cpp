@@ -82,31 +82,46 @@ TEST(FarRangeNoAlloc, EveryPathOverManyFrames) {
   }
 }
 
-TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
-  // A plate close enough that eq. 12 no longer finds it (test_far_estimator's approach): the outline search
-  // on the edge response runs on most of these frames.
+// The bright plate of test_far_estimator's approach (640 x 480, f 1180 px) in noise `noise`, at `ranges_m`
+// (frame i turned 30 + i deg about its axis, rendered with seed seed + i).
+struct BrightPlateFrames {
+  PinholeCamera camera;
+  std::vector<test::FarFrame> frames;
+};
+BrightPlateFrames brightPlateFrames(double noise, const std::vector<double>& ranges_m, std::uint64_t seed) {
   synthetic::RenderOptions o;
   o.background = 0.28;
   o.target_brightness = 0.87;
-  o.noise_sigma = 0.063;
+  o.noise_sigma = noise;
   o.blur_sigma_px = 0.33;
   CameraIntrinsics k = CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320.0, 240.0);
   k.fx_px = k.fy_px = 1180.0;
-  const PinholeCamera camera(k);
+  BrightPlateFrames out{PinholeCamera(k), {}};
   synthetic::Renderer renderer;
-  ASSERT_TRUE(renderer.init(camera, makeRectanglePlate(2.0, 2.2), o).ok);
-  std::vector<test::FarFrame> f;
-  f.reserve(16);
-  for (int i = 0; i < 16; ++i)
-    f.push_back(
-        test::renderFar(renderer, test::satAt(21.0 * std::pow(0.97, i), 1.0, -0.5, 30.0 + i), 50 + i, i));
+  EXPECT_TRUE(renderer.init(out.camera, makeRectanglePlate(2.0, 2.2), o).ok);
+  out.frames.reserve(ranges_m.size());
+  for (std::size_t i = 0; i < ranges_m.size(); ++i) {
+    const auto n = static_cast<int>(i);
+    out.frames.push_back(
+        test::renderFar(renderer, test::satAt(ranges_m[i], 1.0, -0.5, 30.0 + n), seed + i, n));
+  }
+  return out;
+}
+
+TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
+  // A plate close enough that eq. 12 no longer finds it (test_far_estimator's approach): the outline search
+  // on the edge response runs on most of these frames.
+  std::vector<double> ranges;
+  for (int i = 0; i < 16; ++i) ranges.push_back(21.0 * std::pow(0.97, i));
+  const BrightPlateFrames plate = brightPlateFrames(0.063, ranges, 50);
+  const std::vector<test::FarFrame>& f = plate.frames;
   FarRangeParams p;
   p.extended_min_half_px = 12.0;  // the default, stated: this test is about it
   // Eq. 11 as printed: the plate's grey levels turn common and the outline search runs on most frames (over
   // the flattened background eq. 13 keeps the whole plate, and the outline search is not needed).
   p.background_block_px = 0;
   FarRangeEstimator e;
-  ASSERT_TRUE(e.init(camera, p).ok);
+  ASSERT_TRUE(e.init(plate.camera, p).ok);
   FarRangeResult r;
   int extended = 0;
   const std::uint64_t before = test::allocationCount();
@@ -118,29 +133,16 @@ TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
   EXPECT_GT(extended, 20);
 }
 
-// The track recheck (recheck_frames): the whole-frame search, and the switch from a glow tracked alone to
-// the satellite at 40 m (test_far_refuted.cpp, TrackRecheck), many times over.
 TEST(FarRangeNoAlloc, TheSilhouetteSearchWithoutATrackAndTheHullOfAnOutlineWithGaps) {
   // The plate above in noise 0.09, which breaks its outline: each frame searched without a track (reset),
   // so the whole frame's silhouette search and the hulls of its outline fragments run on every frame.
-  synthetic::RenderOptions o;
-  o.background = 0.28;
-  o.target_brightness = 0.87;
-  o.noise_sigma = 0.09;
-  o.blur_sigma_px = 0.33;
-  CameraIntrinsics k = CameraIntrinsics::fromSi(640, 480, 6e-3, 6e-6, 6e-6, 0.0, 320.0, 240.0);
-  k.fx_px = k.fy_px = 1180.0;
-  const PinholeCamera camera(k);
-  synthetic::Renderer renderer;
-  ASSERT_TRUE(renderer.init(camera, makeRectanglePlate(2.0, 2.2), o).ok);
-  std::vector<test::FarFrame> f;
-  f.reserve(8);
-  for (int i = 0; i < 8; ++i)
-    f.push_back(test::renderFar(renderer, test::satAt(25.0 - i, 1.0, -0.5, 30.0 + i), 70 + i, i));
+  const BrightPlateFrames plate =
+      brightPlateFrames(0.09, {25.0, 24.0, 23.0, 22.0, 21.0, 20.0, 19.0, 18.0}, 70);
+  const std::vector<test::FarFrame>& f = plate.frames;
   FarRangeParams p;
   p.background_block_px = 0;
   FarRangeEstimator e;
-  ASSERT_TRUE(e.init(camera, p).ok);
+  ASSERT_TRUE(e.init(plate.camera, p).ok);
   FarRangeResult r;
   int extended = 0;
   const std::uint64_t before = test::allocationCount();
@@ -153,6 +155,8 @@ TEST(FarRangeNoAlloc, TheSilhouetteSearchWithoutATrackAndTheHullOfAnOutlineWithG
   EXPECT_GE(extended, 8) << "the silhouette search found the plate";
 }
 
+// The track recheck (recheck_frames): the whole-frame search, and the switch from a glow tracked alone to
+// the satellite at 40 m (test_far_refuted.cpp, TrackRecheck), many times over.
 TEST(FarRangeNoAlloc, TheTrackRecheckAndItsSwitch) {
   synthetic::RenderOptions o = test::farRender();
   o.glints.push_back(test::glowAt(Vec2(150.0, 360.0)));
