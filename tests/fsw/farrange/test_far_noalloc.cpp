@@ -108,29 +108,35 @@ BrightPlateFrames brightPlateFrames(double noise, const std::vector<double>& ran
   return out;
 }
 
+// `rounds` estimates over `frames` in turn (each searched afresh when `reset_each`), with eq. 11 as printed;
+// expects no allocation and returns how many fixes an outline search found.
+int extendedFixesWithoutAllocation(const BrightPlateFrames& plate, int rounds, bool reset_each) {
+  FarRangeParams p;
+  p.extended_min_half_px = 12.0;  // the default, stated: these tests are about it
+  // Eq. 11 as printed: the plate's grey levels turn common and the outline search runs on most frames (over
+  // the flattened background eq. 13 keeps the whole plate, and the outline search is not needed).
+  p.background_block_px = 0;
+  FarRangeEstimator e;
+  EXPECT_TRUE(e.init(plate.camera, p).ok);
+  FarRangeResult r;
+  int extended = 0;
+  const std::vector<test::FarFrame>& f = plate.frames;
+  const std::uint64_t before = test::allocationCount();
+  for (int i = 0; i < rounds; ++i) {
+    if (reset_each) e.reset();
+    e.estimate(f[static_cast<std::size_t>(i) % f.size()].image(), r);
+    extended += (r.flags & kFlagExtended) != 0U ? 1 : 0;
+  }
+  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
+  return extended;
+}
+
 TEST(FarRangeNoAlloc, TheOutlineSearchOfAnExtendedTarget) {
   // A plate close enough that eq. 12 no longer finds it (test_far_estimator's approach): the outline search
   // on the edge response runs on most of these frames.
   std::vector<double> ranges;
   for (int i = 0; i < 16; ++i) ranges.push_back(21.0 * std::pow(0.97, i));
-  const BrightPlateFrames plate = brightPlateFrames(0.063, ranges, 50);
-  const std::vector<test::FarFrame>& f = plate.frames;
-  FarRangeParams p;
-  p.extended_min_half_px = 12.0;  // the default, stated: this test is about it
-  // Eq. 11 as printed: the plate's grey levels turn common and the outline search runs on most frames (over
-  // the flattened background eq. 13 keeps the whole plate, and the outline search is not needed).
-  p.background_block_px = 0;
-  FarRangeEstimator e;
-  ASSERT_TRUE(e.init(plate.camera, p).ok);
-  FarRangeResult r;
-  int extended = 0;
-  const std::uint64_t before = test::allocationCount();
-  for (int i = 0; i < 64; ++i) {
-    e.estimate(f[static_cast<std::size_t>(i) % f.size()].image(), r);
-    extended += (r.flags & kFlagExtended) != 0U ? 1 : 0;
-  }
-  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
-  EXPECT_GT(extended, 20);
+  EXPECT_GT(extendedFixesWithoutAllocation(brightPlateFrames(0.063, ranges, 50), 64, false), 20);
 }
 
 TEST(FarRangeNoAlloc, TheSilhouetteSearchWithoutATrackAndTheHullOfAnOutlineWithGaps) {
@@ -138,21 +144,7 @@ TEST(FarRangeNoAlloc, TheSilhouetteSearchWithoutATrackAndTheHullOfAnOutlineWithG
   // so the whole frame's silhouette search and the hulls of its outline fragments run on every frame.
   const BrightPlateFrames plate =
       brightPlateFrames(0.09, {25.0, 24.0, 23.0, 22.0, 21.0, 20.0, 19.0, 18.0}, 70);
-  const std::vector<test::FarFrame>& f = plate.frames;
-  FarRangeParams p;
-  p.background_block_px = 0;
-  FarRangeEstimator e;
-  ASSERT_TRUE(e.init(plate.camera, p).ok);
-  FarRangeResult r;
-  int extended = 0;
-  const std::uint64_t before = test::allocationCount();
-  for (int i = 0; i < 32; ++i) {
-    e.reset();
-    e.estimate(f[static_cast<std::size_t>(i) % f.size()].image(), r);
-    extended += (r.flags & kFlagExtended) != 0U ? 1 : 0;
-  }
-  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
-  EXPECT_GE(extended, 8) << "the silhouette search found the plate";
+  EXPECT_GE(extendedFixesWithoutAllocation(plate, 32, true), 8) << "the silhouette search found the plate";
 }
 
 // The track recheck (recheck_frames): the whole-frame search, and the switch from a glow tracked alone to
