@@ -11,8 +11,8 @@ namespace visnav::far {
 bool FarRangeEstimator::refuteLastFix() {
   if (m_params.refuted_fix_frames <= 0 || !m_has_last_fix) return false;
   // A fix found by its outline is edge structure: acquisition's no_target there says its window's edge SNR
-  // is low, which a dim target still far off has too (campaign octagon/7022: its silhouette handed over at
-  // 40 m, SNR under 5, refuted, and the fragment found next was tracked instead).
+  // is low, which a dim target still far off has too (campaign octagon/7022's approach: never acquired when
+  // such fixes are refuted, 9 of 36 frames tracked when not).
   if (m_last_fix_outline && !m_params.outline_fix_refutable) return false;
   // The region refuted before that this fix lies in (refuted_follow: it followed its cluster), else the slot
   // that expires first, a free or expired one first.
