@@ -74,6 +74,7 @@ void Acquisition::reset() {
   m_mirror_alive = false;
   m_has_look_reference = false;
   m_twin_by_continuity = false;
+  m_min_edge_snr = m_params.min_edge_snr;
 }
 
 void Acquisition::setLookReference(const Pose& reference, double tolerance_rad) {
@@ -94,6 +95,7 @@ void Acquisition::start(const FarRangeSolution& cue) {
     return;
   }
   start(cue.direction_c, cue.distance_m);
+  if (cue.outline) m_min_edge_snr = m_params.outline_cue_min_edge_snr;
 }
 
 void Acquisition::start(const Vec3& direction_c, double distance_m) {
@@ -137,8 +139,9 @@ bool Acquisition::cueLacksEdges(const FarRangeSolution& cue, const MonoImage& im
     prepareWindow(image);
     edge_snr = m_window.stats().edge_snr;
   }
+  const bool lacks = searching && edge_snr < m_min_edge_snr;  // what step() fails kNoTarget on
   reset();
-  return searching && edge_snr < m_params.min_edge_snr;  // what step() fails kNoTarget on
+  return lacks;
 }
 
 void Acquisition::prepareWindow(const MonoImage& image) {
@@ -313,7 +316,7 @@ Status Acquisition::step(const MonoImage& image, std::uint64_t frame_number, Acq
     if (m_state != AcquisitionState::kConfirming) {
       prepareWindow(image);
       out.edge_snr = m_window.stats().edge_snr;
-      if (m_window.stats().edge_snr < m_params.min_edge_snr) fail(AcquisitionFailure::kNoTarget);
+      if (m_window.stats().edge_snr < m_min_edge_snr) fail(AcquisitionFailure::kNoTarget);
     }
     switch (m_state) {
       case AcquisitionState::kSearching: search(out); break;

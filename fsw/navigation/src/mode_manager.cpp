@@ -62,12 +62,15 @@ bool ModeManager::handOverCondition(const ModeInputs& in, int close_count, std::
   // target that holds its range is tried again).
   const bool grown = m_retry_below_m <= 0.0 || (in.far_valid && in.far_distance_m < m_retry_below_m) ||
                      frames > static_cast<std::uint32_t>(m_params.acquire_retry_holdoff_max_frames);
-  return close_count >= m_params.enter_frames && frames > static_cast<std::uint32_t>(m_holdoff_frames) &&
-         grown;
+  return in.far_valid && close_count >= m_params.enter_frames &&
+         frames > static_cast<std::uint32_t>(m_holdoff_frames) && grown;
 }
 
 int ModeManager::nextCloseCount(const ModeInputs& in) const {
-  return in.far_valid && in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
+  // A frame without a fix (far range coasting: a dim extended target's outline drops out every few frames,
+  // campaign box/13) neither counts nor restarts the count: only a fix beyond the hand-over does.
+  if (!in.far_valid) return m_params.close_count_survives_gaps ? m_close_count : 0;
+  return in.far_distance_m < m_params.acquire_below_m ? m_close_count + 1 : 0;
 }
 
 bool ModeManager::handOverDue(const ModeInputs& in) const {

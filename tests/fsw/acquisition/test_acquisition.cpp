@@ -177,6 +177,40 @@ TEST_F(PlateAcquisitionTest, ACueWithoutEdgesIsToldWithoutStartingAnAcquisition)
   EXPECT_EQ(snr_empty, 0.0);
 }
 
+// A cue far range found by its outline has shown edge structure already: its no-target threshold is
+// outline_cue_min_edge_snr (a large dim target's window is mostly its own face). Here min_edge_snr is set
+// above the plate's window SNR and the outline cue's below it: only the outline cue passes, in the check and
+// in a started acquisition's first step alike, and the next plain cue takes min_edge_snr again.
+TEST_F(PlateAcquisitionTest, AnOutlineCueTakesItsOwnEdgeSnrThreshold) {
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
+  const Pose expected = test::plateAt(12.0);
+  const auto with_plate = test::renderStatic(renderer, expected, 1, 41);
+  FarRangeSolution cue = test::perturbedCue(expected, 0.0, 0.0, 0.0);
+  double snr = 0.0;
+  ASSERT_FALSE(acquisition.cueLacksEdges(cue, with_plate[0].image(), snr));
+  acq::AcquisitionParams params;
+  params.min_edge_snr = snr + 1.0;
+  params.outline_cue_min_edge_snr = snr - 1.0;
+  ASSERT_GE(params.outline_cue_min_edge_snr, 1.0);
+  acq::Acquisition strict;
+  ASSERT_TRUE(strict.init(test::vgaCamera(), scene.model, params, NearRangeParams{}).ok);
+  double seen = 0.0;
+  EXPECT_TRUE(strict.cueLacksEdges(cue, with_plate[0].image(), seen));
+  EXPECT_DOUBLE_EQ(seen, snr);
+  cue.outline = true;
+  EXPECT_FALSE(strict.cueLacksEdges(cue, with_plate[0].image(), seen));
+  acq::AcquisitionResult r;
+  strict.start(cue);
+  strict.step(with_plate[0].image(), 0, r);
+  EXPECT_NE(r.failure, AcquisitionFailure::kNoTarget);
+  EXPECT_NE(r.state, AcquisitionState::kFailed);
+  cue.outline = false;
+  strict.start(cue);
+  strict.step(with_plate[0].image(), 1, r);
+  EXPECT_EQ(r.failure, AcquisitionFailure::kNoTarget);
+}
+
 TEST_F(PlateAcquisitionTest, InvalidCueFailsAtOnce) {
   FarRangeSolution cue;
   cue.valid = false;

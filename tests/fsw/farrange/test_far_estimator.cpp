@@ -210,6 +210,8 @@ TEST(FarRangeEstimator, FillsTheNavigationSolution) {
   EXPECT_EQ(sol.circularity, r.circularity);
   EXPECT_EQ(sol.azimuth_rad, r.azimuth_rad);
   EXPECT_GT(sol.quality, 0.0);
+  EXPECT_EQ(r.flags & kFlagExtended, 0U);
+  EXPECT_FALSE(sol.outline) << "a point-like fix by eq. 13, not an outline";
 }
 
 }  // namespace

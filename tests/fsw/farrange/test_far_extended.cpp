@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "far_approach.hpp"
+#include "visnav/farrange/nav_conversion.hpp"
 
 namespace visnav::far {
 namespace {
@@ -190,6 +191,7 @@ TEST(FarRangeEstimator, AFixFoundByItsOutlineIsEdgeStructureAndNotRefuted) {
     ASSERT_EQ(e.estimate(f.image(), first), Status::kOk);
     ASSERT_TRUE(first.valid);
     ASSERT_NE(first.flags & kFlagExtended, 0U);
+    EXPECT_TRUE(toFarRangeSolution(first).outline) << "acquisition's outline-cue threshold applies";
     EXPECT_EQ(e.refuteLastFix(), refutable);
     e.reset();
     FarRangeResult again;

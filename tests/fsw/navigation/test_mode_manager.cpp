@@ -76,6 +76,49 @@ TEST(ModeManager, FarRangeHandsOverOnlyAfterEnterFramesBelowTheThreshold) {
   EXPECT_EQ(m.transitionCount(), 1U);
 }
 
+// A frame without a far-range fix (coasting on a dim outline) neither counts nor restarts the count; the
+// hand-over itself waits for a fix (close_count_survives_gaps; off by default, a gap restarts the count).
+TEST(ModeManager, AFrameWithoutAFixHoldsTheCountBelowTheHandOver) {
+  const ModeInputs no_fix;  // far_valid false
+  NavigationParams gaps = plateHandover();
+  gaps.close_count_survives_gaps = true;
+  ModeManager m;
+  ASSERT_TRUE(m.init(gaps).ok);
+  EXPECT_FALSE(m.step(farAt(29.0), 1));
+  EXPECT_FALSE(m.step(no_fix, 2));
+  EXPECT_FALSE(m.step(farAt(29.0), 3));
+  EXPECT_FALSE(m.step(no_fix, 4));
+  EXPECT_FALSE(m.handOverDue(no_fix)) << "two fixes: not yet";
+  EXPECT_TRUE(m.handOverDue(farAt(29.0)));
+  EXPECT_TRUE(m.step(farAt(29.0), 5));
+  EXPECT_EQ(m.mode(), NavMode::kAcquisition);
+
+  ModeManager held;  // two fixes below, a gap, a third fix: handed over (the strict rule starts again)
+  ASSERT_TRUE(held.init(gaps).ok);
+  NavigationParams strict = plateHandover();
+  strict.close_count_survives_gaps = false;
+  ModeManager reset;
+  ASSERT_TRUE(reset.init(strict).ok);
+  for (std::uint64_t f = 1; f <= 2; ++f) {
+    EXPECT_FALSE(held.step(farAt(29.0), f));
+    EXPECT_FALSE(reset.step(farAt(29.0), f));
+  }
+  EXPECT_FALSE(held.step(no_fix, 3));
+  EXPECT_FALSE(reset.step(no_fix, 3));
+  EXPECT_TRUE(held.step(farAt(29.0), 4));
+  EXPECT_FALSE(reset.step(farAt(29.0), 4)) << "the gap restarted the count";
+  EXPECT_FALSE(reset.step(farAt(29.0), 5));
+  EXPECT_TRUE(reset.step(farAt(29.0), 6));
+  // A fix beyond the hand-over still restarts it.
+  ModeManager beyond;
+  ASSERT_TRUE(beyond.init(gaps).ok);
+  EXPECT_FALSE(beyond.step(farAt(29.0), 1));
+  EXPECT_FALSE(beyond.step(farAt(29.0), 2));
+  EXPECT_FALSE(beyond.step(farAt(31.0), 3));
+  EXPECT_FALSE(beyond.step(no_fix, 4));
+  EXPECT_FALSE(beyond.step(farAt(29.0), 5));
+}
+
 TEST(ModeManager, FailedAcquisitionsBackOffExponentially) {
   // A far-range cue that keeps fooling acquisition (campaign box/2: a 750 m approach that flipped far range
   // <-> acquisition 60 times): every failure doubles the wait before the next hand-over, 5, 10, 20, ...

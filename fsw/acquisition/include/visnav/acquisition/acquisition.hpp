@@ -187,6 +187,7 @@ class Acquisition {
   AcquisitionFailure m_failure = AcquisitionFailure::kNone;
   Vec3 m_cue_direction = Vec3::UnitZ();
   double m_cue_distance_m = 0.0;
+  double m_min_edge_snr = 0.0;  ///< the no-target threshold for this cue (min_edge_snr or the outline cue's)
   int m_next_hypothesis = 0;
   int m_frames = 0;
   double m_best_score = 0.0;

@@ -35,6 +35,9 @@ struct FarRangeSolution {
   double circularity = 0.0;          ///< eq. 15
   int cluster_count = 0;
   double quality = 0.0;  ///< [0, 1]
+  /// Found by its outline (far range's kFlagExtended): edge structure already shown, so acquisition's
+  /// no-target test takes outline_cue_min_edge_snr instead of min_edge_snr.
+  bool outline = false;
 };
 
 /// FDIR fault bits (HealthRecord::fault_bits, NavSolution::fault_bits; idl/visnav.idl FAULT_BIT_COUNT).

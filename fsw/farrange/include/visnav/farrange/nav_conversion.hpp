@@ -19,6 +19,7 @@ inline FarRangeSolution toFarRangeSolution(const FarRangeResult& r) {
   s.circularity = r.circularity;
   s.cluster_count = r.cluster_count;
   s.quality = r.valid ? r.quality : 0.0;
+  s.outline = r.valid && (r.flags & kFlagExtended) != 0U;
   return s;
 }
 

@@ -16,6 +16,7 @@ struct NavigationParams {
   double handover_radius_px = 35.0;  ///< derived hand-over: where the target's bounding radius spans this
   double near_range_min_radius_px = 26.25;  ///< derived give-up: where the bounding radius spans this
   int enter_frames = 3;                     ///< consecutive frames a distance condition must hold
+  bool close_count_survives_gaps = false;   ///< far range: a frame without a fix holds the count
   int acquisition_timeout_frames = 25;   ///< acquisition gives up (back to far range) after this many frames
   int acquire_retry_holdoff_frames = 5;  ///< far range waits this long after a failed acquisition...
   int acquire_retry_holdoff_max_frames = 80;  ///< ... doubling per consecutive failure up to this
