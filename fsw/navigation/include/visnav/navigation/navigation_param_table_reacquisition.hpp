@@ -188,16 +188,15 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
              "tracked 0.621 -> 0.619, wrong frames 36 -> 32; it passed over a satellite acquisition could "
              "not yet confirm at 80 m and handed over clutter instead (campaign smallsat/6: 1.0 -> 0)"},
             p.refute_unconfirmed_cue);
-  v.boolean(
-      {"navigation", "check_cue_before_handover", "-", 0, 1,
-       "before far range hands its fix to acquisition, the acquisition's first test runs on this "
-       "frame: a cue whose window's edge SNR is under [acquisition] min_edge_snr (outline_cue_min_edge_snr "
-       "for a fix far range found by its outline; what fails an acquisition no_target on its first frame) is "
-       "refuted as that failure would refute it and the "
-       "hand-over counts as a failed one for the back-off, without leaving far range. On the "
-       "campaign's approaches 185 of 341 failed acquisitions ended on their first frame, two mode "
-       "changes each (stop 49); false: handed over, and failed there"},
-      p.check_cue_before_handover);
+  v.boolean({"navigation", "check_cue_before_handover", "-", 0, 1,
+             "before far range hands its fix to acquisition, the acquisition's first test runs on this "
+             "frame: a cue whose window's edge SNR is under [acquisition] min_edge_snr "
+             "(outline_cue_min_edge_snr for a fix far range found by its outline; what fails an acquisition "
+             "no_target on its first frame) is refuted as that failure would refute it and the hand-over "
+             "counts as a failed one for the back-off, without leaving far range. On the campaign's "
+             "approaches 185 of 341 failed acquisitions ended on their first frame, two mode changes each "
+             "(stop 49); false: handed over, and failed there"},
+            p.check_cue_before_handover);
   v.boolean({"navigation", "far_track_survives_unconfirmed", "-", 0, 1,
              "after an acquisition that failed at far range's cue with edges there (no_candidate, "
              "not_confirmed, ambiguous; not refuted), far range goes on tracking the cluster it handed "
