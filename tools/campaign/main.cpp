@@ -87,6 +87,10 @@ int main(int argc, char** argv) {
   std::error_code ec;  // before the scenes run: a bad --out fails at once
   std::filesystem::create_directories(options.out_dir, ec);
   if (ec) return fail(options.out_dir + ": cannot create: " + ec.message());
+  if (!options.dump_frames_dir.empty()) {
+    std::filesystem::create_directories(options.dump_frames_dir, ec);
+    if (ec) return fail(options.dump_frames_dir + ": cannot create: " + ec.message());
+  }
 
   std::vector<SceneRun> runs;
   if (!options.cases.empty()) {
@@ -124,8 +128,8 @@ int main(int argc, char** argv) {
   std::mutex print;
   auto worker = [&]() {
     for (std::size_t i = next++; i < runs.size(); i = next++) {
-      runs[i].result =
-          runScene(runs[i].scene, params, options.timing, Thresholds{}, options.trace, options.oracle);
+      runs[i].result = runScene(runs[i].scene, params, options.timing, Thresholds{}, options.trace,
+                                options.oracle, options.dump_frames_dir);
       const std::size_t k = ++done;
       if (!options.quiet) {
         const std::lock_guard<std::mutex> lock(print);

@@ -137,6 +137,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     return Status::kInvalidArgument;
   }
   std::int64_t start = m_clock != nullptr ? m_clock() : 0;
+  m_frame = image;
   for (Refuted& r : m_refuted) r.frames_left = r.frames_left > 0 ? r.frames_left - 1 : 0;
   const Roi full = Roi::full(m_camera.width(), m_camera.height());
   Gate gate = m_robust ? currentGate() : Gate{};
@@ -243,6 +244,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     m_last_fix_outline = (out.flags & kFlagExtended) != 0U;
   }
   m_has_prediction = false;  // a filter prediction holds for one frame
+  m_frame = MonoImage{};
   out.timing.total_us = elapsedUs(start);
   return Status::kOk;
 }
@@ -282,6 +284,10 @@ void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResul
   out.extent_px = c.max_radius_px;
   if (touchesImageBorder(c)) out.flags |= kFlagAtBorder;
   out.valid = true;
+  if (m_robust) {
+    const OutlineSharpness sharpness = sharpnessOf(c);
+    out.outline_sharpness = sharpness.measured ? sharpness.ratio : -1.0;
+  }
   if (!m_robust) {
     out.quality = c.circularity;
     return;

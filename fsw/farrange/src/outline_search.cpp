@@ -79,7 +79,7 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
     if (m_params.fill_holes) m_finder.fillHoles(c);
     const double offset = (usedCentre(c) - gate.centre_px).norm();
     if (offset > gate.radius_px) continue;
-    if (passedOver(c, flags)) continue;
+    if (passedOver(c, flags) || lacksSharpOutline(c)) continue;
     const double log_ratio = std::log(usedPixels(c) / std::max(gate.size_px, 1.0));
     if (log_ratio < -down_limit || log_ratio > up_limit) continue;
     const double score = offset / gate.radius_px + std::abs(log_ratio) / up_limit;  // lower is better
@@ -92,7 +92,8 @@ int FarRangeEstimator::searchExtended(const Gate& gate, std::uint32_t& flags) {
     // No closed outline in the gate: an outline with gaps whose hull the track's size and place fit.
     HullChoice hull;
     bestHullShape(gate, flags, hull);
-    if (hull.index >= 0) {
+    if (hull.index >= 0 &&
+        !hullLacksSharpOutline(clusters[static_cast<std::size_t>(hull.index)], hull.shape)) {
       best = hull.index;
       adoptHull(clusters[static_cast<std::size_t>(best)], hull.shape);
     }
@@ -126,7 +127,7 @@ int FarRangeEstimator::searchSilhouette(std::uint32_t& flags) {
     if (c.halfExtentPx() < m_params.extended_min_half_px || touchesImageBorder(c)) continue;
     m_finder.fillHoles(c);
     if (c.filled_count < m_params.untracked_outline_fill_ratio * c.pixel_count) continue;
-    if (c.axis_ratio > m_params.max_axis_ratio || passedOver(c, flags)) continue;
+    if (c.axis_ratio > m_params.max_axis_ratio || passedOver(c, flags) || lacksSharpOutline(c)) continue;
     const double n = usedPixels(c);
     if (best < 0 || n > best_n) {
       second_n = best_n;
@@ -138,6 +139,8 @@ int FarRangeEstimator::searchSilhouette(std::uint32_t& flags) {
   }
   HullChoice hull;
   bestHullShape(Gate{}, flags, hull);
+  if (hull.index >= 0 && hullLacksSharpOutline(clusters[static_cast<std::size_t>(hull.index)], hull.shape))
+    hull.index = -1;
   if (hull.index >= 0 && hull.n > best_n) {
     second_n = std::max(best_n, hull.second_n);
     best_n = hull.n;
@@ -218,6 +221,13 @@ void FarRangeEstimator::bestHullShape(const Gate& gate, std::uint32_t& flags, Hu
       }
     }
   }
+}
+
+bool FarRangeEstimator::hullLacksSharpOutline(const Cluster& c, const OutlineHull& h) const {
+  if (!(m_params.min_outline_sharpness > 0.0)) return false;
+  Cluster as_hull = c;
+  adoptHull(as_hull, h);
+  return lacksSharpOutline(as_hull);
 }
 
 void FarRangeEstimator::adoptHull(Cluster& c, const OutlineHull& h) const {

@@ -21,6 +21,21 @@ int FarRangeEstimator::usedPixels(const Cluster& c) const {
   return std::max(1, static_cast<int>(std::lround(n)));
 }
 
+OutlineSharpness FarRangeEstimator::sharpnessOf(const Cluster& c) const {
+  // Only a solid cluster: rays from the centre of a sparse one (a satellite's thin panels at a few hundred
+  // metres, 315 px over a 20 px radius) cross thin strips, whose 2 h step is no body's edge.
+  constexpr double kPi = 3.141592653589793;
+  const int n = c.filled_count > 0 ? c.filled_count : c.pixel_count;
+  if (m_frame.empty() || n < kMinSharpnessFill * kPi * c.max_radius_px * c.max_radius_px) return {};
+  return measureOutlineSharpness(m_frame, usedCentre(c), c.max_radius_px);
+}
+
+bool FarRangeEstimator::lacksSharpOutline(const Cluster& c) const {
+  if (!(m_params.min_outline_sharpness > 0.0)) return false;
+  const OutlineSharpness s = sharpnessOf(c);
+  return s.measured && s.ratio < m_params.min_outline_sharpness;
+}
+
 bool FarRangeEstimator::passedOver(const Cluster& c, std::uint32_t& flags) const {
   if (!refuted(usedCentre(c), usedPixels(c))) return false;
   flags |= kFlagRefutedSkipped;
@@ -81,7 +96,7 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
     for (std::size_t i = 0; i < clusters.size(); ++i) {
       const Cluster& c = clusters[i];
       if (c.pixel_count < m_params.min_cluster_px) continue;
-      if (passedOver(c, flags)) continue;
+      if (passedOver(c, flags) || lacksSharpOutline(c)) continue;
       const double offset = (usedCentre(c) - gate.centre_px).norm();
       if (offset > gate.radius_px) continue;
       const double log_ratio = std::abs(std::log(usedPixels(c) / std::max(gate.size_px, 1.0)));
@@ -105,7 +120,7 @@ int FarRangeEstimator::selectRobust(const Gate& gate, std::uint32_t& flags) {
   for (std::size_t i = 0; i < clusters.size(); ++i) {
     const Cluster& c = clusters[i];
     if (c.pixel_count < m_params.min_cluster_px || c.axis_ratio > m_params.max_axis_ratio) continue;
-    if (passedOver(c, flags)) continue;
+    if (passedOver(c, flags) || lacksSharpOutline(c)) continue;
     const double size = usedPixels(c);
     if (best < 0 || size > best_score) {
       second = best;

@@ -60,6 +60,34 @@ TEST(RefutedFix, TheRefutedRegionIsPassedOverUntilItExpires) {
   EXPECT_EQ(expired.flags & kFlagRefutedSkipped, 0U);
 }
 
+TEST(RefutedFix, AGlowWithoutAnOutlineIsPassedOverWithoutARefutation) {
+  // [farrange] min_outline_sharpness: the glow's edge is a ramp as wide as the glow, the satellite's a
+  // step. Passed over on the first frame, without acquisition having to look there and refute it.
+  synthetic::RenderOptions o = test::farRender();
+  const Vec2 glow_px(150.0, 360.0);
+  o.glints.push_back(glowAt(glow_px));
+  Scene s(o);
+  const test::FarFrame f = s.frame(kSatellite, 3);
+  FarRangeParams params;
+  params.min_outline_sharpness = 0.5;
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(s.camera, params).ok);
+  const FarRangeResult r = estimate(e, f);
+  ASSERT_TRUE(r.valid);
+  EXPECT_LT(test::angleDeg(r.direction_c, f.truth.t_c_m.normalized()), 0.1) << "the satellite, first time";
+  EXPECT_LT(r.outline_sharpness, 0.0) << "the satellite's panels are too sparse a cluster to be measured";
+  EXPECT_EQ(e.refutedCount(), 0);
+  // Off (0), the glow is the largest cluster again: the check alone made the difference.
+  params.min_outline_sharpness = 0.0;
+  FarRangeEstimator off;
+  ASSERT_TRUE(off.init(s.camera, params).ok);
+  const FarRangeResult glow = estimate(off, f);
+  ASSERT_TRUE(glow.valid);
+  EXPECT_LT((glow.centroid_px - glow_px).norm(), 3.0);
+  EXPECT_GE(glow.outline_sharpness, 0.0) << "the glow is big enough to be measured";
+  EXPECT_LT(glow.outline_sharpness, 0.5);
+}
+
 TEST(RefutedFix, OffItRefutesNothingAndAClearForgetsEverything) {
   synthetic::RenderOptions o = test::farRender();
   o.glints.push_back(glowAt(Vec2(150.0, 360.0)));

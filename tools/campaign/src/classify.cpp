@@ -4,14 +4,17 @@
 
 namespace visnav::campaign {
 
-bool targetVisible(const PinholeCamera& camera, const PolygonModel& model, const Pose& truth, bool eclipsed,
-                   const Thresholds& th) {
-  if (eclipsed) return false;
-  const double z = truth.t_c_m.z();
-  if (!(z > 1e-6)) return false;
+bool targetInView(const PinholeCamera& camera, const Pose& truth, bool eclipsed) {
+  if (eclipsed || !(truth.t_c_m.z() > 1e-6)) return false;
   Vec2 px;
   if (!camera.project(truth.t_c_m, px)) return false;
-  if (!(px.x() >= 0.0 && px.y() >= 0.0 && px.x() < camera.width() && px.y() < camera.height())) return false;
+  return px.x() >= 0.0 && px.y() >= 0.0 && px.x() < camera.width() && px.y() < camera.height();
+}
+
+bool targetVisible(const PinholeCamera& camera, const PolygonModel& model, const Pose& truth, bool eclipsed,
+                   const Thresholds& th) {
+  if (!targetInView(camera, truth, eclipsed)) return false;
+  const double z = truth.t_c_m.z();
   if (2.0 * camera.intrinsics().fx_px * model.boundingRadius() / z < th.min_visible_px) return false;
   for (const ModelSurface& s : model.surfaces()) {
     const Vec3 n_c = truth.R_c_m * s.normal_m;

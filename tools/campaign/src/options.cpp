@@ -9,7 +9,7 @@ namespace visnav::campaign {
 std::string usageText() {
   return "usage: visnav-campaign --runs N [--seed S] [--families plate,octagon,box,smallsat,cao]\n"
          "                       [--kind near|approach] [--model FILE.cao|.toml] [--config FILE]\n"
-         "                       [--jobs J] [--out DIR]\n"
+         "                       [--jobs J] [--out DIR] [--dump-frames DIR]\n"
          "                       [--max-frames N] [--no-timing] [--quiet] [--frames] [--trace] [--oracle]\n"
          "                       [--require-tracked-fraction F] [--require-no-confident-wrong]\n"
          "                       [--require-recovery-frames K] [--require-max-mode-changes M]\n"
@@ -112,11 +112,12 @@ LoadError parseArguments(const std::vector<std::string>& args, CampaignOptions& 
         return LoadError::failure("--kind: expected near or approach" +
                                   (v.empty() ? "" : ", got '" + v + "'"));
       o.kind = v == "near" ? SceneKind::kNear : SceneKind::kApproach;
-    } else if (a == "--model" || a == "--config" || a == "--out" || a == "--case") {
+    } else if (a == "--model" || a == "--config" || a == "--out" || a == "--case" || a == "--dump-frames") {
       if (!value(v) || v.empty()) return LoadError::failure(a + ": needs a value");
       if (a == "--model") o.model_path = v;
       if (a == "--config") o.config_path = v;
       if (a == "--out") o.out_dir = v;
+      if (a == "--dump-frames") o.dump_frames_dir = v;
       if (a == "--case") {
         if (v == "all") {
           o.cases = caseNames();

@@ -154,6 +154,13 @@ std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vec
     }
     o << "; never in " << all.acquisition_never << "\n";
   }
+  if (all.far_fixes > 0) {
+    std::snprintf(
+        buf, sizeof(buf),
+        "far-range fixes with the target in view: %d; off the target (on something else): %d (%.1f %%)\n",
+        all.far_fixes, all.far_off_target, 100.0 * all.far_off_target / all.far_fixes);
+    o << buf;
+  }
   if (timing) {
     o << "step time [us] median/p95 per mode:";
     for (int m = 0; m < kModeCount; ++m) {
@@ -251,7 +258,8 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
       << ",\n      \"acquisition_latency\": " << distributionJson(g.acquisition_latency)
       << ", \"acquisition_never\": " << g.acquisition_never << ",\n      \"nis\": " << distributionJson(g.nis)
       << ", \"nis_above_gate\": " << g.nis_above_gate << ", \"nis_above_gate_fraction\": "
-      << num(g.nis.count > 0 ? static_cast<double>(g.nis_above_gate) / g.nis.count : 0.0) << "}";
+      << num(g.nis.count > 0 ? static_cast<double>(g.nis_above_gate) / g.nis.count : 0.0)
+      << ",\n      \"far_fixes\": " << g.far_fixes << ", \"far_off_target\": " << g.far_off_target << "}";
   }
   o << "\n  },\n";
   o << "  \"scenes\": [";
@@ -283,7 +291,8 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
       << (r.acquisition_latency == -2 ? std::string("null") : std::to_string(r.acquisition_latency))
       << ", \"max_position_error_rel\": " << num(r.max_position_error_rel)
       << ", \"max_attitude_error_deg\": " << num(r.max_attitude_error_deg)
-      << ", \"nis_count\": " << r.nis_count << ", \"nis_mean\": " << num(r.nis_mean) << "},\n";
+      << ", \"nis_count\": " << r.nis_count << ", \"nis_mean\": " << num(r.nis_mean)
+      << ", \"far_fixes\": " << r.far_fixes << ", \"far_off_target\": " << r.far_off_target << "},\n";
     o << "      \"events\": [";
     for (std::size_t k = 0; k < r.events.size(); ++k)
       o << (k ? ", " : "") << "{\"kind\": " << eval::jsonString(toString(r.events[k].kind))
@@ -346,7 +355,9 @@ void writeCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
   for (const std::string& k : param_keys) o << "," << k;
   o << ",frames_run,visible,expected,tracked,accurate,confidently_wrong,tracked_fraction,accurate_fraction,"
        "recovery_events,recovery_never,recovery_max,mode_changes,acquisition_latency,max_position_error_pct,"
-       "max_attitude_error_deg,nis_count,nis_mean,error,time_wall_s,time_step_median_us,time_step_p95_us\n";
+       "max_attitude_error_deg,nis_count,nis_mean,far_fixes,far_off_target,error,time_wall_s,time_step_"
+       "median_"
+       "us,time_step_p95_us\n";
   for (const SceneRun& run : runs) {
     const Scene& s = run.scene;
     const SceneResult& r = run.result;
@@ -361,8 +372,9 @@ void writeCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
       << r.recovery_never << "," << r.recovery_max << "," << r.mode_changes << ","
       << (r.acquisition_latency == -2 ? std::string() : std::to_string(r.acquisition_latency)) << ","
       << num(100.0 * r.max_position_error_rel) << "," << num(r.max_attitude_error_deg) << "," << r.nis_count
-      << "," << num(r.nis_mean) << "," << csvField(r.error.message) << "," << num(r.wall_s) << ","
-      << num(d.median) << "," << num(d.p95) << "\n";
+      << "," << num(r.nis_mean) << "," << r.far_fixes << "," << r.far_off_target << ","
+      << csvField(r.error.message) << "," << num(r.wall_s) << "," << num(d.median) << "," << num(d.p95)
+      << "\n";
   }
 }
 
@@ -375,7 +387,7 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
        "lines_"
        "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch,jumped,"
        "oracle,near_twin_rival,scanlines,inlier_points,evidence_good,find_on_branch,candidate_range_m,range_"
-       "broken\n";
+       "broken,in_view,far_direction_error_deg,far_off_target\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
@@ -395,7 +407,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << "," << f.shows_face << "," << f.twin_by_continuity << "," << f.kept_branch << "," << f.jumped
         << "," << f.oracle << "," << f.near_twin_rival << "," << f.scanlines << "," << f.inlier_points << ","
         << f.evidence_good << "," << f.find_on_branch << ","
-        << (f.has_candidate ? num(f.candidate_range_m) : "") << "," << f.range_broken << "\n";
+        << (f.has_candidate ? num(f.candidate_range_m) : "") << "," << f.range_broken << "," << f.in_view
+        << "," << (f.far_valid ? num(f.far_direction_error_deg) : "") << "," << f.far_off_target << "\n";
     }
   }
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 
 #include "visnav/core/frame.hpp"
@@ -32,12 +33,26 @@ int oracleVerdict(const NearRangeResult& o, const nav::PoseSigmas& sigma, const 
   return right && certain ? 2 : 1;
 }
 
+// --dump-frames: one 8-bit binary PGM per frame.
+bool dumpFrame(const std::string& dir, const Scene& scene, int index, const std::uint8_t* pixels, int w,
+               int h) {
+  std::string name = scene.name;
+  std::replace(name.begin(), name.end(), '/', '-');
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, "-%04d.pgm", index);
+  std::ofstream out(dir + "/" + name + suffix, std::ios::binary);
+  out << "P5\n" << w << " " << h << "\n255\n";
+  out.write(reinterpret_cast<const char*>(pixels), static_cast<std::streamsize>(w) * h);
+  return static_cast<bool>(out);
+}
+
 }  // namespace
 
 void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& r) {
   r.visible = r.expected = r.tracked = r.accurate = r.wrong = r.pose_frames = 0;
   r.max_position_error_rel = r.max_attitude_error_deg = 0.0;
   r.nis_count = 0;
+  r.far_fixes = r.far_off_target = 0;
   double nis_sum = 0.0;
   int first_expected = -1;
   for (FrameOutcome& f : r.frames) {
@@ -59,6 +74,10 @@ void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& r) {
     if (f.has_nis) {
       ++r.nis_count;
       nis_sum += f.nis;
+    }
+    if (f.in_view && f.far_valid) {
+      ++r.far_fixes;
+      r.far_off_target += f.far_off_target ? 1 : 0;
     }
   }
   r.nis_mean = r.nis_count > 0 ? nis_sum / r.nis_count : 0.0;
@@ -131,7 +150,7 @@ std::string traceEdges(const NearRangeTracker& tracker, const Pose& truth) {
 }
 
 SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing, const Thresholds& th,
-                     bool trace, bool oracle_asked) {
+                     bool trace, bool oracle_asked, const std::string& dump_dir) {
   SceneResult res;
   const std::int64_t wall_start = timing ? exec::monotonicNowNs() : 0;
   const PinholeCamera camera(scene.camera);
@@ -173,6 +192,11 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     renderer.render(eclipsed ? hidden : truth,
                     synthetic::Renderer::frameSeed(scene.noise_seed, static_cast<std::uint64_t>(i)),
                     image.data(), w);
+    if (!dump_dir.empty() && !dumpFrame(dump_dir, scene, i, image.data(), w, h)) {
+      res.error =
+          LoadError::failure(scene.name + ": cannot write frame " + std::to_string(i) + " to " + dump_dir);
+      return res;
+    }
     Frame frame;
     frame.image = MonoImage::from8(ImageView8(image.data(), w, h));
     frame.exposure_time_ns = t_ns;
@@ -186,6 +210,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.eclipsed = eclipsed;
     f.slew = scene.events.slew && i == scene.events.slew_frame;
     f.visible = targetVisible(camera, scene.model, truth, eclipsed, th);
+    f.in_view = targetInView(camera, truth, eclipsed);
     f.range_m = truth.t_c_m.norm();
     f.mode = sol.mode;
     f.pose_valid = sol.pose_valid;
@@ -232,6 +257,12 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       f.far_eq16_distance_m = pipeline->lastFarRange().eq16_distance_m;
       f.far_extent_px = pipeline->lastFarRange().extent_px;
       f.far_extent_distance_m = pipeline->lastFarRange().extent_distance_m;
+      f.far_direction_error_deg =
+          std::acos(
+              std::clamp(pipeline->lastFarRange().direction_c.dot(truth.t_c_m.normalized()), -1.0, 1.0)) *
+          kDegPerRad;
+      const double radius_deg = std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * kDegPerRad;
+      f.far_off_target = f.in_view && f.far_direction_error_deg > radius_deg + th.far_on_target_margin_deg;
     }
     classifyFrame(f, th);
     NearRangeResult o;
@@ -315,10 +346,10 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         const double radius_deg = std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * kDegPerRad;
         std::snprintf(buf, sizeof buf,
                       "       far: valid=%d n=%d raw=%d clusters=%d flags=%04x d=%.1f c=%.3f q=%.2f "
-                      "dir_err=%.2fdeg rad=%.2fdeg\n",
+                      "dir_err=%.2fdeg rad=%.2fdeg sharp=%.2f\n",
                       fr.valid ? 1 : 0, fr.cluster_pixels, fr.raw_pixels, fr.cluster_count,
                       static_cast<unsigned>(fr.flags), fr.distance_m, fr.circularity, fr.quality, dir_err_deg,
-                      radius_deg);
+                      radius_deg, fr.outline_sharpness);
         res.trace += buf;
       }
       const nav::ReacquisitionStep& rs = pipeline->lastReacquisition();

@@ -79,6 +79,8 @@ GroupSummary summarise(const std::string& name, const std::vector<const SceneRun
     }
     if (r.acquisition_latency >= 0) acquisition.push_back(r.acquisition_latency);
     if (r.acquisition_latency == -1) ++g.acquisition_never;
+    g.far_fixes += r.far_fixes;
+    g.far_off_target += r.far_off_target;
     for (const FrameOutcome& f : r.frames) {
       if (f.has_nis) {
         nis.push_back(f.nis);

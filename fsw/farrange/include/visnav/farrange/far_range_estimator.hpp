@@ -18,6 +18,7 @@
 #include "visnav/farrange/edge_filter.hpp"
 #include "visnav/farrange/far_range_params.hpp"
 #include "visnav/farrange/histogram_filter.hpp"
+#include "visnav/farrange/outline_sharpness.hpp"
 #include "visnav/farrange/weighted_sum.hpp"
 #include "visnav/geometry/camera.hpp"
 
@@ -68,13 +69,15 @@ struct FarRangeResult {
   Vec2 centroid_px = Vec2::Zero();  ///< raw pixels
   int cluster_pixels = 0;           ///< n used in eq. 16 (filled n for the robust method)
   int raw_pixels = 0;               ///< n of eq. 15 (responses above t_out)
-  int boundary_pixels = 0;          ///< outline pixels of the filled cluster (robust)
-  double circularity = 0.0;         ///< eq. 15 of the selected cluster
-  int cluster_count = 0;            ///< clusters found in the searched region
-  int selected = -1;                ///< index in clusters()
-  double quality = 0.0;             ///< [0, 1], 0 when not valid
-  std::uint32_t flags = 0;          ///< FarRangeFlag
-  Roi roi;                          ///< region searched last
+  /// measureOutlineSharpness of the selected cluster (robust method; -1: not measured, too small or cut)
+  double outline_sharpness = -1.0;
+  int boundary_pixels = 0;   ///< outline pixels of the filled cluster (robust)
+  double circularity = 0.0;  ///< eq. 15 of the selected cluster
+  int cluster_count = 0;     ///< clusters found in the searched region
+  int selected = -1;         ///< index in clusters()
+  double quality = 0.0;      ///< [0, 1], 0 when not valid
+  std::uint32_t flags = 0;   ///< FarRangeFlag
+  Roi roi;                   ///< region searched last
   FarRangeTiming timing;
 };
 
@@ -163,6 +166,15 @@ class FarRangeEstimator {
   void searchRegion(const MonoImage& image, const Roi& roi, FarRangeResult& out, bool edges_ready = false);
   int selectPaper() const;
   int selectRobust(const Gate& gate, std::uint32_t& flags);
+  /// min_outline_sharpness: the cluster is measured (big enough, inside the image) and its outline is a
+  /// ramp, not a body's edge.
+  bool lacksSharpOutline(const Cluster& c) const;
+  /// measureOutlineSharpness of a solid cluster (filled n at least kMinSharpnessFill of the disc of its
+  /// radius); a sparse one is not measured.
+  OutlineSharpness sharpnessOf(const Cluster& c) const;
+  /// lacksSharpOutline of the cluster as the hull `h` would stand for it (adoptHull).
+  bool hullLacksSharpOutline(const Cluster& c, const OutlineHull& h) const;
+  static constexpr double kMinSharpnessFill = 0.4;
   void prepareCandidates();
   int searchExtended(const Gate& gate, std::uint32_t& flags);
   int preferEnclosingOutline(const Gate& gate, int selected, std::uint32_t& flags);
@@ -211,6 +223,7 @@ class FarRangeEstimator {
   double m_target_radius_m = 0.0;
   double m_recheck_max_distance_m = 0.0;
   MonotonicClockNs m_clock = nullptr;
+  MonoImage m_frame;  ///< the frame estimate() works on: a view, used during that call only
   EdgeFilter m_edge;
   HistogramFilter m_histogram;
   WeightedSum m_sum;

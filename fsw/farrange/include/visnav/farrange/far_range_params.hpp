@@ -58,6 +58,7 @@ struct FarRangeParams {
   int recheck_frames = 10;              ///< every this many fixes a track is checked against the whole frame
   double recheck_switch_ratio = 4.0;    ///< a rival that many times the tracked n (and near enough) wins
   double recheck_static_growth = 1.25;  ///< a track whose n grew more since the last check is kept
+  double min_outline_sharpness = 0.0;   ///< a cluster whose outline is a ramp is never the target (0: off)
   // Capacities (memory is sized from these and the image size at init).
   int max_clusters = 256;
   int max_cluster_pixels = 262144;
@@ -275,6 +276,12 @@ struct FarRangeParams {
             "it, on the campaign's approaches true "
             "far targets of a few pixels gave way to nearer-reading clutter"},
            recheck_static_growth);
+    v.real({"farrange", "min_outline_sharpness", "-", 0.0, 1.0,
+            "robust: a cluster whose outline is a ramp rather than a body's edge is never the target: rays "
+            "from its centre compare the 2-px step at the outline with the 8-px step "
+            "(measureOutlineSharpness, about 0.6 for a 1-px blur and 0.25 for a wide Gaussian spot; clusters "
+            "under 6 px radius are not measured). 0: off"},
+           min_outline_sharpness);
     v.integer({"farrange", "max_clusters", "count", 1, 65534, "capacity: clusters per frame"}, max_clusters);
     v.integer({"farrange", "max_cluster_pixels", "px", 16, 10000000,
                "capacity: pixels in all clusters of a frame (growth stops and the frame is flagged beyond)"},

@@ -22,7 +22,14 @@ struct Thresholds {
   /// scenes (5-30 m). A fixed yardstick, not read from the configuration under test (the pipeline's own
   /// hand-over distance is a parameter, derived by default from the target's size).
   double near_range_max_m = 30.0;
+  /// A far-range fix is on the target when its line of sight is within the target's angular radius
+  /// (bounding sphere) plus this of the line of sight to the model origin; else it is on something else.
+  double far_on_target_margin_deg = 0.1;
 };
+
+/// The target is in view, whatever its size: not eclipsed, in front of the camera, its bounding sphere's
+/// centre (the model origin) projects inside the image. Far range may see it from a pixel on.
+bool targetInView(const PinholeCamera& camera, const Pose& truth, bool eclipsed);
 
 /// The target can be seen: not eclipsed, in front of the camera, its bounding sphere's centre (the model
 /// origin) projects inside the image, 2 f R / z >= min_visible_px, and some surface faces the camera
@@ -50,6 +57,9 @@ struct FrameOutcome {
   double far_eq16_distance_m = 0.0;    ///< the far fix's eq. 16 distance (far_distance_m may be the extent's)
   double far_extent_px = 0.0;          ///< the far fix's cluster extent (FarRangeResult::extent_px)
   double far_extent_distance_m = 0.0;  ///< its distance from that extent and the model's radius
+  bool in_view = false;                ///< targetInView
+  double far_direction_error_deg = 0.0;  ///< far_valid: its line of sight against the model origin's
+  bool far_off_target = false;  ///< in_view, far_valid, and the fix beyond far_on_target_margin_deg (above)
   // The 6-DOF measurement the pipeline produced this frame, delivered or withheld (diagnostics: --frames).
   // A coasted prediction is not one. Lets an output gate be judged offline over a whole campaign.
   bool has_candidate = false;

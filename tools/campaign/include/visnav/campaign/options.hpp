@@ -40,6 +40,7 @@ struct CampaignOptions {
   bool frames_csv = false;         ///< --frames: also DIR/frames.csv (one row per frame)
   bool trace = false;              ///< --trace: one diagnostic line per frame on stderr (runner.hpp)
   bool oracle = false;             ///< --oracle: image support of every untracked visible frame (runner.hpp)
+  std::string dump_frames_dir;     ///< --dump-frames DIR: every rendered frame as a PGM (runner.hpp)
   Gates gates;
   bool help = false;
 };

@@ -62,6 +62,8 @@ struct GroupSummary {
   int acquisition_never = 0;
   Distribution nis;
   int nis_above_gate = 0;
+  int far_fixes = 0;                               ///< SceneResult::far_fixes, summed
+  int far_off_target = 0;                          ///< SceneResult::far_off_target, summed
   std::array<Distribution, kModeCount> step_us{};  ///< timing: per mode the frame was processed in
 };
 

@@ -41,8 +41,10 @@ struct SceneResult {
   double max_attitude_error_deg = 0.0;
   int nis_count = 0;
   double nis_mean = 0.0;
-  double wall_s = 0.0;  ///< timing field
-  std::string trace;    ///< --trace: one line per frame (traceLine), empty otherwise
+  int far_fixes = 0;       ///< far-range fixes on frames with the target in view (targetInView)
+  int far_off_target = 0;  ///< of them, on something else (FrameOutcome::far_off_target)
+  double wall_s = 0.0;     ///< timing field
+  std::string trace;       ///< --trace: one line per frame (traceLine), empty otherwise
 };
 
 /// Counts, fractions, recovery events and acquisition latency from the classified frames. Approach scenes
@@ -52,9 +54,12 @@ void summariseScene(const Scene& scene, const Thresholds& th, SceneResult& resul
 
 /// Runs the scene. `base` is the pipeline configuration (defaults or --config); the scene sets its far-range
 /// gamma. `timing`: CLOCK_MONOTONIC step times (off: all timing fields 0). `oracle`: FrameOutcome::oracle
-/// on every visible frame without a valid pose (`trace` computes it too).
+/// on every visible frame without a valid pose (`trace` computes it too). `dump_dir` (not empty): every
+/// rendered frame is also written there as an 8-bit PGM, `<family>-<seed>-<frame>.pgm` (frame zero-padded
+/// to 4 digits), to look at what a trace describes; a write that fails is the scene's error.
 SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool timing,
-                     const Thresholds& th = {}, bool trace = false, bool oracle = false);
+                     const Thresholds& th = {}, bool trace = false, bool oracle = false,
+                     const std::string& dump_dir = {});
 
 /// --trace's line for one frame: truth range, mode, near-range status, flags, line and point counts, rms,
 /// filter NIS, fault bits and the pose error; what a reader needs to see why a frame went wrong.
