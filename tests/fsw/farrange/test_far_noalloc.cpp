@@ -63,13 +63,15 @@ TEST(FarRangeNoAlloc, EveryPathOverManyFrames) {
   const std::vector<test::FarFrame> f = frames();
   for (const FarRangeMethod m : {FarRangeMethod::kRobust, FarRangeMethod::kPaper}) {
     for (const bool sixteen_bit : {false, true}) {
-      // eq. 11 as printed, over the flattened background, and that only as a fallback (robust only)
-      for (const int flattening : {0, 1, 2}) {
+      // eq. 11 as printed, over the flattened background, and that only as a fallback (robust only); 3:
+      // the flattened fallback with the outline sharpness rule (robust only)
+      for (const int flattening : {0, 1, 2, 3}) {
         if (m == FarRangeMethod::kPaper && flattening > 0) continue;
         FarRangeParams p;
         p.method = static_cast<int>(m);
         p.background_block_px = flattening > 0 ? 128 : 0;
-        p.background_fallback_only = flattening == 2;
+        p.background_fallback_only = flattening >= 2;
+        p.min_outline_sharpness = flattening == 3 ? 0.5 : 0.0;
         FarRangeEstimator e;
         ASSERT_TRUE(e.init(test::farCamera(), p).ok);
         int valid = 0;
@@ -110,8 +112,10 @@ BrightPlateFrames brightPlateFrames(double noise, const std::vector<double>& ran
 
 // `rounds` estimates over `frames` in turn (each searched afresh when `reset_each`), with eq. 11 as printed;
 // expects no allocation and returns how many fixes an outline search found.
-int extendedFixesWithoutAllocation(const BrightPlateFrames& plate, int rounds, bool reset_each) {
+int extendedFixesWithoutAllocation(const BrightPlateFrames& plate, int rounds, bool reset_each,
+                                   double min_outline_sharpness = 0.0) {
   FarRangeParams p;
+  p.min_outline_sharpness = min_outline_sharpness;
   p.extended_min_half_px = 12.0;  // the default, stated: these tests are about it
   // Eq. 11 as printed: the plate's grey levels turn common and the outline search runs on most frames (over
   // the flattened background eq. 13 keeps the whole plate, and the outline search is not needed).
@@ -145,6 +149,9 @@ TEST(FarRangeNoAlloc, TheSilhouetteSearchWithoutATrackAndTheHullOfAnOutlineWithG
   const BrightPlateFrames plate =
       brightPlateFrames(0.09, {25.0, 24.0, 23.0, 22.0, 21.0, 20.0, 19.0, 18.0}, 70);
   EXPECT_GE(extendedFixesWithoutAllocation(plate, 32, true), 8) << "the silhouette search found the plate";
+  // The same with [farrange] min_outline_sharpness: every candidate outline and hull is measured.
+  EXPECT_GE(extendedFixesWithoutAllocation(plate, 32, true, 0.5), 8)
+      << "and kept it: a plate's edge is sharp";
 }
 
 // The track recheck (recheck_frames): the whole-frame search, and the switch from a glow tracked alone to

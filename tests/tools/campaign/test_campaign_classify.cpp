@@ -195,6 +195,14 @@ TEST(CampaignVisibility, Rules) {
   EXPECT_FALSE(targetVisible(cam, plate, far, false));
   far.t_c_m.z() = 120.0;  // 20.8 px
   EXPECT_TRUE(targetVisible(cam, plate, far, false));
+  // In view, whatever its size (far range's yardstick): only the eclipse, the side and the image count.
+  far.t_c_m.z() = 750.0;  // 3.3 px
+  EXPECT_FALSE(targetVisible(cam, plate, far, false));
+  EXPECT_TRUE(targetInView(cam, far, false));
+  EXPECT_TRUE(targetInView(cam, back, false)) << "a plate seen from behind is still where far range looks";
+  EXPECT_FALSE(targetInView(cam, far, true));
+  EXPECT_FALSE(targetInView(cam, behind, false));
+  EXPECT_FALSE(targetInView(cam, outside, false));
 }
 
 SceneRun fakeRun(const std::string& name, std::uint64_t seed, const std::string& pattern, int wrong_frames,
@@ -209,6 +217,19 @@ SceneRun fakeRun(const std::string& name, std::uint64_t seed, const std::string&
   r.result.mode_changes = mode_changes;
   summariseScene(r.scene, Thresholds{}, r.result);
   return r;
+}
+
+TEST(CampaignClassify, FarFixesOffTheTargetAreCountedOnFramesWithTheTargetInView) {
+  SceneRun r = fakeRun("box/1", 1, "TTTTTTTTTT", 0, 0);
+  for (std::size_t i = 0; i < r.result.frames.size(); ++i) {
+    FrameOutcome& f = r.result.frames[i];
+    f.in_view = i != 9;         // the last frame: eclipsed
+    f.far_valid = i >= 4;       // fixes on frames 4-9
+    f.far_off_target = i >= 7;  // 7 and 8 in view and off; 9 off but not in view
+  }
+  summariseScene(r.scene, Thresholds{}, r.result);
+  EXPECT_EQ(r.result.far_fixes, 5);
+  EXPECT_EQ(r.result.far_off_target, 2) << "frame 9's fix is off but the target was not in view";
 }
 
 TEST(CampaignGates, WorstSceneAndVerdicts) {
@@ -313,6 +334,9 @@ TEST(CampaignOptionsTest, Parsing) {
   EXPECT_FALSE(o.trace);
   EXPECT_TRUE(parseArguments({"--runs", "1", "--trace"}, o).ok);
   EXPECT_TRUE(o.trace);
+  EXPECT_TRUE(o.dump_frames_dir.empty());
+  EXPECT_TRUE(parseArguments({"--runs", "1", "--dump-frames", "/tmp/frames"}, o).ok);
+  EXPECT_EQ(o.dump_frames_dir, "/tmp/frames");
   for (const std::vector<std::string>& bad :
        std::vector<std::vector<std::string>>{{},
                                              {"--runs", "0"},
@@ -322,6 +346,8 @@ TEST(CampaignOptionsTest, Parsing) {
                                              {"--runs", "2", "--require-tracked-fraction", "1.5"},
                                              {"--runs", "2", "--seed", "-1"},
                                              {"--case", "nope"},
+                                             {"--runs", "1", "--dump-frames"},
+                                             {"--runs", "1", "--dump-frames", ""},
                                              {"--case", "slew_box", "--runs", "2"},
                                              {"--case", "slew_box", "--kind", "near"},
                                              {"--runs", "2", "--kind", "far"},
