@@ -128,14 +128,14 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
           "its look tolerance (reacquire_attitude_tolerance_deg + reacquire_tolerance_growth_deg_per_frame "
           "per frame since it) is at most this. At 45 deg, half the quarter turn that is a near-square "
           "target's nearest twin (a wider tolerance keeps both twins), a find past it is still taken but "
-          "earns its branch with branch_confirm_frames rival-free frames. Measured (stop 52) and left at "
-          "180: with the search's fading rates (reacquire_motion_decay_s 5 s) 45 deg kept campaign cao/157's "
-          "find, 72 frames after its last valid pose and 5.6 deg off at 23 m, from being delivered on its "
-          "own frame, but not smallsat/183's (43 deg off on a stale prediction: it passed its rival-free "
-          "frames); with the shipped defaults it removed no confidently wrong frame on seeds 1-40 (200 "
-          "scenes) and cost 76 tracked frames over 24 of them, 1-7 each (box/44 0.812 -> 0.796). 180: the "
-          "reference never "
-          "expires"},
+          "earns its branch with branch_confirm_frames rival-free frames. 45 since stop 57, with "
+          "[farrange] min_outline_sharpness: far range no longer holds blobs, and the changed searches "
+          "found campaign box/7's flat-shaded box 107 frames after its last valid pose, 32 deg off with a "
+          "0.95 deg 1-sigma, valid on its own frame (4 confidently wrong frames); at 45 it is withheld. "
+          "Cost, seeds 1-40 / 5001-5040 / 7001-7040 with the sharpness rule: tracked frames 14 756 -> "
+          "14 675 / 14 924 -> 14 861 / 15 381 -> 15 315 (finds wait their rival-free frames), confidently "
+          "wrong 6 -> 2 / 2 -> 2 / 7 -> 7. Stop 52, without the sharpness rule: it removed no confidently "
+          "wrong frame on seeds 1-40 and cost 76 tracked frames. 180: the reference never expires"},
          p.branch_reference_max_look_deg);
   v.boolean({"navigation", "follow_near_twin", "-", 0, 1,
              "while a track's branch is unknown, a near-range fit that left some of its selected lines "
