@@ -45,9 +45,7 @@ int sampleRay(const MonoImage& image, const Vec2& centre_px, const Vec2& along, 
 /// moves few of them, the noise all. `work` is scratch.
 double profileNoise(const Profile& p, int count, Profile& work) {
   const int n = count - 1;
-  for (int r = 0; r < n; ++r)
-    work[static_cast<std::size_t>(r)] =
-        std::fabs(p[static_cast<std::size_t>(r + 1)] - p[static_cast<std::size_t>(r)]);
+  for (std::size_t r = 0; r < static_cast<std::size_t>(n); ++r) work[r] = std::fabs(p[r + 1] - p[r]);
   auto* middle = work.begin() + n / 2;
   std::nth_element(work.begin(), middle, work.begin() + n);
   return *middle / (0.6745 * std::sqrt(2.0));
@@ -81,12 +79,12 @@ OutlineSharpness measureOutlineSharpness(const MonoImage& image, const Vec2& cen
     const int last = count - coarse_half - h - 1;
     if (last <= first || count < static_cast<int>(radius_px) + coarse_half + h + 1) continue;
     sum[0] = 0.0;
-    for (int r = 0; r < count; ++r)
-      sum[static_cast<std::size_t>(r + 1)] =
-          sum[static_cast<std::size_t>(r)] + p[static_cast<std::size_t>(r)];
+    for (std::size_t r = 0; r < static_cast<std::size_t>(count); ++r) sum[r + 1] = sum[r] + p[r];
     // q(r): the mean of p over [r - h, r + h].
     const auto q = [&](int r) {
-      return (sum[static_cast<std::size_t>(r + h + 1)] - sum[static_cast<std::size_t>(r - h)]) / (2 * h + 1);
+      const int end = r + h + 1;
+      const int begin = r - h;
+      return (sum[static_cast<std::size_t>(end)] - sum[static_cast<std::size_t>(begin)]) / (2 * h + 1);
     };
     // Located by the step between the fine and the coarse scale, so that the fine step is not the one
     // the location was picked on (on noise, that pick alone makes a step).

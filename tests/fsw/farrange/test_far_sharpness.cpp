@@ -31,7 +31,8 @@ Drawn draw(const std::function<double(double, double)>& brightness, double noise
   for (int y = 0; y < d.h; ++y)
     for (int x = 0; x < d.w; ++x) {
       const double v = brightness(x + 0.5, y + 0.5) + noise * gauss(rng);
-      d.px[static_cast<std::size_t>(y * d.w + x)] =
+      const int i = y * d.w + x;
+      d.px[static_cast<std::size_t>(i)] =
           static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
     }
   return d;

@@ -103,6 +103,7 @@ GroupSummary summarise(const std::string& name, const std::vector<const SceneRun
 std::vector<GroupSummary> summariseAll(const std::vector<SceneRun>& runs) {
   std::vector<GroupSummary> groups;
   std::vector<const SceneRun*> all;
+  all.reserve(runs.size());
   for (const SceneRun& r : runs) all.push_back(&r);
   groups.push_back(summarise("overall", all));
   for (int f = 0; f < kFamilyCount; ++f) {
@@ -117,6 +118,7 @@ std::vector<GroupSummary> summariseAll(const std::vector<SceneRun>& runs) {
 std::vector<GateResult> checkGates(const std::vector<SceneRun>& runs, const Gates& gates) {
   std::vector<GateResult> out;
   std::vector<const SceneRun*> all;
+  all.reserve(runs.size());
   for (const SceneRun& r : runs) all.push_back(&r);
   const GroupSummary g = summarise("overall", all);
   char buf[256];
