@@ -33,6 +33,16 @@ int oracleVerdict(const NearRangeResult& o, const nav::PoseSigmas& sigma, const 
   return right && certain ? 2 : 1;
 }
 
+// The far fix's line of sight against the model origin's [deg].
+double farDirectionErrorDeg(const far::FarRangeResult& fr, const Pose& truth) {
+  return std::acos(std::clamp(fr.direction_c.dot(truth.t_c_m.normalized()), -1.0, 1.0)) * kDegPerRad;
+}
+
+// The target's angular radius (its bounding sphere) seen from the camera [deg].
+double targetAngularRadiusDeg(const Scene& scene, const Pose& truth) {
+  return std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * kDegPerRad;
+}
+
 // --dump-frames: one 8-bit binary PGM per frame.
 bool dumpFrame(const std::string& dir, const Scene& scene, int index, const std::uint8_t* pixels, int w,
                int h) {
@@ -257,12 +267,9 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       f.far_eq16_distance_m = pipeline->lastFarRange().eq16_distance_m;
       f.far_extent_px = pipeline->lastFarRange().extent_px;
       f.far_extent_distance_m = pipeline->lastFarRange().extent_distance_m;
-      f.far_direction_error_deg =
-          std::acos(
-              std::clamp(pipeline->lastFarRange().direction_c.dot(truth.t_c_m.normalized()), -1.0, 1.0)) *
-          kDegPerRad;
-      const double radius_deg = std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * kDegPerRad;
-      f.far_off_target = f.in_view && f.far_direction_error_deg > radius_deg + th.far_on_target_margin_deg;
+      f.far_direction_error_deg = farDirectionErrorDeg(pipeline->lastFarRange(), truth);
+      f.far_off_target = f.in_view && f.far_direction_error_deg >
+                                          targetAngularRadiusDeg(scene, truth) + th.far_on_target_margin_deg;
     }
     classifyFrame(f, th);
     NearRangeResult o;
@@ -341,9 +348,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         char buf[260];
         // dir_err: the fix's line of sight against the target's (deg); rad: the target's angular radius
         // (deg).
-        const double dir_err_deg =
-            std::acos(std::clamp(fr.direction_c.dot(truth.t_c_m.normalized()), -1.0, 1.0)) * kDegPerRad;
-        const double radius_deg = std::atan(scene.model.boundingRadius() / truth.t_c_m.norm()) * kDegPerRad;
+        const double dir_err_deg = farDirectionErrorDeg(fr, truth);
+        const double radius_deg = targetAngularRadiusDeg(scene, truth);
         std::snprintf(buf, sizeof buf,
                       "       far: valid=%d n=%d raw=%d clusters=%d flags=%04x d=%.1f c=%.3f q=%.2f "
                       "dir_err=%.2fdeg rad=%.2fdeg sharp=%.2f\n",
