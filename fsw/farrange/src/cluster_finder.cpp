@@ -162,6 +162,7 @@ void ClusterFinder::measure(Cluster& c, const Roi& roi) const {
 }
 
 void ClusterFinder::fillHoles(Cluster& c) {
+  c.sharpness_known = false;  // the filled centre is the one measured from
   // Padded box: one free ring around the bounding box, so the exterior is connected and seeded at (0, 0).
   const int bw = c.x_max - c.x_min + 3;
   const int bh = c.y_max - c.y_min + 3;

@@ -231,6 +231,7 @@ bool FarRangeEstimator::hullLacksSharpOutline(const Cluster& c, const OutlineHul
 }
 
 void FarRangeEstimator::adoptHull(Cluster& c, const OutlineHull& h) const {
+  c.sharpness_known = false;
   // The hull stands for the filled silhouette in everything that reads the cluster after selection.
   c.filled_count = static_cast<int>(std::lround(h.area_px));
   c.boundary_count = static_cast<int>(std::lround(h.perimeter_px));

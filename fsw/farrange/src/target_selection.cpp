@@ -22,12 +22,17 @@ int FarRangeEstimator::usedPixels(const Cluster& c) const {
 }
 
 OutlineSharpness FarRangeEstimator::sharpnessOf(const Cluster& c) const {
+  if (c.sharpness_known) return c.sharpness;
   // Only a solid cluster: rays from the centre of a sparse one (a satellite's thin panels at a few hundred
   // metres, 315 px over a 20 px radius) cross thin strips, whose 2 h step is no body's edge.
   constexpr double kPi = 3.141592653589793;
   const int n = c.filled_count > 0 ? c.filled_count : c.pixel_count;
-  if (m_frame.empty() || n < kMinSharpnessFill * kPi * c.max_radius_px * c.max_radius_px) return {};
-  return measureOutlineSharpness(m_frame, usedCentre(c), c.max_radius_px);
+  if (m_frame.empty()) return {};
+  c.sharpness = n < kMinSharpnessFill * kPi * c.max_radius_px * c.max_radius_px
+                    ? OutlineSharpness{}
+                    : measureOutlineSharpness(m_frame, usedCentre(c), c.max_radius_px);
+  c.sharpness_known = true;
+  return c.sharpness;
 }
 
 bool FarRangeEstimator::lacksSharpOutline(const Cluster& c) const {

@@ -9,6 +9,7 @@
 
 #include "visnav/core/bounded_buffer.hpp"
 #include "visnav/core/types.hpp"
+#include "visnav/farrange/outline_sharpness.hpp"
 #include "visnav/farrange/response_filter.hpp"
 
 namespace visnav::far {
@@ -28,6 +29,10 @@ struct Cluster {
   int filled_count = 0;        ///< n with enclosed holes filled (0 until fillHoles())
   Vec2 filled_com_px = Vec2::Zero();
   int boundary_count = 0;  ///< filled pixels with a 4-neighbour outside (0 until fillHoles())
+  /// FarRangeEstimator::sharpnessOf's last result for this cluster as it stands (its centre and radius):
+  /// selection and the fix's report read it once; fillHoles() and a hull's adoption clear it.
+  mutable OutlineSharpness sharpness;
+  mutable bool sharpness_known = false;
 
   /// Half of the bounding box's longer side [px].
   double halfExtentPx() const {
