@@ -80,6 +80,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_branch.setKnown();  // the operator's pose says which branch
   m_branch_reference_pose = pose;
   m_frames_since_branch_reference = 0;
+  m_reference_filter_epoch = m_filter.measurementEpoch();
   m_modes.transition(NavMode::kNearRange, "start: initial pose given", frame_number);
   m_fdir.resetPersistence();
 }
@@ -412,6 +413,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     m_frames_since_valid = 0;
     m_branch_reference_pose = out.pose;
     m_frames_since_branch_reference = 0;
+    m_reference_filter_epoch = m_filter.measurementEpoch();
     flagTwins(out);
   } else if (m_frames_since_valid != ~0ULL) {
     ++m_frames_since_valid;

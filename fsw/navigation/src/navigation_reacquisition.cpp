@@ -32,6 +32,7 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
   if (step.found) {
     m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
     m_near.reset();
+    m_find_on_known_branch = findOnKnownBranch(step.pose);  // against the prediction the find replaces
     startFilterFromReacquisition(step);
     m_fdir.resetPersistence();
     // A find has no track behind it yet, only its confirmation frames: it is doubted like a disputed pose
@@ -39,7 +40,6 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     // before the close-range acquisition was on: wrong frames 165 -> 160 for 0.001 of tracked mean).
     m_track_doubted = true;
     m_doubt_clear_run = 0;
-    m_find_on_known_branch = findOnKnownBranch(step.pose);
     m_find_confirms_branch = m_params.navigation.doubt_clear_frames > 1 && m_find_on_known_branch;
     m_track_twin_by_continuity = step.twin_by_continuity;
     deliver(step.pose, step.covariance, step.quality, out, true);
@@ -59,11 +59,26 @@ bool NavigationPipeline::findOnKnownBranch(const Pose& found) const {
   // as any unknown one does (track_branch.hpp).
   // A reference old enough that its tolerance keeps a quarter turn's twin too tells neither apart
   // (branch_reference_max_look_deg).
-  if (!m_params.navigation.find_confirms_only_from_reference) return true;
-  return m_frames_since_branch_reference != ~0ULL &&
-         m_reacquisition.lookToleranceRad(m_frames_since_branch_reference) <=
-             m_params.navigation.branch_reference_max_look_deg * kRadPerDeg &&
-         m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference, found);
+  const NavigationParams& nav = m_params.navigation;
+  if (!nav.find_confirms_only_from_reference) return true;
+  if (m_frames_since_branch_reference == ~0ULL) return false;
+  if (m_reacquisition.lookToleranceRad(m_frames_since_branch_reference) <=
+          nav.branch_reference_max_look_deg * kRadPerDeg &&
+      m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference, found))
+    return true;
+  // The reference carried to this frame by the rates its track measured (an eclipse coasts on them): a
+  // find that close to it continues that track, however long ago the reference was (campaign plate/10:
+  // re-found 43 frames after its last valid pose, 27 deg from it and 5 deg from its prediction, tumbling
+  // 3.3 deg/s; withheld 3 frames for its rival-free count). The tolerance is fixed, not widened by the
+  // prediction's covariance: a wrong twin is a quarter turn or twice a plate's tilt away.
+  return nav.find_prediction_look_deg > 0.0 && predictionCarriesReference() &&
+         m_reacquisition.symmetries().lookDistanceRad(m_filter.pose(), found) <=
+             nav.find_prediction_look_deg * kRadPerDeg;
+}
+
+bool NavigationPipeline::predictionCarriesReference() const {
+  return m_frames_since_branch_reference != ~0ULL && m_filter.initialised() && m_filter.attitudeKnown() &&
+         m_filter.measurementEpoch() == m_reference_filter_epoch;
 }
 
 void NavigationPipeline::fadeSearchRates() {

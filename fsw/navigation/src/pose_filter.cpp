@@ -79,6 +79,7 @@ LoadError PoseFilter::init(const PoseFilterParams& params) {
 }
 
 void PoseFilter::reset() {
+  ++m_epoch;
   m_initialised = false;
   m_attitude_known = false;
   m_pose = Pose{};
@@ -95,6 +96,7 @@ Status PoseFilter::initialise(const Pose& pose, const Mat6& pose_covariance) {
   Eigen::LDLT<Mat6> ldlt;
   if (!pose.R_c_m.allFinite() || !allFinite(pose.t_c_m) || !factorPositive<6>(p, ldlt))
     return Status::kInvalidArgument;
+  ++m_epoch;
   m_pose = pose;
   m_velocity.setZero();
   m_angular_velocity.setZero();
@@ -202,6 +204,7 @@ Status PoseFilter::initialisePosition(const Vec3& t_c_m, const Mat3& position_co
   const Mat3 p = symmetricPart<3>(position_covariance);
   Eigen::LDLT<Mat3> ldlt;
   if (!allFinite(t_c_m) || !factorPositive<3>(p, ldlt)) return Status::kInvalidArgument;
+  ++m_epoch;
   m_pose = Pose{};
   m_pose.t_c_m = t_c_m;
   m_velocity.setZero();
@@ -347,6 +350,7 @@ FilterUpdate PoseFilter::updateFarRange(const Vec3& direction_c, double distance
 void PoseFilter::inject(const Vec12& dx) {
   // The reset Jacobian of the attitude error (J_r^-1 of the correction: a second-order effect) is neglected,
   // as usual for the small corrections of a tracked target.
+  ++m_epoch;
   m_pose = m_pose.boxPlus(dx.head<6>());
   m_angular_velocity += dx.segment<3>(kAngularVelocity);
   m_velocity += dx.segment<3>(kVelocity);

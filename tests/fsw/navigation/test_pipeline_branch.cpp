@@ -1,6 +1,7 @@
 // Which branch a reacquisition's find continues (track_branch.hpp), end to end on rendered frames: the look
 // of the last valid pose, or of the operator's start pose before any, judges a find; a find continuing a
-// track never delivered, or long after its last valid pose, earns its branch like any other.
+// track never delivered, or long after its last valid pose, earns its branch like any other, unless it lies
+// on that pose as the filter carried it (find_prediction_look_deg).
 #include <gtest/gtest.h>
 
 #include "pipeline_fixture.hpp"
@@ -153,6 +154,82 @@ TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
   EXPECT_EQ(valid_default, found_default) << "a find on the known branch is valid on its own frame";
   EXPECT_EQ(valid_old, found_old + params.navigation.branch_confirm_frames)
       << "a reference too old confirms nothing: the find earns its branch";
+}
+
+TEST_F(PipelineTest, AFindOnTheTurnTheFilterCarriedContinuesTheBranch) {
+  // The plate turns 1.5 deg a frame, is tracked for 16 frames, hidden for 10 (an eclipse: it keeps
+  // turning) and found again 15 deg or more from its last valid pose, whose reference is too old here
+  // (branch_reference_max_look_deg 20 against a tolerance of 15 deg + 1 deg a frame). The filter carried
+  // that pose by the rate the track measured, no measurement since: the find is within
+  // find_prediction_look_deg of that prediction and continues the branch, valid on its own frame (campaign
+  // plate/10: 43 frames after its last valid pose, 27 deg from it, 5 deg from the prediction). With the
+  // rule off it earns its branch with branch_confirm_frames rival-free frames. The plate that stops turning
+  // while hidden (hiddenApproach: the prediction 20 deg off) is left to the reference, above.
+  constexpr int kVisibleUntil = 16;
+  constexpr int kReappears = 26;
+  constexpr int kTurnFrames = 36;
+  std::vector<test::RenderedFrame> seq;
+  synthetic::Renderer empty;
+  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  for (int i = 0; i < kTurnFrames; ++i) {
+    const Pose truth = test::plateAt(15.0, 0.3, 1.0 + 1.5 * i, -1.0);
+    if (i >= kVisibleUntil && i < kReappears) {
+      Pose behind = truth;
+      behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+      seq.push_back(test::renderFrame(empty, behind, 700U + i));
+      seq.back().truth = truth;
+    } else {
+      seq.push_back(test::renderFrame(renderer, truth, 700U + i));
+    }
+  }
+  const auto run = [&](double prediction_look_deg, int& found_at, bool& on_branch) {
+    PipelineParams p = params;
+    p.navigation.branch_reference_max_look_deg = 20.0;
+    p.navigation.find_prediction_look_deg = prediction_look_deg;
+    NavigationPipeline pipeline;
+    EXPECT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    found_at = -1;
+    int first_valid = -1;
+    const std::uint64_t before = test::allocationCount();
+    for (int i = 0; i < kTurnFrames; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      EXPECT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      if (i < kVisibleUntil) {
+        EXPECT_TRUE(out.pose_valid) << "tracked, frame " << i;
+      } else if (i < kReappears) {
+        EXPECT_FALSE(out.pose_valid) << "hidden, frame " << i;
+      }
+      if (found_at < 0 && i >= kReappears && pipeline.lastReacquisition().found) {
+        found_at = i;
+        on_branch = pipeline.lastFindOnKnownBranch();
+      }
+      if (found_at >= 0 && first_valid < 0 && out.pose_valid) {
+        first_valid = i;
+        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(
+                      out.pose.R_c_m, seq[static_cast<std::size_t>(i)].truth.R_c_m) *
+                      kDegPerRad,
+                  2.0);
+      }
+    }
+    EXPECT_EQ(test::allocationCount() - before, 0U);
+    return first_valid;
+  };
+  int found_with = -1;
+  int found_without = -1;
+  bool on_branch_with = false;
+  bool on_branch_without = true;
+  const int valid_with = run(params.navigation.find_prediction_look_deg, found_with, on_branch_with);
+  const int valid_without = run(0.0, found_without, on_branch_without);
+  ASSERT_GE(found_with, kReappears) << "never found again";
+  EXPECT_LE(found_with, kReappears + 3);
+  EXPECT_EQ(found_without, found_with) << "validity does not feed back into the search";
+  EXPECT_TRUE(on_branch_with);
+  EXPECT_FALSE(on_branch_without) << "the reference alone took it: the test compares nothing";
+  EXPECT_EQ(valid_with, found_with) << "a find on the carried prediction is valid on its own frame";
+  EXPECT_GE(valid_without, found_without + params.navigation.branch_confirm_frames)
+      << "without the rule the find earns its branch: at least that many rival-free frames";
 }
 
 /// The plate still at 10 m for kJumpFrame frames, then 5 % farther and still again (12 frames): the fit on

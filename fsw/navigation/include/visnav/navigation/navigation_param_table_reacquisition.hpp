@@ -137,6 +137,13 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
           "wrong 6 -> 2 / 2 -> 2 / 7 -> 7. Stop 52, without the sharpness rule: it removed no confidently "
           "wrong frame on seeds 1-40 and cost 76 tracked frames. 180: the reference never expires"},
          p.branch_reference_max_look_deg);
+  v.real({"navigation", "find_prediction_look_deg", "deg", 0.0, 45.0,
+          "find_confirms_only_from_reference: a find also confirms the branch when the filter still "
+          "carries the last valid pose (or the start pose) by its motion model alone (no measurement or "
+          "restart since: a track that ended valid and coasted) and the find's look is within this of "
+          "that prediction, however old the reference. A fixed tolerance, well inside the nearest twins "
+          "(a quarter turn, twice a plate's tilt). 0: off"},
+         p.find_prediction_look_deg);
   v.boolean({"navigation", "follow_near_twin", "-", 0, 1,
              "while a track's branch is unknown, a near-range fit that left some of its selected lines "
              "unfound (kFlagLineRejected) and whose near twin fits the lines it found as well "

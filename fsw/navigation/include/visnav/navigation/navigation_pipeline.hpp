@@ -121,8 +121,12 @@ class NavigationPipeline {
   /// Restarts the filter from a reacquisition's confirmation: its last two frames give the velocity.
   void startFilterFromReacquisition(const ReacquisitionStep& step);
   /// A find may confirm the track's branch: a valid pose (or the start pose) kept one, and the find's look
-  /// agrees with it (find_confirms_only_from_reference).
+  /// agrees with it (find_confirms_only_from_reference) or with that pose carried by the filter's motion
+  /// alone to this frame (find_prediction_look_deg). Called before the find restarts the filter.
   bool findOnKnownBranch(const Pose& found) const;
+  /// The filter's state is the branch reference's, propagated by its motion model only: no measurement
+  /// and no restart since (PoseFilter::measurementEpoch).
+  bool predictionCarriesReference() const;
   /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
   /// searches too, cued by the prediction; its find is delivered as the step's.
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);
@@ -213,6 +217,7 @@ class NavigationPipeline {
   /// pose when none was valid since it, and the frames since (~0: neither).
   Pose m_branch_reference_pose;
   std::uint64_t m_frames_since_branch_reference = ~0ULL;
+  std::uint64_t m_reference_filter_epoch = 0;  ///< the filter's measurementEpoch() after that reference
   TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;

@@ -108,6 +108,10 @@ class PoseFilter {
   const PoseFilterParams& params() const { return m_params; }
 
   std::uint64_t acceptedUpdates() const { return m_accepted; }
+  /// Counts every change of the state by a measurement or a restart (initialise*, reset, a correction
+  /// applied); predict and the rate changes for a search leave it. Equal counts at two times: the later
+  /// state is the earlier one propagated by the motion model alone.
+  std::uint64_t measurementEpoch() const { return m_epoch; }
   std::uint64_t rejectedUpdates() const { return m_rejected; }
   /// Gated-out updates since the last accepted one (FDIR input).
   std::uint32_t consecutiveRejections() const { return m_consecutive_rejections; }
@@ -142,6 +146,7 @@ class PoseFilter {
   Vec3 m_angular_velocity = Vec3::Zero();
   Mat12 m_covariance = Mat12::Identity();
   std::uint64_t m_accepted = 0;
+  std::uint64_t m_epoch = 0;
   std::uint64_t m_rejected = 0;
   std::uint32_t m_consecutive_rejections = 0;
   double m_noise_scale = 1.0;
