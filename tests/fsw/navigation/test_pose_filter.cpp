@@ -180,6 +180,39 @@ TEST(PoseFilter, OutlierIsGatedAndLeavesTheStateUntouched) {
   EXPECT_EQ(f.consecutiveRejections(), 0U);
 }
 
+// measurementEpoch: what NavigationPipeline reads to know its prediction is the last valid pose carried by
+// the motion model alone (find_prediction_look_deg). Prediction and a search's rate changes leave it; a
+// correction applied, a gated-out one's absence, restarts and a reset are told apart.
+TEST(PoseFilter, MeasurementEpochCountsOnlyWhatAMeasurementOrARestartChanged) {
+  PoseFilter f = makeFilter();
+  Pcg32 rng(5);
+  Truth truth;
+  truth.pose = Pose::fromYpr({0.1, 0.1, 3.1}, Vec3(0.0, 0.0, 10.0));
+  truth.v = Vec3(0.0, 0.0, -0.1);
+  const Mat6 r = trackerLikeCovariance();
+  std::uint64_t epoch = f.measurementEpoch();
+  ASSERT_EQ(f.initialise(truth.pose, r), Status::kOk);
+  EXPECT_GT(f.measurementEpoch(), epoch) << "a restart";
+  for (int k = 0; k < 5; ++k) {
+    truth.step(kDt, 0.0, 0.0, rng);
+    ASSERT_EQ(f.predict(kDt), Status::kOk);
+    epoch = f.measurementEpoch();
+    ASSERT_TRUE(f.update(measure(truth.pose, r, rng), r).accepted);
+    EXPECT_GT(f.measurementEpoch(), epoch) << "an accepted correction, frame " << k;
+  }
+  epoch = f.measurementEpoch();
+  ASSERT_EQ(f.predict(kDt), Status::kOk);
+  (void)f.dropInsignificantRates();
+  ASSERT_EQ(f.scaleRates(0.5), Status::kOk);
+  EXPECT_EQ(f.measurementEpoch(), epoch) << "coasting: the motion model alone";
+  Vec6 jump;
+  jump << 0.0, 0.0, 0.0, 0.3, 0.0, 0.0;  // 30 sigma of the tracker: gated out
+  ASSERT_FALSE(f.update(truth.pose.boxPlus(jump), r).accepted);
+  EXPECT_EQ(f.measurementEpoch(), epoch) << "a rejected measurement changed nothing";
+  f.reset();
+  EXPECT_GT(f.measurementEpoch(), epoch) << "a reset";
+}
+
 TEST(PoseFilter, MissedFramePropagatesTwoPeriodsAndGrowsTheCovariance) {
   PoseFilterParams params;
   PoseFilter one = makeFilter(params), two = makeFilter(params);
