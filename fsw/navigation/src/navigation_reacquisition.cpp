@@ -33,7 +33,15 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
     m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
     m_near.reset();
     m_find_on_known_branch = findOnKnownBranch(step.pose);  // against the prediction the find replaces
+    const bool continues_prediction = findContinuesPrediction(step.pose);
+    const Vec3 carried_rate = m_filter.angularVelocity();
+    const Mat3 carried_rate_covariance =
+        m_filter.covariance().block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kAngularVelocity);
     startFilterFromReacquisition(step);
+    // The rate the coasted filter kept (a search drops the insignificant ones) goes on with the track it
+    // continues; a restart at rest leaves a tumbling target's next fits rejected.
+    if (continues_prediction && m_params.navigation.reacquire_carry_angular_rate && !carried_rate.isZero(0.0))
+      (void)m_filter.carryAngularVelocity(carried_rate, carried_rate_covariance);
     m_fdir.resetPersistence();
     // A find has no track behind it yet, only its confirmation frames: it is doubted like a disputed pose
     // (campaign plate/135: re-found 13.8 deg off with a 1.7 deg 1-sigma; replayed on the full run
@@ -71,9 +79,13 @@ bool NavigationPipeline::findOnKnownBranch(const Pose& found) const {
   // re-found 43 frames after its last valid pose, 27 deg from it and 5 deg from its prediction, tumbling
   // 3.3 deg/s; withheld 3 frames for its rival-free count). The tolerance is fixed, not widened by the
   // prediction's covariance: a wrong twin is a quarter turn or twice a plate's tilt away.
-  return nav.find_prediction_look_deg > 0.0 && predictionCarriesReference() &&
-         m_reacquisition.symmetries().lookDistanceRad(m_filter.pose(), found) <=
-             nav.find_prediction_look_deg * kRadPerDeg;
+  return findContinuesPrediction(found);
+}
+
+bool NavigationPipeline::findContinuesPrediction(const Pose& found) const {
+  const double tolerance_deg = m_params.navigation.find_prediction_look_deg;
+  return tolerance_deg > 0.0 && predictionCarriesReference() &&
+         m_reacquisition.symmetries().lookDistanceRad(m_filter.pose(), found) <= tolerance_deg * kRadPerDeg;
 }
 
 bool NavigationPipeline::predictionCarriesReference() const {

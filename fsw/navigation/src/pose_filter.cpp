@@ -193,6 +193,16 @@ std::uint32_t PoseFilter::dropInsignificantRates() {
   return dropped;
 }
 
+Status PoseFilter::carryAngularVelocity(const Vec3& angular_velocity, const Mat3& covariance) {
+  const Mat3 p = symmetricPart<3>(covariance);
+  Eigen::LDLT<Mat3> ldlt;
+  if (!m_initialised || !m_attitude_known || !allFinite(angular_velocity) || !factorPositive<3>(p, ldlt))
+    return Status::kInvalidArgument;
+  m_angular_velocity = angular_velocity;
+  setUncorrelatedBlock(m_covariance, kAngularVelocity, p);
+  return Status::kOk;
+}
+
 Status PoseFilter::scaleRates(double factor) {
   if (!m_initialised || !(factor >= 0.0 && factor <= 1.0)) return Status::kInvalidArgument;
   m_velocity *= factor;

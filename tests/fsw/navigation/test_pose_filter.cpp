@@ -213,6 +213,34 @@ TEST(PoseFilter, MeasurementEpochCountsOnlyWhatAMeasurementOrARestartChanged) {
   EXPECT_GT(f.measurementEpoch(), epoch) << "a reset";
 }
 
+// carryAngularVelocity: a rate carried over a restart, uncorrelated with the rest, and not a measurement.
+TEST(PoseFilter, ACarriedAngularRateIsSetUncorrelatedAndCheckedAsAnInput) {
+  PoseFilter f = makeFilter();
+  const Vec3 rate(0.0, 0.13, 0.0);
+  const Mat3 rate_cov = 1e-4 * Mat3::Identity();
+  EXPECT_EQ(f.carryAngularVelocity(rate, rate_cov), Status::kInvalidArgument) << "uninitialised";
+  ASSERT_EQ(f.initialise(Pose::fromYpr({0.1, 0.1, 3.1}, Vec3(0.0, 0.0, 10.0)), trackerLikeCovariance()),
+            Status::kOk);
+  const std::uint64_t epoch = f.measurementEpoch();
+  const Mat12 before = f.covariance();
+  EXPECT_EQ(f.carryAngularVelocity(Vec3(std::nan(""), 0.0, 0.0), rate_cov), Status::kInvalidArgument);
+  EXPECT_EQ(f.carryAngularVelocity(rate, -rate_cov), Status::kInvalidArgument);
+  EXPECT_TRUE(f.angularVelocity().isZero(0.0)) << "a refused input left the state";
+  EXPECT_EQ(f.covariance(), before);
+  ASSERT_EQ(f.carryAngularVelocity(rate, rate_cov), Status::kOk);
+  EXPECT_EQ(f.angularVelocity(), rate);
+  const Mat12& p = f.covariance();
+  EXPECT_EQ(Mat3(p.block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kAngularVelocity)), rate_cov);
+  EXPECT_TRUE((p.block<3, 6>(PoseFilter::kAngularVelocity, 0).isZero(0.0)));
+  EXPECT_TRUE((p.block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kVelocity).isZero(0.0)));
+  EXPECT_EQ(Mat6(p.topLeftCorner<6, 6>()), Mat6(before.topLeftCorner<6, 6>())) << "the pose block untouched";
+  EXPECT_EQ(f.measurementEpoch(), epoch) << "not a measurement";
+  // Carried on: the prediction turns at that rate.
+  const Pose start = f.pose();
+  ASSERT_EQ(f.predict(1.0), Status::kOk);
+  EXPECT_NEAR(Eigen::AngleAxisd(f.pose().R_c_m * start.R_c_m.transpose()).angle(), 0.13, 1e-9);
+}
+
 TEST(PoseFilter, MissedFramePropagatesTwoPeriodsAndGrowsTheCovariance) {
   PoseFilterParams params;
   PoseFilter one = makeFilter(params), two = makeFilter(params);

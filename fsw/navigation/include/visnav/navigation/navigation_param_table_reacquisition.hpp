@@ -144,6 +144,12 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
           "that prediction, however old the reference. A fixed tolerance, well inside the nearest twins "
           "(a quarter turn, twice a plate's tilt). 0: off"},
          p.find_prediction_look_deg);
+  v.boolean({"navigation", "reacquire_carry_angular_rate", "-", 0, 1,
+             "a find that lies on the last valid pose as the filter carried it (find_prediction_look_deg) "
+             "restarts the filter with the angular rate it carried, instead of at rest: a tumbling "
+             "target's next fits otherwise disagree with a static prediction and are rejected (campaign "
+             "smallsat/5035: re-found after an 8.6 deg slew, then 5 rejected frames, lost for 38)"},
+            p.reacquire_carry_angular_rate);
   v.boolean({"navigation", "follow_near_twin", "-", 0, 1,
              "while a track's branch is unknown, a near-range fit that left some of its selected lines "
              "unfound (kFlagLineRejected) and whose near twin fits the lines it found as well "

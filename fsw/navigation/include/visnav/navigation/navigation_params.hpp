@@ -85,7 +85,8 @@ struct NavigationParams {
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
   bool find_confirms_only_from_reference = true;  ///< a find confirms the branch only if a valid pose kept it
   double branch_reference_max_look_deg = 45.0;    ///< ... while its look tolerance is within this
-  double find_prediction_look_deg = 8.0;  ///< or within this of that pose carried by the filter (0: off)
+  double find_prediction_look_deg = 8.0;      ///< or within this of that pose carried by the filter (0: off)
+  bool reacquire_carry_angular_rate = false;  ///< such a find restarts the filter with the carried rate
   bool follow_near_twin = true;  ///< an unconfirmed track that lost lines moves to its near twin that fits
 
   template <typename Visitor>

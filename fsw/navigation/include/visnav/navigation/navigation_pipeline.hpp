@@ -127,6 +127,8 @@ class NavigationPipeline {
   /// The filter's state is the branch reference's, propagated by its motion model only: no measurement
   /// and no restart since (PoseFilter::measurementEpoch).
   bool predictionCarriesReference() const;
+  /// That carried prediction holds and `found`'s look is within find_prediction_look_deg of it.
+  bool findContinuesPrediction(const Pose& found) const;
   /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
   /// searches too, cued by the prediction; its find is delivered as the step's.
   void runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& step);

@@ -61,6 +61,12 @@ class PoseFilter {
   Status initialiseFromThree(const Pose& oldest, const Mat6& oldest_covariance, const Pose& middle,
                              const Mat6& middle_covariance, const Pose& current,
                              const Mat6& current_covariance, double first_dt_s, double second_dt_s);
+  /// Sets the angular velocity to `angular_velocity` with covariance `covariance`, uncorrelated with the
+  /// rest: a rate carried over a restart (a reacquisition's find continuing the track the filter coasted,
+  /// NavigationParams::reacquire_carry_angular_rate). Not a measurement: measurementEpoch() is kept.
+  /// kInvalidArgument (state untouched) when uninitialised, the attitude is unknown, the rate is not
+  /// finite or the covariance is not positive definite.
+  Status carryAngularVelocity(const Vec3& angular_velocity, const Mat3& covariance);
   /// What dropInsignificantRates() set to zero (bit set).
   static constexpr std::uint32_t kDroppedVelocity = 1U;
   static constexpr std::uint32_t kDroppedAngularVelocity = 2U;
