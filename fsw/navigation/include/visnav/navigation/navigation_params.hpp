@@ -62,7 +62,7 @@ struct NavigationParams {
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;
-  double reacquire_step_rel = 0.8;              ///< lateral grid step / the wide tracker's capture range
+  double reacquire_step_rel = 0.8;               ///< lateral grid step / the wide tracker's capture range
   double reacquire_growth_px_per_frame = 40.0;  ///< the searched radius widens this much per frame
   int reacquire_confirm_frames = 2;
   bool reacquire_confirm_through_ambiguity = false;  ///< a confirming fit continues the rival-free candidate
@@ -85,8 +85,8 @@ struct NavigationParams {
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
   bool find_confirms_only_from_reference = true;  ///< a find confirms the branch only if a valid pose kept it
   double branch_reference_max_look_deg = 45.0;    ///< ... while its look tolerance is within this
-  double find_prediction_look_deg = 8.0;      ///< or within this of that pose carried by the filter (0: off)
-  bool reacquire_carry_angular_rate = false;  ///< such a find restarts the filter with the carried rate
+  double find_prediction_look_deg = 8.0;     ///< or within this of that pose carried by the filter (0: off)
+  bool reacquire_carry_angular_rate = true;  ///< such a find restarts the filter with the carried rate
   bool follow_near_twin = true;  ///< an unconfirmed track that lost lines moves to its near twin that fits
 
   template <typename Visitor>
