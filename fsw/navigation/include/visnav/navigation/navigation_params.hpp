@@ -62,7 +62,7 @@ struct NavigationParams {
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;
-  double reacquire_step_rel = 0.8;               ///< lateral grid step / the wide tracker's capture range
+  double reacquire_step_rel = 0.8;              ///< lateral grid step / the wide tracker's capture range
   double reacquire_growth_px_per_frame = 40.0;  ///< the searched radius widens this much per frame
   int reacquire_confirm_frames = 2;
   bool reacquire_confirm_through_ambiguity = false;  ///< a confirming fit continues the rival-free candidate
