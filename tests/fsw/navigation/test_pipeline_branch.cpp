@@ -156,7 +156,30 @@ TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
       << "a reference too old confirms nothing: the find earns its branch";
 }
 
-TEST_F(PipelineTest, AFindOnTheTurnTheFilterCarriedContinuesTheBranch) {
+/// A plate 15 m out turning 1.5 deg a frame about the camera's y axis (7.5 deg/s at 5 Hz), visible until
+/// kVisibleUntil, hidden (not drawn: an eclipse, it keeps turning) until kReappears, then visible again.
+class TurningPlateTest : public PipelineTest {
+ protected:
+  static constexpr int kVisibleUntil = 16;
+  static constexpr int kReappears = 26;
+  void renderTurningHiddenPlate(int count, std::vector<test::RenderedFrame>& seq) {
+    synthetic::Renderer empty;
+    ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    for (int i = 0; i < count; ++i) {
+      const Pose truth = test::plateAt(15.0, 0.3, 1.0 + 1.5 * i, -1.0);
+      if (i >= kVisibleUntil && i < kReappears) {
+        Pose behind = truth;
+        behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
+        seq.push_back(test::renderFrame(empty, behind, 700U + i));
+        seq.back().truth = truth;
+      } else {
+        seq.push_back(test::renderFrame(renderer, truth, 700U + i));
+      }
+    }
+  }
+};
+
+TEST_F(TurningPlateTest, AFindOnTheTurnTheFilterCarriedContinuesTheBranch) {
   // The plate turns 1.5 deg a frame, is tracked for 16 frames, hidden for 10 (an eclipse: it keeps
   // turning) and found again 15 deg or more from its last valid pose, whose reference is too old here
   // (branch_reference_max_look_deg 20 against a tolerance of 15 deg + 1 deg a frame). The filter carried
@@ -165,23 +188,9 @@ TEST_F(PipelineTest, AFindOnTheTurnTheFilterCarriedContinuesTheBranch) {
   // plate/10: 43 frames after its last valid pose, 27 deg from it, 5 deg from the prediction). With the
   // rule off it earns its branch with branch_confirm_frames rival-free frames. The plate that stops turning
   // while hidden (hiddenApproach: the prediction 20 deg off) is left to the reference, above.
-  constexpr int kVisibleUntil = 16;
-  constexpr int kReappears = 26;
   constexpr int kTurnFrames = 36;
   std::vector<test::RenderedFrame> seq;
-  synthetic::Renderer empty;
-  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-  for (int i = 0; i < kTurnFrames; ++i) {
-    const Pose truth = test::plateAt(15.0, 0.3, 1.0 + 1.5 * i, -1.0);
-    if (i >= kVisibleUntil && i < kReappears) {
-      Pose behind = truth;
-      behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
-      seq.push_back(test::renderFrame(empty, behind, 700U + i));
-      seq.back().truth = truth;
-    } else {
-      seq.push_back(test::renderFrame(renderer, truth, 700U + i));
-    }
-  }
+  ASSERT_NO_FATAL_FAILURE(renderTurningHiddenPlate(kTurnFrames, seq));
   const auto run = [&](double prediction_look_deg, int& found_at, bool& on_branch) {
     PipelineParams p = params;
     p.navigation.branch_reference_max_look_deg = 20.0;
@@ -232,29 +241,14 @@ TEST_F(PipelineTest, AFindOnTheTurnTheFilterCarriedContinuesTheBranch) {
       << "without the rule the find earns its branch: at least that many rival-free frames";
 }
 
-TEST_F(PipelineTest, AFindOnTheCarriedTurnRestartsTheFilterWithTheCarriedRate) {
-  // The plate of the test above, turning 1.5 deg a frame (7.5 deg/s at 5 Hz) about the camera's y axis,
-  // hidden 10 frames. Its find continues the carried prediction: with reacquire_carry_angular_rate the
-  // filter restarts with the rate it carried through the search (a tumbling target's next fits otherwise
-  // meet a prediction at rest), without it near rest (startFilterFromReacquisition sets the frame before
-  // to the find's attitude).
-  constexpr int kVisibleUntil = 16;
-  constexpr int kReappears = 26;
+TEST_F(TurningPlateTest, AFindOnTheCarriedTurnRestartsTheFilterWithTheCarriedRate) {
+  // The turning plate hidden 10 frames, as above. Its find continues the carried prediction: with
+  // reacquire_carry_angular_rate the filter restarts with the rate it carried through the search (a tumbling
+  // target's next fits otherwise meet a prediction at rest), without it near rest
+  // (startFilterFromReacquisition sets the frame before to the find's attitude).
   constexpr int kTurnFrames = 30;
   std::vector<test::RenderedFrame> seq;
-  synthetic::Renderer empty;
-  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-  for (int i = 0; i < kTurnFrames; ++i) {
-    const Pose truth = test::plateAt(15.0, 0.3, 1.0 + 1.5 * i, -1.0);
-    if (i >= kVisibleUntil && i < kReappears) {
-      Pose behind = truth;
-      behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
-      seq.push_back(test::renderFrame(empty, behind, 700U + i));
-      seq.back().truth = truth;
-    } else {
-      seq.push_back(test::renderFrame(renderer, truth, 700U + i));
-    }
-  }
+  ASSERT_NO_FATAL_FAILURE(renderTurningHiddenPlate(kTurnFrames, seq));
   const auto rate_after_find = [&](bool carry, Vec3& carried) {
     PipelineParams p = params;
     p.navigation.reacquire_carry_angular_rate = carry;
