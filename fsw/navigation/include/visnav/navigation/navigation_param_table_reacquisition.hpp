@@ -156,7 +156,9 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
        "target's next fits otherwise disagree with a static prediction and are rejected (campaign "
        "smallsat/5035: re-found after an 8.6 deg slew, then 5 rejected frames, lost for 38; with it "
        "148 of 151 tracked). Stop 58, seeds 1-40 / 5001-5040 / 7001-7040 with the growth at 120: "
-       "tracked frames 14 819 -> 14 841 / 14 852 -> 14 890 / 15 320 -> 15 324, confidently wrong unchanged"},
+       "tracked frames 14 819 -> 14 841 / 14 852 -> 14 890 / 15 320 -> 15 324, confidently wrong unchanged; "
+       "at the shipped 40, with find_prediction_look_deg, against stop 57: 14 675 -> 14 710 / 14 861 -> "
+       "14 865 / 15 315 -> 15 319 (octagon/32 133 -> 103 with the rate, smallsat/14 7 -> 34)"},
       p.reacquire_carry_angular_rate);
   v.boolean({"navigation", "follow_near_twin", "-", 0, 1,
              "while a track's branch is unknown, a near-range fit that left some of its selected lines "
