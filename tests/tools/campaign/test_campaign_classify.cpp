@@ -232,6 +232,38 @@ TEST(CampaignClassify, FarFixesOffTheTargetAreCountedOnFramesWithTheTargetInView
   EXPECT_EQ(r.result.far_off_target, 2) << "frame 9's fix is off but the target was not in view";
 }
 
+TEST(CampaignRecovery, TheSummaryCountsEachKindAgainstTheFiveFrameTarget) {
+  // The target per event: tracked again within kRecoveryTargetFrames (5) of a slew, an eclipse's
+  // end, a reappearance or a loss. Scene 1: an eclipse end recovered in 2, a slew in 6; scene 2: a loss in
+  // 1 and a loss never recovered. Printed as one summary line and in the JSON's groups.
+  std::vector<SceneRun> runs;
+  runs.push_back(fakeRun("box/1", 1, "TTEEELLTTsLLLLLLTT", 0, 0));
+  runs.push_back(fakeRun("box/2", 2, "TTLTTTLLL", 0, 0));
+  const auto groups = summariseAll(runs);
+  ASSERT_FALSE(groups.empty());
+  const GroupSummary& all = groups[0];
+  const auto kind = [&](EventKind k) { return all.recovery_by_kind[static_cast<std::size_t>(k)]; };
+  EXPECT_EQ(kind(EventKind::kEclipseEnd).events, 1);
+  EXPECT_EQ(kind(EventKind::kEclipseEnd).within_target, 1);
+  EXPECT_EQ(kind(EventKind::kSlew).events, 1);
+  EXPECT_EQ(kind(EventKind::kSlew).within_target, 0) << "6 frames: over the target";
+  EXPECT_EQ(kind(EventKind::kSlew).never, 0);
+  EXPECT_EQ(kind(EventKind::kLoss).events, 2);
+  EXPECT_EQ(kind(EventKind::kLoss).within_target, 1);
+  EXPECT_EQ(kind(EventKind::kLoss).never, 1);
+  EXPECT_EQ(kind(EventKind::kReappear).events, 0);
+  EXPECT_EQ(all.recovery_events, 4);
+  const std::string text = summaryTable(groups, runs, false);
+  EXPECT_NE(text.find("slew 0/1 (0); eclipse_end 1/1 (0); reappear 0/0 (0); loss 1/2 (1)"), std::string::npos)
+      << text;
+  CampaignOptions o;
+  o.timing = false;
+  std::ostringstream json;
+  writeJson(json, o, runs, groups, checkGates(runs, Gates{}));
+  EXPECT_NE(json.str().find("\"loss\": {\"events\": 2, \"within_target\": 1, \"never\": 1}"),
+            std::string::npos);
+}
+
 TEST(CampaignGates, WorstSceneAndVerdicts) {
   std::vector<SceneRun> runs;
   runs.push_back(fakeRun("box/1", 1, "TTTTTTTTTT", 0, 0));

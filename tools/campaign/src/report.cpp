@@ -35,6 +35,19 @@ std::string distributionJson(const Distribution& d) {
          ", \"median\": " + num(d.median) + ", \"p95\": " + num(d.p95) + ", \"max\": " + num(d.max) + "}";
 }
 
+/// "slew": {"events": n, "within_target": n, "never": n}, ... for GroupSummary::recovery_by_kind.
+std::string recoveryByKindJson(const GroupSummary& g) {
+  std::string out;
+  for (int k = 0; k < kEventKindCount; ++k) {
+    const GroupSummary::KindRecovery& r = g.recovery_by_kind[static_cast<std::size_t>(k)];
+    out += std::string(k == 0 ? "" : ", ") + "\"" + toString(static_cast<EventKind>(k)) +
+           "\": {\"events\": " + std::to_string(r.events) +
+           ", \"within_target\": " + std::to_string(r.within_target) +
+           ", \"never\": " + std::to_string(r.never) + "}";
+  }
+  return out;
+}
+
 std::string sceneRef(const SceneRun* r) {
   return r == nullptr ? std::string("null") : eval::jsonString(r->scene.name);
 }
@@ -154,6 +167,16 @@ std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vec
     }
     o << "; never in " << all.acquisition_never << "\n";
   }
+  if (all.recovery_events > 0) {
+    o << "recovery events tracked again within " << kRecoveryTargetFrames << " frames / events (never):";
+    for (int k = 0; k < kEventKindCount; ++k) {
+      const GroupSummary::KindRecovery& r = all.recovery_by_kind[static_cast<std::size_t>(k)];
+      std::snprintf(buf, sizeof(buf), "%s %s %d/%d (%d)", k == 0 ? "" : ";",
+                    toString(static_cast<EventKind>(k)), r.within_target, r.events, r.never);
+      o << buf;
+    }
+    o << "\n";
+  }
   if (all.far_fixes > 0) {
     std::snprintf(
         buf, sizeof(buf),
@@ -251,7 +274,8 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
       << ", \"worst_wrong_scene\": " << sceneRef(g.worst_wrong)
       << ",\n      \"recovery_events\": " << g.recovery_events << ", \"recovery_never\": " << g.recovery_never
       << ", \"recovery_latency\": " << distributionJson(g.recovery)
-      << ", \"worst_recovery_scene\": " << sceneRef(g.worst_recovery)
+      << ", \"worst_recovery_scene\": " << sceneRef(g.worst_recovery) << ", \"recovery_by_event\": {"
+      << recoveryByKindJson(g) << "}"
       << ",\n      \"mode_changes_near\": " << distributionJson(g.mode_changes_near)
       << ", \"mode_changes_approach\": " << distributionJson(g.mode_changes_approach)
       << ", \"worst_modes_scene\": " << sceneRef(g.worst_modes)

@@ -58,6 +58,10 @@ GroupSummary summarise(const std::string& name, const std::vector<const SceneRun
     }
     for (const RecoveryEvent& e : r.events) {
       ++g.recovery_events;
+      GroupSummary::KindRecovery& k = g.recovery_by_kind[static_cast<std::size_t>(e.kind)];
+      ++k.events;
+      k.never += e.latency < 0 ? 1 : 0;
+      k.within_target += e.latency >= 0 && e.latency <= kRecoveryTargetFrames ? 1 : 0;
       if (e.latency < 0) {
         ++g.recovery_never;
         if (!worst_never) {

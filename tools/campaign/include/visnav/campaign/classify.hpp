@@ -108,6 +108,7 @@ bool poseErrorIsWrong(double position_error_m, double range_m, double attitude_e
 void classifyFrame(FrameOutcome& f, const Thresholds& th = {});
 
 enum class EventKind { kSlew = 0, kEclipseEnd, kReappear, kLoss };
+constexpr int kEventKindCount = 4;
 const char* toString(EventKind kind);
 
 struct RecoveryEvent {

@@ -34,6 +34,9 @@ Distribution distribution(std::vector<double> values);
 constexpr double kNisGate = 22.46;
 constexpr int kModeCount = 4;  ///< nav::NavMode values
 
+/// The recovery target: tracked again within this many frames of the event (the per-kind counts).
+constexpr int kRecoveryTargetFrames = 5;
+
 struct GroupSummary {
   std::string name;  ///< family name or "overall"
   int scenes = 0;
@@ -53,7 +56,14 @@ struct GroupSummary {
   const SceneRun* worst_wrong = nullptr;  ///< most confidently wrong frames
   int recovery_events = 0;
   int recovery_never = 0;
-  Distribution recovery;                     ///< latencies of the events that recovered [frames]
+  Distribution recovery;  ///< latencies of the events that recovered [frames]
+  /// Per EventKind: events, those tracked again within kRecoveryTargetFrames, and those never.
+  struct KindRecovery {
+    int events = 0;
+    int within_target = 0;
+    int never = 0;
+  };
+  std::array<KindRecovery, kEventKindCount> recovery_by_kind{};
   const SceneRun* worst_recovery = nullptr;  ///< a "never", else the largest latency
   Distribution mode_changes_near;
   Distribution mode_changes_approach;
