@@ -32,8 +32,9 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
   if (step.found) {
     m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
     m_near.reset();
-    m_find_on_known_branch = findOnKnownBranch(step.pose);  // against the prediction the find replaces
+    // Both judged against the prediction the find replaces, before the restart.
     const bool continues_prediction = findContinuesPrediction(step.pose);
+    m_find_on_known_branch = continues_prediction || findOnKnownBranch(step.pose);
     const Vec3 carried_rate = m_filter.angularVelocity();
     const Mat3 carried_rate_covariance =
         m_filter.covariance().block<3, 3>(PoseFilter::kAngularVelocity, PoseFilter::kAngularVelocity);
@@ -67,22 +68,20 @@ bool NavigationPipeline::findOnKnownBranch(const Pose& found) const {
   // as any unknown one does (track_branch.hpp).
   // A reference old enough that its tolerance keeps a quarter turn's twin too tells neither apart
   // (branch_reference_max_look_deg).
-  const NavigationParams& nav = m_params.navigation;
-  if (!nav.find_confirms_only_from_reference) return true;
-  if (m_frames_since_branch_reference == ~0ULL) return false;
-  if (m_reacquisition.lookToleranceRad(m_frames_since_branch_reference) <=
-          nav.branch_reference_max_look_deg * kRadPerDeg &&
-      m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference, found))
-    return true;
+  // A find may still continue it as the filter carried it (findContinuesPrediction).
+  if (!m_params.navigation.find_confirms_only_from_reference) return true;
+  return m_frames_since_branch_reference != ~0ULL &&
+         m_reacquisition.lookToleranceRad(m_frames_since_branch_reference) <=
+             m_params.navigation.branch_reference_max_look_deg * kRadPerDeg &&
+         m_reacquisition.lookConsistentWith(m_branch_reference_pose, m_frames_since_branch_reference, found);
+}
+
+bool NavigationPipeline::findContinuesPrediction(const Pose& found) const {
   // The reference carried to this frame by the rates its track measured (an eclipse coasts on them): a
   // find that close to it continues that track, however long ago the reference was (campaign plate/10:
   // re-found 43 frames after its last valid pose, 27 deg from it and 5 deg from its prediction, tumbling
   // 3.3 deg/s; withheld 3 frames for its rival-free count). The tolerance is fixed, not widened by the
   // prediction's covariance: a wrong twin is a quarter turn or twice a plate's tilt away.
-  return findContinuesPrediction(found);
-}
-
-bool NavigationPipeline::findContinuesPrediction(const Pose& found) const {
   const double tolerance_deg = m_params.navigation.find_prediction_look_deg;
   return tolerance_deg > 0.0 && predictionCarriesReference() &&
          m_reacquisition.symmetries().lookDistanceRad(m_filter.pose(), found) <= tolerance_deg * kRadPerDeg;

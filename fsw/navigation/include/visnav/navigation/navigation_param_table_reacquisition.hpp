@@ -25,9 +25,11 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
          p.reacquire_step_rel);
   v.real({"navigation", "reacquire_growth_px_per_frame", "px", 1.0, 10000.0,
           "close-range reacquisition: the searched radius around the prediction grows this much per frame. "
-          "Stop 58 measured 120 (with find_prediction_look_deg): tracked frames +116 / -9 / +5 on seeds "
-          "1-40 / 5001-5040 / 7001-7040, slews recovered within 5 frames 29 -> 31 of 38 on the first set "
-          "only, confidently wrong unchanged; but the wider disc coarsens the outline cue (its window is "
+          "Stop 58 measured 120 with find_prediction_look_deg: tracked frames 14 703 -> 14 819 on seeds "
+          "1-40 against that rule alone, 14 861 -> 14 852 and 15 315 -> 15 320 on seeds 5001-5040 and "
+          "7001-7040 against stop 57 (rule included), slews recovered within 5 frames 29 -> 31 of 38 on "
+          "the first set only, confidently wrong unchanged; but the wider disc coarsens the outline cue (its "
+          "window is "
           "160 working px a side), and octagon/167's 7.8 deg slew (96 px) with the confirmation through "
           "ambiguity was then found 60 frames late (0.669 -> 0.561 tracked). Kept at 40"},
          p.reacquire_growth_px_per_frame);

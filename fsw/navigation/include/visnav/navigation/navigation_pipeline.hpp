@@ -121,13 +121,14 @@ class NavigationPipeline {
   /// Restarts the filter from a reacquisition's confirmation: its last two frames give the velocity.
   void startFilterFromReacquisition(const ReacquisitionStep& step);
   /// A find may confirm the track's branch: a valid pose (or the start pose) kept one, and the find's look
-  /// agrees with it (find_confirms_only_from_reference) or with that pose carried by the filter's motion
-  /// alone to this frame (find_prediction_look_deg). Called before the find restarts the filter.
+  /// agrees with it (find_confirms_only_from_reference). A find that agrees with that pose carried by the
+  /// filter's motion alone (findContinuesPrediction) is on it too; runReacquisition asks both.
   bool findOnKnownBranch(const Pose& found) const;
   /// The filter's state is the branch reference's, propagated by its motion model only: no measurement
   /// and no restart since (PoseFilter::measurementEpoch).
   bool predictionCarriesReference() const;
-  /// That carried prediction holds and `found`'s look is within find_prediction_look_deg of it.
+  /// That carried prediction holds and `found`'s look is within find_prediction_look_deg of it. Judged
+  /// before the find restarts the filter.
   bool findContinuesPrediction(const Pose& found) const;
   /// After reacquire_acquisition_after_frames of local search: the acquisition, idle in near range,
   /// searches too, cued by the prediction; its find is delivered as the step's.
