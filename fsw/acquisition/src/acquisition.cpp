@@ -287,7 +287,9 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
   if (unresolvedNearTwin(m_verified[0].pose)) return fail(AcquisitionFailure::kAmbiguous);
   m_current = 0;
   challengeByNearTwin(image, frame_number, out);
-  m_pose = m_verified[0].pose;
+  m_followed.restart(m_verified[0].pose, m_verified[0].covariance);
+  m_previous_pose = m_verified[0].pose;
+  m_previous_covariance = m_verified[0].covariance;
   m_confirmer.reset();
   m_confirmed = 0;
   m_confirm_frames_run = 0;
@@ -333,13 +335,16 @@ Status Acquisition::step(const MonoImage& image, std::uint64_t frame_number, Acq
   out.candidates_verified = static_cast<int>(m_verified.size());
   out.twin_resolved_by_continuity = m_twin_by_continuity;
   out.best_score = m_best_score;
-  out.pose = m_pose;
+  out.pose = m_followed.pose;
   if (m_state == AcquisitionState::kSucceeded) {
     out.pose = m_last.pose;
     out.covariance = m_last.covariance;
     out.quality = m_last.quality;
     out.rms_px = m_last.rms_px;
     out.tracker_flags = m_last.flags;
+    out.has_previous = m_params.confirm_follows_motion && m_confirmed > 0;
+    out.previous_pose = m_previous_pose;
+    out.previous_covariance = m_previous_covariance;
   }
   return status;
 }

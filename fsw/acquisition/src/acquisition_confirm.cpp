@@ -3,6 +3,7 @@
 // both must pass. Never a coin toss: a rival that keeps up means failure `ambiguous`.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <utility>
 
 #include "visnav/acquisition/acquisition.hpp"
@@ -76,7 +77,7 @@ void Acquisition::chooseRival() {
                    !(best_continuous && !looksContinuous(m_mirror_pose));
   if (rival != nullptr && rival->score >= best.score - m_params.rival_margin) {
     m_rival_alive = true;
-    m_rival_pose = rival->pose;
+    m_rival.restart(rival->pose, rival->covariance);
     m_rival_confirmer.reset();
   }
 }
@@ -175,19 +176,70 @@ void Acquisition::challengeByNearTwin(const MonoImage& image, std::uint64_t fram
                                  m_near_twin, out);
 }
 
+bool Acquisition::shiftedStart(const Pose& pose, Pose& start) {
+  // The candidate's outline slid over this frame's coarse evidence, no further than a target moves in a
+  // frame (confirm_max_motion_rel of the depth, confirmStep's own limit), then to the fine evidence.
+  const double scale = static_cast<double>(m_window.scale());
+  const double max_shift_px = m_params.confirm_max_motion_rel * m_camera.intrinsics().fx_px / scale;
+  const double step_px = static_cast<double>(std::max(1, m_params.coarse_spread_px));
+  ShiftPeak best;
+  if (m_scorer.bestShifts(pose, m_window, max_shift_px, step_px, step_px, &best, 1) < 1) return false;
+  start = m_scorer.shifted(pose, m_window, best.shift);
+  return true;
+}
+
+void Acquisition::followTo(Followed& followed, const NearRangeResult& fit) const {
+  // Only the motion across the line of sight: the last position taken to this fit's range (the depth
+  // difference of two single fits is their noise, a far target's few per cent). It is motion where the
+  // two fits agree in range within what a target moves in a frame (confirm_max_motion_rel: far out a fit
+  // that jumped 29 -> 24 m also moved its origin's bearing, cao/27) and where it is significant against
+  // the two fits' position covariance (a still target's step is their noise; chi-square 3 dof, 99 %).
+  constexpr double kStepChi2 = 11.34;
+  const double last_range_m = followed.pose.t_c_m.norm();
+  const double range_m = fit.pose.t_c_m.norm();
+  const Mat3 position_covariance = fit.covariance.bottomRightCorner<3, 3>();
+  followed.moving = false;
+  followed.step_m.setZero();
+  if (last_range_m > 0.0 &&
+      std::abs(range_m - last_range_m) <= m_params.confirm_max_motion_rel * followed.pose.t_c_m.z()) {
+    followed.step_m = fit.pose.t_c_m - followed.pose.t_c_m * (range_m / last_range_m);
+    const Eigen::LDLT<Mat3> factor(followed.position_covariance + position_covariance);
+    followed.moving = factor.info() == Eigen::Success && factor.isPositive() &&
+                      followed.step_m.dot(factor.solve(followed.step_m)) > kStepChi2;
+  }
+  followed.position_covariance = position_covariance;
+  followed.pose = fit.pose;
+}
+
 bool Acquisition::confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
-                              Pose& pose, NearRangeResult& r, double& agreement) {
+                              Followed& followed, NearRangeResult& r, double& agreement) {
   // One confirmation frame: the pose keeps tracking with the flight settings, moves as a rigid target can
-  // between two frames, and keeps explaining the window's edges both ways.
-  tracker.track(image, pose, frame_number, r);
-  if (!acceptable(r)) return false;
+  // between two frames, and keeps explaining the window's edges both ways. With confirm_follows_motion a
+  // pose that moves is predicted by its step over the frame before, as the filter predicts a track, and the
+  // motion test asks how far it left that prediction; a pose lost from its start is tracked again from
+  // where its outline went on this frame (shiftedStart): a target crossing the image faster than the
+  // scanlines reach was lost on every confirmation frame (campaign cao/1, 19 px a frame).
+  const bool follow = m_params.confirm_follows_motion;
+  Pose start = followed.pose;
+  if (follow && followed.moving) start.t_c_m += followed.step_m;
+  tracker.track(image, start, frame_number, r);
+  bool tracked = acceptable(r);
+  if (!tracked && follow) {
+    Pose shifted;
+    if (shiftedStart(start, shifted)) {
+      tracker.reset();
+      tracker.track(image, shifted, frame_number, r);
+      tracked = acceptable(r);
+    }
+  }
+  if (!tracked) return false;
   // What a target can move in one frame, plus what the tracker cannot resolve: the first flight-tracker pass
   // moves a far plate's weakly observed tilt by more than a target can turn.
-  const bool consistent = PoseTolerance::widened(m_params.confirm_max_motion_rel * pose.t_c_m.z(),
+  const bool consistent = PoseTolerance::widened(m_params.confirm_max_motion_rel * start.t_c_m.z(),
                                                  m_params.confirm_max_rotation_deg * kRadPerDeg, r.covariance)
-                              .holds(r.pose, pose);
+                              .holds(r.pose, start);
   agreement = agreementF1(r.pose);
-  pose = r.pose;
+  followTo(followed, r);
   return consistent && agreement >= m_params.min_confirm_agreement;
 }
 
@@ -203,7 +255,9 @@ bool Acquisition::nextCandidate(const MonoImage& image, std::uint64_t frame_numb
     current = Verified{evidenceScore(r), r.rms_px, r.quality, r.pose, r.covariance};
     ++out.score_evaluations;
     challengeByNearTwin(image, frame_number, out);
-    m_pose = current.pose;
+    m_followed.restart(current.pose, current.covariance);
+    m_previous_pose = current.pose;
+    m_previous_covariance = current.covariance;
     m_confirmed = 0;
     m_confirm_frames_run = 0;
     m_confirmer.reset();
@@ -219,9 +273,14 @@ void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, Ac
   NearRangeResult r;
   double agreement = 0.0;
   ++out.tracker_calls;
-  if (!confirmStep(m_confirmer, image, frame_number, m_pose, r, agreement)) {
+  const Pose before = m_followed.pose;
+  if (!confirmStep(m_confirmer, image, frame_number, m_followed, r, agreement)) {
     if (!nextCandidate(image, frame_number, out)) fail(AcquisitionFailure::kNotConfirmed);
     return;
+  }
+  if (m_confirmed > 0) {  // else the verification's, set with the candidate
+    m_previous_pose = before;
+    m_previous_covariance = m_last.covariance;
   }
   m_last = r;
   ++m_confirmed;
@@ -231,7 +290,7 @@ void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, Ac
     // the tracker holds it apart from the pose and the window's edges cannot tell the two apart.
     double mirror_score = 0.0;
     const Verified current{score, r.rms_px, r.quality, r.pose, r.covariance};
-    m_mirror_pose = m_symmetries.mirrorTwin(m_pose, m_mirror);
+    m_mirror_pose = m_symmetries.mirrorTwin(m_followed.pose, m_mirror);
     m_mirror_alive =
         mirrorTwinScore(m_verifier, image, frame_number, current, m_mirror_pose, mirror_score, out) &&
         mirror_score >= score - m_params.rival_margin;
@@ -241,7 +300,7 @@ void Acquisition::confirm(const MonoImage& image, std::uint64_t frame_number, Ac
     double rival_agreement = 0.0;
     ++out.tracker_calls;
     const bool rival_tracks =
-        confirmStep(m_rival_confirmer, image, frame_number, m_rival_pose, rival, rival_agreement);
+        confirmStep(m_rival_confirmer, image, frame_number, m_rival, rival, rival_agreement);
     const double rival_score = rival_agreement - m_params.rms_weight * rival.rms_px;
     m_rival_alive = rival_tracks && rival_score >= score - m_params.rival_margin;
   }

@@ -276,7 +276,12 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
   step.found = true;
   step.by_acquisition = true;
   step.twin_by_continuity = result.twin_resolved_by_continuity;
-  step.has_previous = false;
+  // The confirmation's frame before, where it followed the target's motion: the filter leaves with that
+  // motion (startFilterFromReacquisition) instead of at rest, which a target crossing the image 19 px a frame
+  // outran on the next frame (campaign cao/1).
+  step.has_previous = result.has_previous;
+  step.previous_pose = result.previous_pose;
+  step.previous_covariance = result.previous_covariance;
   step.status =
       result.rms_px > m_params.nearrange.degraded_rms_px ? TrackStatus::kDegraded : TrackStatus::kTracking;
   step.pose = result.pose;

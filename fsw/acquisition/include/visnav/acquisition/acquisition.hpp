@@ -64,6 +64,11 @@ struct AcquisitionResult {
   /// The candidate has a near twin too close to resolve in the image that only continuity with the look
   /// reference (setLookReference) told apart: the ambiguity is real, the choice is the track's.
   bool twin_resolved_by_continuity = false;
+  /// Succeeded with confirm_follows_motion: the confirmed pose on the frame before (the last confirmation
+  /// frame's, or the verification's) and its covariance, whose difference from `pose` is the target's motion.
+  bool has_previous = false;
+  Pose previous_pose;
+  Mat6 previous_covariance = Mat6::Zero();
 };
 
 /// A coarse-search survivor (debug view): grid attitude with its distance and lateral alignment.
@@ -127,7 +132,7 @@ class Acquisition {
   /// While confirming: whether a rival is tracked alongside the candidate, and where it is (diagnostics);
   /// the same for the candidate's depth-reversed twin.
   bool rivalAlive() const { return m_state == AcquisitionState::kConfirming && m_rival_alive; }
-  const Pose& rivalPose() const { return m_rival_pose; }
+  const Pose& rivalPose() const { return m_rival.pose; }
   bool mirrorAlive() const { return m_state == AcquisitionState::kConfirming && m_mirror_alive; }
   const Pose& mirrorPose() const { return m_mirror_pose; }
 
@@ -145,8 +150,28 @@ class Acquisition {
                       int passes, Pose& pose, NearRangeResult& result, AcquisitionResult& out) const;
   bool acceptable(const NearRangeResult& r) const;
   void confirm(const MonoImage& image, std::uint64_t frame_number, AcquisitionResult& out);
-  bool confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number, Pose& pose,
-                   NearRangeResult& r, double& agreement);
+  /// A pose followed through confirmation: where it was on the last frame (with its position covariance),
+  /// and its step across the line of sight since the frame before (confirm_follows_motion). `moving`: that
+  /// step is motion, not the two fits' noise, and predicts the next frame.
+  struct Followed {
+    Pose pose;
+    Mat3 position_covariance = Mat3::Zero();
+    Vec3 step_m = Vec3::Zero();
+    bool moving = false;
+    void restart(const Pose& at, const Mat6& covariance) {
+      pose = at;
+      position_covariance = covariance.bottomRightCorner<3, 3>();
+      step_m.setZero();
+      moving = false;
+    }
+  };
+  bool confirmStep(NearRangeTracker& tracker, const MonoImage& image, std::uint64_t frame_number,
+                   Followed& followed, NearRangeResult& r, double& agreement);
+  /// Sets `followed`'s step from its last pose to `fit` (this frame's), and takes `fit` as its pose.
+  void followTo(Followed& followed, const NearRangeResult& fit) const;
+  /// A start for `pose` on this frame from the best shift of its outline over the window's coarse evidence,
+  /// within what a target can move in a frame (confirm_follows_motion). False when no shift scores.
+  bool shiftedStart(const Pose& pose, Pose& start);
   void chooseRival();
   /// True when a near twin of `pose` moves the model's vertices less than near_twin_min_separation_px and
   /// the look reference does not tell the two apart; where it keeps the twin and not `pose`, `pose` becomes
@@ -198,7 +223,7 @@ class Acquisition {
   int m_confirmed = 0;
   int m_confirm_frames_run = 0;
   bool m_rival_alive = false;
-  Pose m_rival_pose;
+  Followed m_rival;
   bool m_has_near_twin = false;  ///< m_near_twin is a near-symmetric twin of the current candidate
   Verified m_near_twin;
   int m_mirror = -1;  ///< the current candidate's best depth-reversed twin (mirrorTwin index), -1: none
@@ -209,7 +234,9 @@ class Acquisition {
   Pose m_look_reference;
   double m_look_tolerance_rad = 0.0;
   bool m_twin_by_continuity = false;  ///< the current candidate's unresolvable twin was refused by continuity
-  Pose m_pose;
+  Followed m_followed;                ///< the candidate under confirmation
+  Pose m_previous_pose;               ///< the candidate's confirmed pose on the frame before m_last's
+  Mat6 m_previous_covariance = Mat6::Zero();
   NearRangeResult m_last;
 };
 

@@ -49,6 +49,7 @@ struct AcquisitionParams {
   int max_confirm_frames = 8;
   double confirm_max_motion_rel = 0.05;
   double confirm_max_rotation_deg = 5.0;
+  bool confirm_follows_motion = true;
   double window_margin = 1.15;
 
   template <typename Visitor>
@@ -205,6 +206,17 @@ struct AcquisitionParams {
     v.real({"acquisition", "confirm_max_rotation_deg", "deg", 0.01, 180.0,
             "consistency with the predicted motion: largest attitude change per confirmation frame"},
            confirm_max_rotation_deg);
+    v.boolean(
+        {"acquisition", "confirm_follows_motion", "-", 0, 1,
+         "a candidate under confirmation that moved across the line of sight between its last two fits "
+         "(significant against their covariance, the two in range within confirm_max_motion_rel) starts the "
+         "next frame moved on by that step, and the motion test is taken against that prediction; one the "
+         "flight tracker loses from its start is tracked again on that frame from the best shift of its "
+         "outline over the window's coarse evidence, within confirm_max_motion_rel; the confirmed pose's "
+         "frame before starts the filter with the motion between the two (a target crossing the image 19 "
+         "px a frame left the 10 px scanlines on every confirmation frame, campaign cao/1). false: each "
+         "frame starts where the last one ended, and the filter at rest"},
+        confirm_follows_motion);
     v.real({"acquisition", "window_margin", "-", 1.0, 4.0,
             "search window half size = window_margin x the target's radius at the nearest distance covered "
             "(+ the direction margin): room for the centroid bias of partly visible edges"},

@@ -36,7 +36,7 @@ struct ReacquisitionStep {
   /// found: the confirmation's pose on the frame before (the target's motion between the two starts the
   /// filter's velocity; a target moving 16 px a frame outruns the flight tracker's scanlines at zero
   /// velocity).
-  bool has_previous = false;  ///< previous_pose is set (not after an acquisition's find)
+  bool has_previous = false;  ///< previous_pose is set: the find's pose on the frame before
   Pose previous_pose;
   Mat6 previous_covariance = Mat6::Zero();
   /// found by the acquisition that searches alongside after reacquire_acquisition_after_frames
