@@ -54,6 +54,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
   m_start_fit_pending = true;
+  m_fit_restarted_filter = false;
   m_have_valid_range = false;  // a new track: no valid pose's range to keep yet
   m_range_check_active = false;
   m_find_confirms_branch = false;
@@ -223,6 +224,7 @@ bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck&
                             static_cast<std::uint32_t>(m_params.navigation.filter_diverged_rejections);
   if (check.evidence_good || diverged) {
     restartFilter(r.pose, r.covariance);
+    m_fit_restarted_filter = true;
     return true;
   }
   return false;  // weak evidence the filter also disputes: not delivered
@@ -248,6 +250,9 @@ void NavigationPipeline::restartFilter(const Pose& pose, const Mat6& covariance)
 void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out,
                                       ModeInputs& in) {
   in.depth_known = m_have_pose;
+  // The fit before overruled the filter: this one agrees, at best, with that single disputed fit.
+  const bool follows_restart = m_fit_restarted_filter;
+  m_fit_restarted_filter = false;
   if (m_reacquisition.active()) {
     m_near_result = NearRangeResult{};  // the main tracker did not run (status lost)
     runReacquisition(image, frame_number, out, in);
@@ -293,7 +298,9 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     // with it (start_pose_doubt_nis_chi2) is doubted like a find (campaign octagon/7, octagon/7028,
     // plate/7032: 5.5-7.1 deg off at NIS 9.0-9.7).
     const bool start_disputed = start_fit && nis_above(m_params.navigation.start_pose_doubt_nis_chi2);
-    const bool doubted = nearFitDoubted(r, faults, m_params.navigation) || surprising || start_disputed;
+    const bool restart_unconfirmed = follows_restart && m_params.navigation.doubt_after_filter_restart;
+    const bool doubted =
+        nearFitDoubted(r, faults, m_params.navigation) || surprising || start_disputed || restart_unconfirmed;
     // Disputed by the filter and turned further since the frame before than a target turns in one frame:
     // tracked, not valid. Against the last pose, not the prediction: a filter restarted from two alternating
     // fits predicts a rate they do not have (slew_box: 13.6 deg/s). Until deliver() below, m_last_pose is the
@@ -324,6 +331,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
 void NavigationPipeline::enterMode(NavMode mode) {
   m_fdir.resetPersistence();
   m_start_fit_pending = false;
+  m_fit_restarted_filter = false;
   m_range_check_active = false;
   m_coasted = 0;
   const bool far_track_kept = m_far_track_kept;

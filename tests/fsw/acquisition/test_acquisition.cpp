@@ -309,7 +309,9 @@ TEST_F(PlateAcquisitionTest, ConfirmationFollowsATargetCrossingTheImageFasterTha
   ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
   const auto frames = crossingPlate(renderer, 18.0, 12);
   acq::AcquisitionResult r;
+  const std::uint64_t allocations_before = test::allocationCount();
   const std::size_t last = acquireOn(acquisition, frames, r);
+  EXPECT_EQ(test::allocationCount(), allocations_before) << "the shifted starts allocate nothing";
   ASSERT_EQ(r.state, AcquisitionState::kSucceeded) << acq::toString(r.failure);
   EXPECT_LT((r.pose.t_c_m - frames[last].truth.t_c_m).norm(), 0.05);
   EXPECT_LT(test::attitudeErrorDeg(scene, frames[last].truth, r.pose), 3.0);

@@ -41,9 +41,10 @@ TEST_F(PipelineTest, WeakEvidenceTheFilterRejectsIsNotDelivered) {
 TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
   // The same jump with good image evidence: the measurement wins and the track follows it, but the filter
   // disputes it and a plate at 25 m on VGA has about 2 deg attitude 1-sigma, above the doubted-pose limit
-  // (1 deg), so that frame is withheld. Once the fits agree with the restarted filter again the branch is
-  // confirmed and the poses are valid. With a limit above the pose's sigma the disputed frame is valid.
-  // The branch is confirmed by rival-free frames here, not by the look's continuity (the test after next).
+  // (1 deg), so that frame and the one after it are withheld. Once the fits agree with the restarted filter
+  // again the branch is confirmed and the poses are valid. With a limit above the pose's sigma the disputed
+  // frame is valid. The branch is confirmed by rival-free frames here, not by the look's continuity (the test
+  // after next).
   for (const double limit_deg : {1.0, 2.4}) {
     PipelineParams p = params;
     p.navigation.doubted_max_attitude_sigma_deg = limit_deg;
@@ -71,7 +72,11 @@ TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
       valid += out.pose_valid ? 1 : 0;
     }
     EXPECT_TRUE(out.pose_valid) << "limit " << limit_deg;
-    EXPECT_EQ(valid, limit_deg > sigma_deg ? 5 : 5 - (params.navigation.branch_confirm_frames - 1))
+    // Under the 1 deg limit the first frame after the restart is doubted too (doubt_after_filter_restart:
+    // it agrees with the one disputed fit only), then the branch is confirmed.
+    const int after_restart = params.navigation.doubt_after_filter_restart ? 1 : 0;
+    EXPECT_EQ(valid,
+              limit_deg > sigma_deg ? 5 : 5 - after_restart - (params.navigation.branch_confirm_frames - 1))
         << "limit " << limit_deg;
   }
 }
@@ -266,6 +271,41 @@ TEST_F(PipelineTest, ADisputedPoseThatMovedInRangeFasterThanPredictedIsTrackedBu
     EXPECT_EQ(jumped_on_the_move, limit_rel > 0.0) << "the replay's jumped column";
     EXPECT_NEAR(out[10].pose.t_c_m.norm(), seq[10].truth.t_c_m.norm(), 0.2) << "the track followed the move";
     EXPECT_TRUE(out.back().pose_valid) << "limit " << limit_rel;
+  }
+}
+
+TEST_F(PipelineTest, TheFitAfterOneThatOverruledTheFilterMustMeetTheDoubtedLimit) {
+  // The plate at 20 m (1-sigma above the doubted limit, below the valid one) jumps 6 % in range: the fit the
+  // filter rejects is supported by the image, so the filter restarts from it (doubted, withheld). The next
+  // fit agrees with that one disputed fit only: doubted too under doubt_after_filter_restart, valid
+  // without (one rival-free frame confirms the branch here, so that the rule alone decides). Tracked either
+  // way.
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < 14; ++i)
+    seq.push_back(test::renderFrame(renderer, test::plateAt(i < 10 ? 20.0 : 21.2, 0.1, 1.0, -1.0), 900U + i));
+  for (const bool rule : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.doubt_after_filter_restart = rule;
+    p.navigation.disputed_max_range_change_rel = 0.0;
+    p.navigation.branch_confirm_frames = 1;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    std::vector<NavSolution> out(seq.size());
+    for (std::size_t i = 0; i < seq.size(); ++i) {
+      const Frame f = frameOf(seq, static_cast<int>(i));
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out[i]), Status::kOk);
+    }
+    ASSERT_NE(out[10].fault_bits & kFaultInnovation, 0U) << "the scene must reach the case";
+    EXPECT_NEAR(out[10].pose.t_c_m.norm(), seq[10].truth.t_c_m.norm(), 0.2) << "the filter took the jump";
+    const double sigma_deg = std::sqrt(out[11].covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
+    ASSERT_GT(sigma_deg, p.navigation.doubted_max_attitude_sigma_deg) << "the fit must be doubtable";
+    ASSERT_LT(sigma_deg, p.navigation.max_valid_attitude_sigma_deg) << "and certain enough otherwise";
+    EXPECT_EQ(out[11].fault_bits & kFaultInnovation, 0U) << "the restarted filter agrees with it";
+    EXPECT_EQ(out[11].pose_valid, !rule) << "rule " << rule << ", 1-sigma " << sigma_deg;
+    EXPECT_EQ(out[11].mode, NavMode::kNearRange);
+    EXPECT_TRUE(out[12].pose_valid) << "rule " << rule;
+    EXPECT_NEAR(out.back().pose.t_c_m.norm(), seq.back().truth.t_c_m.norm(), 0.2) << "rule " << rule;
   }
 }
 

@@ -137,6 +137,14 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
           "plate/7020; stop 54); "
           "measured in the top-level README; 0 switches it off"},
          p.doubt_nis_chi2);
+  v.boolean(
+      {"navigation", "doubt_after_filter_restart", "-", 0, 1,
+       "the near-range fit on the frame after one whose image evidence overruled the filter's "
+       "innovation gate (the filter restarted from it) is doubted: the filter it agrees with holds that "
+       "one disputed fit only (campaign box/7 frame 142: 5.6 deg off at a 2.2 deg 1-sigma and NIS 5.4, "
+       "the frame after a restart at NIS 57). Such frames on seeds 1-40, 5001-5040 and 7001-7040 (stop "
+       "58-59 trees): 404 right within 1 deg 1-sigma (unchanged), 24 right above it, 1 wrong"},
+      p.doubt_after_filter_restart);
   v.integer({"navigation", "doubt_every_line_up_to", "lines", 0, 1000,
              "a near-range pose with at most this many selected lines is doubted when any of them was not "
              "used: a small outline has no line to spare (campaign box/191: 4 of 5 lines, 5.0-5.5 deg off "

@@ -43,7 +43,8 @@ struct NavigationParams {
   int doubt_every_line_up_to = 6;         ///< with at most this many selected lines, any unused one
   int minimal_fit_max_missing_lines = 2;  ///< a 4-line fit missing more selected lines is not valid
   bool doubt_narrow_face = true;  ///< a fit beside a face seen nearly edge-on (kFlagNarrowFace) is doubted
-  int doubt_clear_frames = 1;     ///< consecutive poses within the doubted limit that end a find's doubt
+  bool doubt_after_filter_restart = true;  ///< the fit after one that overruled the filter is doubted
+  int doubt_clear_frames = 1;  ///< consecutive poses within the doubted limit that end a find's doubt
   double disputed_max_look_change_deg = 5.0;    ///< a disputed pose turned more than this is not valid
   double disputed_max_range_change_rel = 0.03;  ///< or its range this far (relative) from the prediction's
   double max_valid_view_angle_deg = 80.0;  ///< a pose showing no surface nearer facing than this is not valid

@@ -199,6 +199,9 @@ class NavigationPipeline {
   bool m_track_doubted = false;
   /// No fit measured since the operator's start pose (start_pose_doubt_nis_chi2).
   bool m_start_fit_pending = false;
+  /// The last near-range fit overruled the filter's innovation gate and restarted it
+  /// (doubt_after_filter_restart); cleared by the next frame.
+  bool m_fit_restarted_filter = false;
   /// This frame's near-range fault bits (checkNearRange), 0 on a frame not processed in near range.
   std::uint32_t m_near_range_faults = 0U;
   /// The last valid pose's range, range rate (the filter's) and exposure time; after a disputed jump
