@@ -59,6 +59,26 @@ class PipelineTest : public ::testing::Test {
     }
     return valid;
   }
+  /// The plate's `sequence` under `p` from its first frame's truth (the given start pose): every frame's
+  /// solution; `each(pipeline, i)` sees the pipeline right after frame i.
+  template <typename EachFrame>
+  std::vector<NavSolution> solutionsFromFirstTruth(const std::vector<test::RenderedFrame>& sequence,
+                                                   const PipelineParams& p, EachFrame each) {
+    NavigationPipeline pipeline;
+    EXPECT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(sequence.front().truth, 0);
+    std::vector<NavSolution> out(sequence.size());
+    for (int i = 0; i < static_cast<int>(sequence.size()); ++i) {
+      const Frame f = frameOf(sequence, i);
+      EXPECT_EQ(pipeline.process(&f, f.exposure_time_ns, out[static_cast<std::size_t>(i)]), Status::kOk);
+      each(pipeline, i);
+    }
+    return out;
+  }
+  std::vector<NavSolution> solutionsFromFirstTruth(const std::vector<test::RenderedFrame>& sequence,
+                                                   const PipelineParams& p) {
+    return solutionsFromFirstTruth(sequence, p, [](const NavigationPipeline&, int) {});
+  }
   /// The plate's `sequence` tracked under `p` from its first frame's truth (the given start pose): every
   /// frame stays in near range with a pose within 0.1 m of that frame's truth; `each(pipeline, out, i)`
   /// checks the case on every frame.

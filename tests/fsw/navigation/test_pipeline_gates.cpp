@@ -225,14 +225,7 @@ TEST_F(PipelineTest, ADisputedPoseThatTurnedFasterThanATargetTurnsIsTrackedButNo
     p.navigation.disputed_max_look_change_deg = limit_deg;
     p.navigation.doubted_max_attitude_sigma_deg =
         0.0;  // at 20 m the plate's 1-sigma is above it: this rule alone
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
-    std::vector<NavSolution> out(seq.size());
-    for (std::size_t i = 0; i < seq.size(); ++i) {
-      const Frame f = frameOf(seq, static_cast<int>(i));
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out[i]), Status::kOk);
-    }
+    const std::vector<NavSolution> out = solutionsFromFirstTruth(seq, p);
     for (int i = 1; i < 10; ++i) EXPECT_TRUE(out[static_cast<std::size_t>(i)].pose_valid) << i;
     ASSERT_NE(out[10].fault_bits & kFaultInnovation, 0U) << "the scene must reach the case";
     EXPECT_EQ(out[10].mode, NavMode::kNearRange);
@@ -254,16 +247,11 @@ TEST_F(PipelineTest, ADisputedPoseThatMovedInRangeFasterThanPredictedIsTrackedBu
     PipelineParams p = params;
     p.navigation.disputed_max_range_change_rel = limit_rel;
     p.navigation.doubted_max_attitude_sigma_deg = 0.0;  // as above: this rule alone
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
-    std::vector<NavSolution> out(seq.size());
     bool jumped_on_the_move = false;
-    for (std::size_t i = 0; i < seq.size(); ++i) {
-      const Frame f = frameOf(seq, static_cast<int>(i));
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out[i]), Status::kOk);
-      if (i == 10) jumped_on_the_move = pipeline.lastPoseJumped();
-    }
+    const std::vector<NavSolution> out =
+        solutionsFromFirstTruth(seq, p, [&](const NavigationPipeline& pipeline, int i) {
+          if (i == 10) jumped_on_the_move = pipeline.lastPoseJumped();
+        });
     for (int i = 1; i < 10; ++i) EXPECT_TRUE(out[static_cast<std::size_t>(i)].pose_valid) << i;
     ASSERT_NE(out[10].fault_bits & kFaultInnovation, 0U) << "the scene must reach the case";
     EXPECT_EQ(out[10].mode, NavMode::kNearRange);
@@ -288,14 +276,7 @@ TEST_F(PipelineTest, TheFitAfterOneThatOverruledTheFilterMustMeetTheDoubtedLimit
     p.navigation.doubt_after_filter_restart = rule;
     p.navigation.disputed_max_range_change_rel = 0.0;
     p.navigation.branch_confirm_frames = 1;
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
-    std::vector<NavSolution> out(seq.size());
-    for (std::size_t i = 0; i < seq.size(); ++i) {
-      const Frame f = frameOf(seq, static_cast<int>(i));
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out[i]), Status::kOk);
-    }
+    const std::vector<NavSolution> out = solutionsFromFirstTruth(seq, p);
     ASSERT_NE(out[10].fault_bits & kFaultInnovation, 0U) << "the scene must reach the case";
     EXPECT_NEAR(out[10].pose.t_c_m.norm(), seq[10].truth.t_c_m.norm(), 0.2) << "the filter took the jump";
     const double sigma_deg = std::sqrt(out[11].covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad;
