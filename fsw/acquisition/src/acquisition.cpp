@@ -342,7 +342,10 @@ Status Acquisition::step(const MonoImage& image, std::uint64_t frame_number, Acq
     out.quality = m_last.quality;
     out.rms_px = m_last.rms_px;
     out.tracker_flags = m_last.flags;
-    out.has_previous = m_params.confirm_follows_motion && m_confirmed > 0;
+    // Only a step that is motion (followTo): two fits of a still target differ by their noise, and a
+    // filter started from that difference was more certain of a motion it did not have (campaign box/44:
+    // the next fit rejected at NIS 29.5, the branch confirmed 4 frames later).
+    out.has_previous = m_params.confirm_follows_motion && m_confirmed > 0 && m_followed.moving;
     out.previous_pose = m_previous_pose;
     out.previous_covariance = m_previous_covariance;
   }

@@ -64,8 +64,9 @@ struct AcquisitionResult {
   /// The candidate has a near twin too close to resolve in the image that only continuity with the look
   /// reference (setLookReference) told apart: the ambiguity is real, the choice is the track's.
   bool twin_resolved_by_continuity = false;
-  /// Succeeded with confirm_follows_motion: the confirmed pose on the frame before (the last confirmation
-  /// frame's, or the verification's) and its covariance, whose difference from `pose` is the target's motion.
+  /// Succeeded with confirm_follows_motion, where the candidate moved across the line of sight between its
+  /// last two fits (beyond their noise): the confirmed pose on the frame before (the last confirmation
+  /// frame's, or the verification's) and its covariance, whose difference from `pose` is that motion.
   bool has_previous = false;
   Pose previous_pose;
   Mat6 previous_covariance = Mat6::Zero();
