@@ -212,8 +212,9 @@ struct AcquisitionParams {
          "(significant against their covariance, the two in range within confirm_max_motion_rel) starts the "
          "next frame moved on by that step, and the motion test is taken against that prediction; one the "
          "flight tracker loses from its start is tracked again on that frame from the best shift of its "
-         "outline over the window's coarse evidence, within confirm_max_motion_rel; the confirmed pose's "
-         "frame before starts the filter with the motion between the two (a target crossing the image 19 "
+         "outline over the window's coarse evidence, within confirm_max_motion_rel; where the last step was "
+         "such motion, the confirmed pose's frame before starts the filter with it (a target crossing the "
+         "image 19 "
          "px a frame left the 10 px scanlines on every confirmation frame, campaign cao/1). false: each "
          "frame starts where the last one ended, and the filter at rest"},
         confirm_follows_motion);
