@@ -214,9 +214,8 @@ struct AcquisitionParams {
          "flight tracker loses from its start is tracked again on that frame from the best shift of its "
          "outline over the window's coarse evidence, within confirm_max_motion_rel; where the last step was "
          "such motion, the confirmed pose's frame before starts the filter with it (a target crossing the "
-         "image 19 "
-         "px a frame left the 10 px scanlines on every confirmation frame, campaign cao/1). false: each "
-         "frame starts where the last one ended, and the filter at rest"},
+         "image 19 px a frame left the 10 px scanlines on every confirmation frame, campaign cao/1). false: "
+         "each frame starts where the last one ended, and the filter at rest"},
         confirm_follows_motion);
     v.real({"acquisition", "window_margin", "-", 1.0, 4.0,
             "search window half size = window_margin x the target's radius at the nearest distance covered "
