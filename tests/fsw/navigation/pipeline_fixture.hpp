@@ -126,19 +126,22 @@ class PipelineTest : public ::testing::Test {
     std::vector<test::RenderedFrame> seq;
     synthetic::Renderer empty;
     EXPECT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-    for (int i = 0; i < 30; ++i) {
-      if (i < 3) {
-        seq.push_back(test::renderFrame(renderer, before, 400U + i));
-      } else if (i < kHiddenUntil) {
-        Pose behind = before;
-        behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
-        seq.push_back(test::renderFrame(empty, behind, 400U + i));
-        seq.back().truth = before;
-      } else {
-        seq.push_back(test::renderFrame(renderer, reappears, 400U + i));
-      }
-    }
+    for (int i = 0; i < 30; ++i)
+      pushFrame(seq, empty, i < kHiddenUntil ? before : reappears, i >= 3 && i < kHiddenUntil, 400U + i);
     return seq;
+  }
+  /// `truth`'s frame onto `seq`; `hidden`: drawn by `empty` behind the camera (background and noise only),
+  /// the truth still recorded.
+  void pushFrame(std::vector<test::RenderedFrame>& seq, synthetic::Renderer& empty, const Pose& truth,
+                 bool hidden, std::uint64_t seed) {
+    if (!hidden) {
+      seq.push_back(test::renderFrame(renderer, truth, seed));
+      return;
+    }
+    Pose behind = truth;
+    behind.t_c_m.z() = -10.0;  // not drawn
+    seq.push_back(test::renderFrame(empty, behind, seed));
+    seq.back().truth = truth;
   }
   /// One run over hiddenApproach() from the true start pose: each frame's solution, whether the near-range
   /// tracker held, and the first visible frame on which a reacquisition found the target (-1: never).

@@ -165,17 +165,9 @@ class TurningPlateTest : public PipelineTest {
   void renderTurningHiddenPlate(int count, std::vector<test::RenderedFrame>& seq) {
     synthetic::Renderer empty;
     ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-    for (int i = 0; i < count; ++i) {
-      const Pose truth = test::plateAt(15.0, 0.3, 1.0 + 1.5 * i, -1.0);
-      if (i >= kVisibleUntil && i < kReappears) {
-        Pose behind = truth;
-        behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
-        seq.push_back(test::renderFrame(empty, behind, 700U + i));
-        seq.back().truth = truth;
-      } else {
-        seq.push_back(test::renderFrame(renderer, truth, 700U + i));
-      }
-    }
+    for (int i = 0; i < count; ++i)
+      pushFrame(seq, empty, test::plateAt(15.0, 0.3, 1.0 + 1.5 * i, -1.0),
+                i >= kVisibleUntil && i < kReappears, 700U + i);
   }
 };
 
