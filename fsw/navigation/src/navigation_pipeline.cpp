@@ -185,6 +185,7 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
   // with itself as a right one. The first near-range fit, with the filter started from it, is the check
   // (campaign box/40: confirmed 44 deg off at 44.5 m, the next five fits rejected at NIS 79-146).
   if (m_params.navigation.acquisition_awaits_near_range) {
+    if (out.pose_valid) out.withheld |= kWithheldAwaitsNearRange;
     out.pose_valid = false;
     m_acquisition_awaits_near = true;
   }
@@ -271,7 +272,11 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out,
             doubted || m_track_doubted);
     m_pose_jumped = jumped;
-    if (jumped || minimalFitMissesOutline(r, nav)) out.pose_valid = false;
+    const bool misses_outline = minimalFitMissesOutline(r, nav);
+    if (jumped || misses_outline) {
+      out.withheld |= (jumped ? kWithheldJumped : 0U) | (misses_outline ? kWithheldMissesOutline : 0U);
+      out.pose_valid = false;
+    }
   } else if (dropped && closeRange()) {
     startReacquisition(image, frame_number, out, in);
   } else {

@@ -52,9 +52,13 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
     attitude_limit_deg = attitude_limit_deg > 0.0
                              ? std::min(attitude_limit_deg, nav.doubted_max_attitude_sigma_deg)
                              : nav.doubted_max_attitude_sigma_deg;
+  const bool position_certain =
+      nav.max_valid_position_sigma_rel <= 0.0 || sigma.position_rel <= nav.max_valid_position_sigma_rel;
   const bool certain =
-      (attitude_limit_deg <= 0.0 || sigma.attitude_deg <= attitude_limit_deg) &&
-      (nav.max_valid_position_sigma_rel <= 0.0 || sigma.position_rel <= nav.max_valid_position_sigma_rel);
+      (attitude_limit_deg <= 0.0 || sigma.attitude_deg <= attitude_limit_deg) && position_certain;
+  const bool undoubted_certain =
+      (nav.max_valid_attitude_sigma_deg <= 0.0 || sigma.attitude_deg <= nav.max_valid_attitude_sigma_deg) &&
+      position_certain;
   m_pose_showed_face = showsAFace(pose);
   // A track that began with a reacquisition's find stays doubted until one of its poses meets the doubted
   // limit: a find a few degrees off, withheld on its own frame, is otherwise continued and delivered once the
@@ -74,6 +78,9 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
       sigma.attitude_deg <= nav.doubted_max_attitude_sigma_deg && !find_still_doubted)
     m_track_doubted = false;
   out.pose_valid = certain && !find_still_doubted && m_pose_showed_face;
+  out.withheld = (undoubted_certain ? 0U : kWithheldUncertain) |
+                 (undoubted_certain && !certain ? kWithheldDoubted : 0U) |
+                 (find_still_doubted ? kWithheldFindDoubted : 0U) | (m_pose_showed_face ? 0U : kWithheldEdgeOn);
   out.pose = pose;
   out.covariance = covariance;
   out.quality = quality;
@@ -122,7 +129,9 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   const bool motion_agrees = !m_params.navigation.branch_confirm_needs_filter ||
                              processed_in != NavMode::kNearRange ||
                              (m_near_range_faults & kFaultInnovation) == 0U;
+  const bool passed_the_pose_gates = out.pose_valid;
   out.pose_valid = m_branch.step(out.pose_valid, rival_free && motion_agrees && !m_range_broken, confirmed);
+  if (passed_the_pose_gates && !out.pose_valid) out.withheld |= kWithheldBranchUnknown;
 }
 
 void NavigationPipeline::followNearTwin(NavMode processed_in, const MonoImage& image,

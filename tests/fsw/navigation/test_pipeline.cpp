@@ -54,9 +54,11 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
   struct Outcome {
     int acquired_at = -1;
     bool acquired_valid = false;
+    std::uint32_t acquired_withheld = 0;
     double acquired_quality = 0.0;
     double acquired_error_m = 0.0;
-    std::vector<bool> valid_after;  // the frames after the acquisition's
+    std::vector<bool> valid_after;                // the frames after the acquisition's
+    std::vector<std::uint32_t> withheld_after;  // and why they were not valid
   };
   Pose behind = test::plateAt(26.0, 0.1, 1.0, -1.0);
   behind.t_c_m.z() = -10.0;  // not drawn: background and noise only
@@ -74,10 +76,15 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
       EXPECT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
       if (o.acquired_at >= 0) {
         o.valid_after.push_back(out.pose_valid);
+        // NavSolution::withheld: a valid pose is withheld by nothing, one computed and not valid says why.
+        EXPECT_EQ(out.withheld == 0U, out.pose_valid || !(out.quality > 0.0))
+            << "frame " << i << " withheld " << out.withheld;
+        o.withheld_after.push_back(out.withheld);
       } else if (out.mode == NavMode::kAcquisition &&
                  pipeline.lastAcquisition().state == acq::AcquisitionState::kSucceeded) {
         o.acquired_at = i;
         o.acquired_valid = out.pose_valid;
+        o.acquired_withheld = out.withheld;
         o.acquired_quality = out.quality;
         o.acquired_error_m = (out.pose.t_c_m - frames[static_cast<std::size_t>(i)].truth.t_c_m).norm();
       }
@@ -88,6 +95,9 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
   ASSERT_GE(awaited.acquired_at, 0) << "never acquired";
   ASSERT_FALSE(awaited.valid_after.empty());
   EXPECT_FALSE(awaited.acquired_valid) << "valid before near range agreed";
+  EXPECT_EQ(awaited.acquired_withheld, static_cast<std::uint32_t>(kWithheldAwaitsNearRange))
+      << "withheld for that alone";
+  EXPECT_EQ(awaited.withheld_after[0], 0U) << "a valid pose is withheld by nothing";
   EXPECT_GT(awaited.acquired_quality, 0.0) << "the pose is still reported, as tracked";
   EXPECT_LT(awaited.acquired_error_m, 0.05 * 26.0);
   EXPECT_TRUE(awaited.valid_after[0]) << "the first near-range fit agrees and confirms it";
@@ -95,6 +105,7 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
   const Outcome off = run(false, false);
   EXPECT_EQ(off.acquired_at, awaited.acquired_at) << "validity does not feed back into tracking";
   EXPECT_TRUE(off.acquired_valid);
+  EXPECT_EQ(off.acquired_withheld, 0U);
 
   const Outcome unconfirmed = run(true, true);
   ASSERT_EQ(unconfirmed.acquired_at, awaited.acquired_at);
@@ -102,6 +113,7 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
   EXPECT_FALSE(unconfirmed.valid_after[0]) << "the hidden frame";
   EXPECT_FALSE(unconfirmed.valid_after[1])
       << "the branch was never confirmed: one fit does not make it known";
+  EXPECT_EQ(unconfirmed.withheld_after[0], 0U) << "the hidden frame: no pose, nothing withheld";
 }
 
 TEST_F(PipelineTest, AnAcquisitionThatConfirmsNothingAtTheCueRefutesItUntilTheGroundSaysAgain) {

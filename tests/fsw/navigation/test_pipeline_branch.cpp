@@ -132,6 +132,8 @@ TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
       params.navigation.reacquire_tolerance_growth_deg_per_frame * (kHiddenUntil - 2);
   ASSERT_LE(tolerance_at_reappearance_deg, params.navigation.branch_reference_max_look_deg)
       << "the default would already refuse: the test compares nothing";
+  // withheld_before: the NavSolution::withheld bits of the frames from the find to the first valid one.
+  std::uint32_t withheld_before = 0;
   const auto first_valid_after_find = [&](double max_look_deg, int& found_at) {
     PipelineParams p = params;
     p.navigation.branch_reference_max_look_deg = max_look_deg;
@@ -140,15 +142,21 @@ TEST_F(PipelineTest, AFindLongAfterTheLastValidPoseEarnsItsBranchLikeAnyOther) {
     runHiddenToAFind(seq, p, pipeline, run);
     found_at = run.found_at;
     EXPECT_EQ(pipeline.lastFindOnKnownBranch(), max_look_deg >= tolerance_at_reappearance_deg);
-    for (int i = run.found_at; i < static_cast<int>(seq.size()); ++i)
+    withheld_before = 0;
+    for (int i = run.found_at; i < static_cast<int>(seq.size()); ++i) {
       if (run.out[static_cast<std::size_t>(i)].pose_valid) return i;
+      withheld_before |= run.out[static_cast<std::size_t>(i)].withheld;
+    }
     return -1;
   };
   int found_default = -1;
   int found_old = -1;
   const int valid_default =
       first_valid_after_find(params.navigation.branch_reference_max_look_deg, found_default);
+  EXPECT_EQ(withheld_before, 0U);
   const int valid_old = first_valid_after_find(tolerance_at_reappearance_deg - 2.0, found_old);
+  EXPECT_EQ(withheld_before, static_cast<std::uint32_t>(kWithheldBranchUnknown))
+      << "the frames that earn the branch are withheld for it alone";
   ASSERT_GE(found_default, kHiddenUntil);
   EXPECT_EQ(found_old, found_default) << "validity does not feed back into the search";
   EXPECT_EQ(valid_default, found_default) << "a find on the known branch is valid on its own frame";

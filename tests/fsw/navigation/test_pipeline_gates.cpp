@@ -60,6 +60,9 @@ TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
     ASSERT_LT(sigma_deg, 2.4);
     EXPECT_NEAR(out.pose.t_c_m.x(), 0.25, 0.02) << "limit " << limit_deg;  // tracked either way
     EXPECT_EQ(out.pose_valid, limit_deg > sigma_deg) << "limit " << limit_deg;
+    // NavSolution::withheld says why: the doubt, and nothing else (the pose is within the undoubted limit).
+    EXPECT_EQ(out.withheld, limit_deg > sigma_deg ? 0U : static_cast<std::uint32_t>(kWithheldDoubted))
+        << "limit " << limit_deg;
     // The target stays where it jumped: no more doubt, and after the branch confirmation it is valid.
     int valid = 0;
     for (int i = 11; i < 16; ++i) {
@@ -70,6 +73,7 @@ TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
       pipeline.process(&g, g.exposure_time_ns, out);
       EXPECT_EQ(out.fault_bits & kFaultInnovation, 0U) << "frame " << i;
       valid += out.pose_valid ? 1 : 0;
+      EXPECT_EQ(out.pose_valid, out.withheld == 0U) << "frame " << i << " withheld " << out.withheld;
     }
     EXPECT_TRUE(out.pose_valid) << "limit " << limit_deg;
     // Under the 1 deg limit the first frame after the restart is doubted too (doubt_after_filter_restart:

@@ -411,7 +411,7 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
        "lines_"
        "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch,jumped,"
        "oracle,near_twin_rival,scanlines,inlier_points,evidence_good,find_on_branch,candidate_range_m,range_"
-       "broken,in_view,far_direction_error_deg,far_off_target\n";
+       "broken,in_view,far_direction_error_deg,far_off_target,withheld\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
@@ -432,7 +432,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << "," << f.oracle << "," << f.near_twin_rival << "," << f.scanlines << "," << f.inlier_points << ","
         << f.evidence_good << "," << f.find_on_branch << ","
         << (f.has_candidate ? num(f.candidate_range_m) : "") << "," << f.range_broken << "," << f.in_view
-        << "," << (f.far_valid ? num(f.far_direction_error_deg) : "") << "," << f.far_off_target << "\n";
+        << "," << (f.far_valid ? num(f.far_direction_error_deg) : "") << "," << f.far_off_target << ","
+        << f.withheld << "\n";
     }
   }
 }

@@ -118,14 +118,14 @@ std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const 
   const int n = std::snprintf(
       buf, sizeof buf,
       "%4d r=%7.2f %-11s near=%d flags=%04x lines=%d/%d sil=%d scan=%d in=%d tex=%d weak=%d vtx=%d rms=%.3f "
-      "q=%.2f sa=%.2f sp=%.3f nis=%s%.1f faults=%04x pose=%d dp=%.3f da=%.2f%s%s\n",
+      "q=%.2f sa=%.2f sp=%.3f nis=%s%.1f faults=%04x pose=%d wh=%02x dp=%.3f da=%.2f%s%s\n",
       f.frame, f.range_m, nav::toString(f.mode), static_cast<int>(near.status), near.flags, near.lines_used,
       near.lines_total, near.silhouette_lines, near.scanlines, near.inlier_points, near.texture_points,
       near.weak_step_points, near.vertices, near.rms_px, near.quality,
       std::sqrt(near.covariance.topLeftCorner<3, 3>().trace()) * kDegPerRad,
       std::sqrt(near.covariance.bottomRightCorner<3, 3>().trace()) / std::max(f.range_m, 1e-9),
       update.status == Status::kOk ? "" : "-", update.status == Status::kOk ? update.nis : 0.0,
-      static_cast<unsigned>(f.fault_bits), f.pose_valid ? 1 : 0,
+      static_cast<unsigned>(f.fault_bits), f.pose_valid ? 1 : 0, static_cast<unsigned>(f.withheld),
       f.pose_valid ? f.position_error_m / f.range_m : 0.0, f.pose_valid ? f.attitude_error_deg : 0.0,
       f.wrong ? " WRONG" : "", f.visible ? "" : " (not visible)");
   return std::string(buf,
@@ -241,6 +241,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       f.position_sigma_rel = sigma.position_rel;
     }
     f.near_flags = pipeline->lastNearRange().flags;
+    f.withheld = sol.withheld;
     f.lines_used = pipeline->lastNearRange().lines_used;
     f.lines_total = pipeline->lastNearRange().lines_total;
     f.scanlines = pipeline->lastNearRange().scanlines;

@@ -68,6 +68,7 @@ struct FrameOutcome {
   double attitude_sigma_deg = 0.0;            ///< sqrt(trace) of the candidate's attitude covariance
   double position_sigma_rel = 0.0;            ///< sqrt(trace) of its position covariance / range
   std::uint32_t near_flags = 0;               ///< the near-range tracker's flags (0 when it did not run)
+  std::uint32_t withheld = 0;                 ///< NavSolution::withheld: why a computed pose was not valid
   int lines_used = 0;
   int lines_total = 0;
   int scanlines = 0;           ///< scanlines the tracker cast on its selected edges
