@@ -80,7 +80,8 @@ void NavigationPipeline::deliver(const Pose& pose, const Mat6& covariance, doubl
   out.pose_valid = certain && !find_still_doubted && m_pose_showed_face;
   out.withheld = (undoubted_certain ? 0U : kWithheldUncertain) |
                  (undoubted_certain && !certain ? kWithheldDoubted : 0U) |
-                 (find_still_doubted ? kWithheldFindDoubted : 0U) | (m_pose_showed_face ? 0U : kWithheldEdgeOn);
+                 (find_still_doubted ? kWithheldFindDoubted : 0U) |
+                 (m_pose_showed_face ? 0U : kWithheldEdgeOn);
   out.pose = pose;
   out.covariance = covariance;
   out.quality = quality;

@@ -57,7 +57,7 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
     std::uint32_t acquired_withheld = 0;
     double acquired_quality = 0.0;
     double acquired_error_m = 0.0;
-    std::vector<bool> valid_after;                // the frames after the acquisition's
+    std::vector<bool> valid_after;              // the frames after the acquisition's
     std::vector<std::uint32_t> withheld_after;  // and why they were not valid
   };
   Pose behind = test::plateAt(26.0, 0.1, 1.0, -1.0);
