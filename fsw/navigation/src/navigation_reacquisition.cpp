@@ -20,6 +20,7 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
   m_next_attempt_far_cued = false;
   m_acquisition_tile = 1;
   m_acquisition_tile_turn = false;
+  m_acquisition_rung = 0;
   m_fdir.resetPersistence();
   runReacquisition(image, frame_number, out, in);
 }
@@ -161,6 +162,25 @@ Vec3 NavigationPipeline::nextAcquisitionTile(const Vec3& predicted_direction, do
   return predicted_direction;
 }
 
+double NavigationPipeline::nextAcquisitionRangeFactor(double range_m) {
+  // Rung k of the sequence 0, -1, +1, -2, +2, ... (negative: nearer). A rung whose range leaves the band is
+  // skipped; at most one pass over the sequence per call, so the loop is bounded whatever the band.
+  const double span = m_params.acquisition.range_span_rel;
+  if (!m_params.navigation.reacquire_range_ladder || !(span > 0.0) || !(range_m > 0.0)) return 1.0;
+  const double step = (1.0 + span) * (1.0 + span);
+  const double nearest_m = m_near.model().boundingRadius();
+  const double farthest_m = m_params.navigation.far_range_above_m;
+  for (int tried = 0; tried <= 2 * kMaxRangeRungs; ++tried) {
+    if (m_acquisition_rung < 0 || m_acquisition_rung > 2 * kMaxRangeRungs) m_acquisition_rung = 0;
+    const int index = m_acquisition_rung++;
+    const int rung = (index + 1) / 2 * (index % 2 == 1 ? -1 : 1);
+    const double factor = std::pow(step, rung);
+    const double rung_range_m = range_m * factor;
+    if (rung == 0 || (rung_range_m >= nearest_m && rung_range_m <= farthest_m)) return factor;
+  }
+  return 1.0;
+}
+
 void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::uint64_t frame_number,
                                                   ReacquisitionStep& step) {
   // The local search keeps the prediction's range and look and only moves it across the image: a target
@@ -236,10 +256,13 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
       } else if (m_params.navigation.reacquire_acquisition_tiles) {
         direction = nextAcquisitionTile(predicted_direction, spacing_px, step.search_radius_px);
       }
-      // At the prediction its own depth (as with tiles off), on a tile the range along it.
-      m_acquisition.start(direction,
-                          direction == predicted_direction ? predicted.t_c_m.z() : range_m * direction.z(),
-                          margin_deg);
+      // At the prediction its own depth (as with tiles off), on a tile the range along it; on the range
+      // ladder's rung (reacquire_range_ladder) that times its factor.
+      const double factor = nextAcquisitionRangeFactor(range_m);
+      m_acquisition.start(
+          direction,
+          factor * (direction == predicted_direction ? predicted.t_c_m.z() : range_m * direction.z()),
+          margin_deg);
     }
   }
   // The track lost a few frames ago tells a near twin the image cannot resolve from the true pose: the

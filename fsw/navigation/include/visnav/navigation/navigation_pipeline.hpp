@@ -137,6 +137,11 @@ class NavigationPipeline {
   /// kMaxTileRings rings of tiles round the prediction.
   static constexpr int kMaxTileRings = 32;
   Vec3 nextAcquisitionTile(const Vec3& predicted_direction, double spacing_px, double radius_px);
+  /// The factor on the prediction's range for the next prediction-cued attempt (reacquire_range_ladder):
+  /// 1, then rungs of (1 + range_span_rel)^2 nearer and farther in turn, nearest first, those whose range
+  /// lies between the model's bounding radius and far_range_above_m. At most 2 kMaxRangeRungs + 1 rungs.
+  static constexpr int kMaxRangeRungs = 16;
+  double nextAcquisitionRangeFactor(double range_m);
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
@@ -194,6 +199,7 @@ class NavigationPipeline {
   bool m_next_attempt_far_cued = false;  ///< the close-range acquisition's cues alternate (reacquire_far_cue)
   int m_acquisition_tile = 1;            ///< the next spiral cell (reacquire_acquisition_tiles)
   bool m_acquisition_tile_turn = false;  ///< they alternate between the prediction and the next tile
+  int m_acquisition_rung = 0;  ///< the prediction-cued attempt's range rung (reacquire_range_ladder)
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
