@@ -21,6 +21,7 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
   m_acquisition_tile = 1;
   m_acquisition_tile_turn = false;
   m_acquisition_rung = 0;
+  m_acquisition_rung_turn = false;
   m_fdir.resetPersistence();
   runReacquisition(image, frame_number, out, in);
 }
@@ -163,20 +164,25 @@ Vec3 NavigationPipeline::nextAcquisitionTile(const Vec3& predicted_direction, do
 }
 
 double NavigationPipeline::nextAcquisitionRangeFactor(double range_m) {
-  // Rung k of the sequence 0, -1, +1, -2, +2, ... (negative: nearer). A rung whose range leaves the band is
-  // skipped; at most one pass over the sequence per call, so the loop is bounded whatever the band.
+  // Every other attempt stays at the prediction's range: where it is right (most searches) the ladder must
+  // not take its attempts (campaign seeds 1-40 with every attempt on the ladder: smallsat/22 43 -> 0 and
+  // box/9 31 -> 1 tracked frames). The others take rung k of -1, +1, -2, +2, ... (negative: nearer); a rung
+  // whose range leaves the band is skipped, at most one pass over the rungs per call (bounded whatever the
+  // band).
   const double span = m_params.acquisition.range_span_rel;
   if (!m_params.navigation.reacquire_range_ladder || !(span > 0.0) || !(range_m > 0.0)) return 1.0;
+  m_acquisition_rung_turn = !m_acquisition_rung_turn;
+  if (m_acquisition_rung_turn) return 1.0;
   const double step = (1.0 + span) * (1.0 + span);
   const double nearest_m = m_near.model().boundingRadius();
   const double farthest_m = m_params.navigation.far_range_above_m;
-  for (int tried = 0; tried <= 2 * kMaxRangeRungs; ++tried) {
-    if (m_acquisition_rung < 0 || m_acquisition_rung > 2 * kMaxRangeRungs) m_acquisition_rung = 0;
+  for (int tried = 0; tried < 2 * kMaxRangeRungs; ++tried) {
+    if (m_acquisition_rung < 0 || m_acquisition_rung >= 2 * kMaxRangeRungs) m_acquisition_rung = 0;
     const int index = m_acquisition_rung++;
-    const int rung = (index + 1) / 2 * (index % 2 == 1 ? -1 : 1);
+    const int rung = (index / 2 + 1) * (index % 2 == 0 ? -1 : 1);
     const double factor = std::pow(step, rung);
     const double rung_range_m = range_m * factor;
-    if (rung == 0 || (rung_range_m >= nearest_m && rung_range_m <= farthest_m)) return factor;
+    if (rung_range_m >= nearest_m && rung_range_m <= farthest_m) return factor;
   }
   return 1.0;
 }

@@ -212,10 +212,12 @@ TEST_F(PipelineTest, ATargetThatReappearsFarFromThePredictionIsFoundWhereTheOutl
 TEST_F(PipelineTest, ATargetThatReappearsAtHalfItsRangeIsFoundOnTheRangeLadder) {
   // Tracked at 15 m, hidden for ten frames while it comes to 7.5 m: the search keeps the range the track was
   // lost at, and the acquisition cued by the prediction covers 15 m / 1.35 .. x 1.35 (range_span_rel), not
-  // 7.5 m. On the range ladder (reacquire_range_ladder) its attempts step through 15 m, 8.2 m, 27 m, 4.5 m,
-  // ...: the second rung holds the plate. Far range's cue, tiles and the outline cue are off (the first would
-  // not help: its distance is not taken). Campaign octagon/19: lost at 24.8 m by a slew, the target at 10 m
-  // when the prediction was still at 24 m.
+  // 7.5 m. On the range ladder (reacquire_range_ladder, off by default) every other attempt steps through
+  // 8.2 m, 27 m, 4.5 m, ... (the others stay at 15 m): the first rung holds the plate, found 14 frames after
+  // it reappears (the attempts during the eclipse fail on their first frame, and those at 15 m take a few).
+  // Far range's cue, tiles and the outline cue are off (the first would not help: its distance is not
+  // taken). Campaign octagon/19: lost at 24.8 m by a slew, the target at 10 m when the prediction was still
+  // at 24 m.
   const std::vector<test::RenderedFrame> seq =
       hiddenApproach(test::plateAt(7.5, 0.2, 10.0, -5.0), test::plateAt(15.0, 0.3, 1.0, -1.0));
   for (const bool on : {true, false}) {
@@ -230,7 +232,7 @@ TEST_F(PipelineTest, ATargetThatReappearsAtHalfItsRangeIsFoundOnTheRangeLadder) 
     EXPECT_EQ(run.allocations, 0U) << "ladder " << on << ", malloc counted: " << test::countsMalloc();
     const int valid_after = checkValidAfterHidden(seq, pipeline, run);
     if (on) {
-      expectFoundByAcquisitionSoon(run, valid_after, 10);
+      expectFoundByAcquisitionSoon(run, valid_after, 15);
     } else {
       EXPECT_LT(run.found_at, 0) << "found without the ladder: the test tests nothing";
       EXPECT_EQ(valid_after, 0);

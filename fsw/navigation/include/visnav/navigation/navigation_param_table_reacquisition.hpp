@@ -120,15 +120,17 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
              "1-40 alone had shown 0.6435 -> 0.6483 and 18 -> 18. true: used"},
             p.reacquire_acquisition_outline_cue);
   v.boolean({"navigation", "reacquire_range_ladder", "-", 0, 1,
-             "close-range reacquisition: that acquisition's attempts cued by the prediction step through "
-             "ranges about the prediction's, nearest first (the prediction's, then (1 + [acquisition] "
-             "range_span_rel)^2 times nearer, farther, twice nearer, ...: each attempt covers its range "
-             "/ (1 + span) .. x (1 + span), so the rungs tile the range without gaps), within the target's "
+             "close-range reacquisition (experimental, off): every other attempt of that acquisition "
+             "cued by the prediction steps through ranges about the prediction's (the others stay at "
+             "it): (1 + [acquisition] range_span_rel)^2 times nearer, farther, twice nearer, ... (each "
+             "attempt covers its range / (1 + span) .. x (1 + span): no gaps), within the target's "
              "bounding radius and far_range_above_m, round again after the last. A search keeps the "
-             "range the track was lost at, and a target that approaches or recedes meanwhile leaves every "
-             "attempt's range for good (campaign octagon/19: lost at 24.8 m by an 8 deg slew, the "
-             "prediction still at 24 m when the target was at 10 m, 233 % off; never re-found). false: "
-             "every attempt at the prediction's range"},
+             "range the track was lost at, and a target that approaches or recedes meanwhile leaves "
+             "every attempt's range (campaign octagon/19: lost at 24.8 m by a slew, the prediction still "
+             "at 24 m when the target was at 10 m; with it 0 -> 53 of 108 tracked, box/23 20 -> 66). Off "
+             "because the rung attempts take the frames on which an attempt at the prediction's range "
+             "would have found a target that stayed there (smallsat/22 43 -> 0, plate/26 113 -> 79); "
+             "measured in the top-level README, stop 60. true: used"},
             p.reacquire_range_ladder);
   v.boolean({"navigation", "find_confirms_only_from_reference", "-", 0, 1,
              "a close-range reacquisition's find confirms the track's branch only when the branch was "

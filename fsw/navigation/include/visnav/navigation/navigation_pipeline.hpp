@@ -138,8 +138,9 @@ class NavigationPipeline {
   static constexpr int kMaxTileRings = 32;
   Vec3 nextAcquisitionTile(const Vec3& predicted_direction, double spacing_px, double radius_px);
   /// The factor on the prediction's range for the next prediction-cued attempt (reacquire_range_ladder):
-  /// 1, then rungs of (1 + range_span_rel)^2 nearer and farther in turn, nearest first, those whose range
-  /// lies between the model's bounding radius and far_range_above_m. At most 2 kMaxRangeRungs + 1 rungs.
+  /// 1 on every other attempt, on the others the next of the rungs (1 + range_span_rel)^2 nearer and
+  /// farther in turn, nearest first, those whose range lies between the model's bounding radius and
+  /// far_range_above_m. At most kMaxRangeRungs each way.
   static constexpr int kMaxRangeRungs = 16;
   double nextAcquisitionRangeFactor(double range_m);
   void enterMode(NavMode mode);
@@ -199,7 +200,8 @@ class NavigationPipeline {
   bool m_next_attempt_far_cued = false;  ///< the close-range acquisition's cues alternate (reacquire_far_cue)
   int m_acquisition_tile = 1;            ///< the next spiral cell (reacquire_acquisition_tiles)
   bool m_acquisition_tile_turn = false;  ///< they alternate between the prediction and the next tile
-  int m_acquisition_rung = 0;  ///< the prediction-cued attempt's range rung (reacquire_range_ladder)
+  int m_acquisition_rung = 0;            ///< the next rung of the range ladder (reacquire_range_ladder)
+  bool m_acquisition_rung_turn = false;  ///< its attempts alternate between the prediction and the next rung
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
