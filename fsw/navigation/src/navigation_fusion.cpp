@@ -14,6 +14,10 @@ bool NavigationPipeline::fuseNearRange(const NearRangeResult& r, NearRangeCheck&
     m_filter.initialise(r.pose, r.covariance);
     return true;
   }
+  // An ambiguous fit's mirrored rival judged by the same prediction, before the update moves it
+  // (confirmBranch, mirror_resolved_by_prediction).
+  if ((r.flags & kFlagAmbiguous) != 0U && m_params.navigation.mirror_resolved_by_prediction)
+    m_mirror_nis = m_filter.poseNis(r.mirrored_rival, r.covariance);
   // Only a measurement with good image evidence may say the target moved more than the model allows (it
   // then also restarts the filter below); a weak one that disagrees may simply be wrong.
   const FilterUpdate u = m_filter.update(

@@ -82,6 +82,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_branch_reference_pose = pose;
   m_frames_since_branch_reference = 0;
   m_reference_filter_epoch = m_filter.measurementEpoch();
+  m_reference_track_epoch = m_filter.trackEpoch();
   m_modes.transition(NavMode::kNearRange, "start: initial pose given", frame_number);
   m_fdir.resetPersistence();
 }
@@ -320,6 +321,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_pose_showed_face = true;
   m_fit_kept_the_branch = false;
   m_near_twin_rival = false;
+  m_mirror_nis = -1.0;
   m_pose_jumped = false;
   m_range_broken = false;
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
@@ -380,6 +382,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     m_branch_reference_pose = out.pose;
     m_frames_since_branch_reference = 0;
     m_reference_filter_epoch = m_filter.measurementEpoch();
+    m_reference_track_epoch = m_filter.trackEpoch();
     flagTwins(out);
   } else if (m_frames_since_valid != ~0ULL) {
     ++m_frames_since_valid;

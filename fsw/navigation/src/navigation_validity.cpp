@@ -103,9 +103,15 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
                                             m_near_result.near_twin_rival));
   // A find off a known branch (findOnKnownBranch) had no near twin refitted: not rival-free either.
   const bool find_off_branch = m_reacquisition_step.found && !m_find_on_known_branch;
-  const bool rival_free = processed_in != NavMode::kNearRange ||
-                          ((m_near_result.flags & (kFlagAmbiguous | kFlagResidualFallback)) == 0U &&
-                           !m_near_twin_rival && !find_off_branch);
+  // A depth-mirrored rival is no rival where the track continues its reference and the prediction rejects
+  // the mirror while it accepted the fit: the image cannot tell the two apart, the motion can (a plate's
+  // other tilt is twice its tilt away). Campaign octagon/11, /15, /20: right fits withheld for it alone.
+  const bool mirror_resolved = m_mirror_nis > m_filter.params().pose_gate_chi2 &&
+                               m_last_pose_update.accepted && m_frames_since_branch_reference != ~0ULL &&
+                               m_filter.trackEpoch() == m_reference_track_epoch;
+  const std::uint32_t rival_flags = kFlagResidualFallback | (mirror_resolved ? 0U : kFlagAmbiguous);
+  const bool rival_free = processed_in != NavMode::kNearRange || ((m_near_result.flags & rival_flags) == 0U &&
+                                                                  !m_near_twin_rival && !find_off_branch);
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;

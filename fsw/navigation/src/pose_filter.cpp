@@ -80,6 +80,7 @@ LoadError PoseFilter::init(const PoseFilterParams& params) {
 
 void PoseFilter::reset() {
   ++m_epoch;
+  ++m_track_epoch;
   m_initialised = false;
   m_attitude_known = false;
   m_pose = Pose{};
@@ -97,6 +98,7 @@ Status PoseFilter::initialise(const Pose& pose, const Mat6& pose_covariance) {
   if (!pose.R_c_m.allFinite() || !allFinite(pose.t_c_m) || !factorPositive<6>(p, ldlt))
     return Status::kInvalidArgument;
   ++m_epoch;
+  ++m_track_epoch;
   m_pose = pose;
   m_velocity.setZero();
   m_angular_velocity.setZero();
@@ -215,6 +217,7 @@ Status PoseFilter::initialisePosition(const Vec3& t_c_m, const Mat3& position_co
   Eigen::LDLT<Mat3> ldlt;
   if (!allFinite(t_c_m) || !factorPositive<3>(p, ldlt)) return Status::kInvalidArgument;
   ++m_epoch;
+  ++m_track_epoch;
   m_pose = Pose{};
   m_pose.t_c_m = t_c_m;
   m_velocity.setZero();
@@ -279,6 +282,7 @@ FilterUpdate PoseFilter::update(const Pose& measured, const Mat6& covariance, Re
     result = updatePosition(measured.t_c_m, r.bottomRightCorner<3, 3>());
     if (!result.accepted) return result;
     m_pose.R_c_m = measured.R_c_m;
+    ++m_track_epoch;  // the attitude's track starts here
     setUncorrelatedBlock(m_covariance, kAttitude, r.topLeftCorner<3, 3>());
     setUncorrelatedBlock(m_covariance, kAngularVelocity, angularVelocityPrior(m_params));
     m_angular_velocity.setZero();
@@ -288,6 +292,16 @@ FilterUpdate PoseFilter::update(const Pose& measured, const Mat6& covariance, Re
   result = correct<6>(kAttitude, m_pose.boxMinus(measured), r, m_params.pose_gate_chi2, result);
   adaptProcessNoise(result, rejected);
   return result;
+}
+
+double PoseFilter::poseNis(const Pose& measured, const Mat6& covariance) const {
+  if (!m_initialised || !m_attitude_known || !measured.R_c_m.allFinite() || !allFinite(measured.t_c_m))
+    return -1.0;
+  const Mat6 s = m_covariance.topLeftCorner<6, 6>() + symmetricPart<6>(covariance);
+  Eigen::LDLT<Mat6> s_factor;
+  if (!factorPositive<6>(s, s_factor)) return -1.0;
+  const Vec6 y = m_pose.boxMinus(measured);
+  return y.dot(s_factor.solve(y));
 }
 
 void PoseFilter::adaptProcessNoise(const FilterUpdate& result, RejectedInnovation rejected) {

@@ -25,7 +25,8 @@ bool NearRangeTracker::fitPose(const Pose& predicted, Pose& pose, PoseFitResult&
   if (solved && fit.rms_px > m_params.max_rms_px) out.flags |= kFlagResidualTooHigh;
   if (solved && fit.rms_px > m_params.degraded_rms_px) out.flags |= kFlagResidualHigh;
   if (solved && !(pose.t_c_m.z() > 0.0)) out.flags |= kFlagOutOfImage;
-  if (solved && (out.flags & kFlagResidualTooHigh) == 0U && mirroredRivalFits(pose, fit, out.lines_used))
+  if (solved && (out.flags & kFlagResidualTooHigh) == 0U &&
+      mirroredRivalFits(pose, fit, out.lines_used, out.mirrored_rival))
     out.flags |= kFlagAmbiguous;
   if (solved && m_near_twin_checks && (out.flags & kFlagResidualTooHigh) == 0U &&
       nearTwinRivalFits(pose, fit, out.lines_used, out.near_twin_rival))
@@ -122,7 +123,8 @@ void NearRangeTracker::findNearTwins() {
   }
 }
 
-bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used) {
+bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used,
+                                         Pose& rival_out) {
   // Under weak perspective the depth-mirrored shape projects onto the same image: F R M with F the mirror
   // along the line of sight and M a mirror symmetry of the model (so det = +1) is a pose the outline alone
   // cannot tell from R (a box's Necker reversal, a plate's second tilt). LM from there finds its exact
@@ -155,6 +157,7 @@ bool NearRangeTracker::mirroredRivalFits(const Pose& pose, const PoseFitResult& 
     ambiguous = rival_fit.rms_px <= as_good && rival.t_c_m.z() > 0.0 &&
                 !m_symmetries.equivalent(rival, pose, distinct) &&
                 (!m_params.mirrored_rival_relabel || rivalShowsMeasuredEdges(pose, rival, k));
+    if (ambiguous) rival_out = rival;
   }
   collectVertices(-1);  // leave the buffers as the kept solution saw them
   return ambiguous;

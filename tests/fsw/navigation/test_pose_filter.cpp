@@ -213,6 +213,44 @@ TEST(PoseFilter, MeasurementEpochCountsOnlyWhatAMeasurementOrARestartChanged) {
   EXPECT_GT(f.measurementEpoch(), epoch) << "a reset";
 }
 
+// trackEpoch changes on restarts only; poseNis is the NIS update() would gate on, and changes nothing.
+TEST(PoseFilter, TrackEpochCountsRestartsAndPoseNisIsTheGatesWithoutAnUpdate) {
+  PoseFilter f = makeFilter();
+  Pcg32 rng(7);
+  Truth truth;
+  truth.pose = Pose::fromYpr({0.2, -0.1, 3.0}, Vec3(0.2, 0.0, 12.0));
+  const Mat6 r = trackerLikeCovariance();
+  EXPECT_LT(f.poseNis(truth.pose, r), 0.0) << "nothing to judge against";
+  ASSERT_EQ(f.initialise(truth.pose, r), Status::kOk);
+  const std::uint64_t track = f.trackEpoch();
+  for (int k = 0; k < 5; ++k) {
+    truth.step(kDt, 0.0, 0.0, rng);
+    ASSERT_EQ(f.predict(kDt), Status::kOk);
+    const Pose measured = measure(truth.pose, r, rng);
+    const Mat12 before = f.covariance();
+    const Pose predicted = f.pose();
+    const double nis = f.poseNis(measured, r);
+    EXPECT_EQ(f.covariance(), before) << "poseNis changed the state, frame " << k;
+    EXPECT_EQ(f.pose().t_c_m, predicted.t_c_m);
+    const FilterUpdate u = f.update(measured, r);
+    ASSERT_TRUE(u.accepted);
+    EXPECT_NEAR(nis, u.nis, 1e-9 * std::max(1.0, u.nis)) << "frame " << k;
+  }
+  EXPECT_EQ(f.trackEpoch(), track) << "accepted corrections continue the track";
+  // A rival 20 deg turned is far outside the gate; the state it is judged against is left alone.
+  Vec6 turn;
+  turn << 0.0, 20.0 * kRadPerDeg, 0.0, 0.0, 0.0, 0.0;
+  EXPECT_GT(f.poseNis(truth.pose.boxPlus(turn), r), f.params().pose_gate_chi2);
+  Pose bad = truth.pose;
+  bad.t_c_m.x() = std::nan("");
+  EXPECT_LT(f.poseNis(bad, r), 0.0);
+  ASSERT_EQ(f.initialise(truth.pose, r), Status::kOk);
+  EXPECT_GT(f.trackEpoch(), track) << "a restart";
+  const std::uint64_t restarted = f.trackEpoch();
+  f.reset();
+  EXPECT_GT(f.trackEpoch(), restarted) << "a reset";
+}
+
 // carryAngularVelocity: a rate carried over a restart, uncorrelated with the rest, and not a measurement.
 TEST(PoseFilter, ACarriedAngularRateIsSetUncorrelatedAndCheckedAsAnInput) {
   PoseFilter f = makeFilter();

@@ -353,10 +353,11 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         const double radius_deg = targetAngularRadiusDeg(scene, truth);
         std::snprintf(buf, sizeof buf,
                       "       far: valid=%d n=%d raw=%d clusters=%d flags=%04x d=%.1f c=%.3f q=%.2f "
-                      "dir_err=%.2fdeg rad=%.2fdeg sharp=%.2f\n",
+                      "dir_err=%.2fdeg rad=%.2fdeg sharp=%.2f refused=%llu\n",
                       fr.valid ? 1 : 0, fr.cluster_pixels, fr.raw_pixels, fr.cluster_count,
                       static_cast<unsigned>(fr.flags), fr.distance_m, fr.circularity, fr.quality, dir_err_deg,
-                      radius_deg, fr.outline_sharpness);
+                      radius_deg, fr.outline_sharpness,
+                      static_cast<unsigned long long>(pipeline->modes().refusedHandOvers()));
         res.trace += buf;
       }
       const nav::ReacquisitionStep& rs = pipeline->lastReacquisition();

@@ -240,6 +240,17 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "range, the third of them rejected at NIS 56. Measured in the top-level README (stop 54); "
              "false: rejected fits count"},
             p.branch_confirm_needs_filter);
+  v.boolean({"navigation", "mirror_resolved_by_prediction", "-", 0, 1,
+             "a near-range fit whose depth-mirrored rival explains its lines as well (the tracker's "
+             "kFlagAmbiguous: a plate's other tilt, a box's Necker reversal) still counts as rival-free "
+             "toward branch_confirm_frames when the track continues the last valid pose (or the "
+             "operator's start pose) without a filter restart since, the filter accepted the fit, and "
+             "its prediction rejects the rival ([filter] pose_gate_chi2): the image cannot tell the two "
+             "apart, the motion can. Without it such fits break every count: campaign octagon/11, "
+             "octagon/15 and octagon/20 (seeds 1-40) withheld 211 frames of right poses for their mirror "
+             "alone. Measured in the top-level README, stop 60; false: an ambiguous fit is never "
+             "rival-free"},
+            p.mirror_resolved_by_prediction);
   v.boolean({"navigation", "branch_range_after_jump", "-", 0, 1,
              "after a disputed jump breaks the branch, a near-range fit counts toward none of the "
              "branch_confirm_frames unless its range stays within disputed_max_range_change_rel (widened "

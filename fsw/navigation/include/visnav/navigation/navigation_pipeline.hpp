@@ -232,6 +232,10 @@ class NavigationPipeline {
   Pose m_branch_reference_pose;
   std::uint64_t m_frames_since_branch_reference = ~0ULL;
   std::uint64_t m_reference_filter_epoch = 0;  ///< the filter's measurementEpoch() after that reference
+  std::uint64_t m_reference_track_epoch = 0;   ///< and its trackEpoch(): no restart since, while equal
+  /// This frame's near-range fit was ambiguous: its mirrored rival's NIS against the filter's prediction
+  /// (before the update), -1 otherwise (mirror_resolved_by_prediction).
+  double m_mirror_nis = -1.0;
   TrackBranch m_branch;  ///< whether the track's mirror branch is known (the last word on validity)
   bool m_have_last_exposure = false;
   std::int64_t m_last_exposure_ns = 0;

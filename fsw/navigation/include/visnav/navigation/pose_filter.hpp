@@ -118,6 +118,13 @@ class PoseFilter {
   /// applied); predict and the rate changes for a search leave it. Equal counts at two times: the later
   /// state is the earlier one propagated by the motion model alone.
   std::uint64_t measurementEpoch() const { return m_epoch; }
+  /// Counts the restarts only (initialise*, reset): equal counts at two times say the later state is the
+  /// earlier one carried on by prediction and accepted measurements, the same track.
+  std::uint64_t trackEpoch() const { return m_track_epoch; }
+  /// The NIS (6 dof) `measured` would have against this state, which is left unchanged: y^T S^-1 y with y =
+  /// pose().boxMinus(measured) and S its pose covariance plus `covariance`, as update() gates it. -1 without
+  /// a known attitude or with an invalid input.
+  double poseNis(const Pose& measured, const Mat6& covariance) const;
   std::uint64_t rejectedUpdates() const { return m_rejected; }
   /// Gated-out updates since the last accepted one (FDIR input).
   std::uint32_t consecutiveRejections() const { return m_consecutive_rejections; }
@@ -153,6 +160,7 @@ class PoseFilter {
   Mat12 m_covariance = Mat12::Identity();
   std::uint64_t m_accepted = 0;
   std::uint64_t m_epoch = 0;
+  std::uint64_t m_track_epoch = 0;
   std::uint64_t m_rejected = 0;
   std::uint32_t m_consecutive_rejections = 0;
   double m_noise_scale = 1.0;

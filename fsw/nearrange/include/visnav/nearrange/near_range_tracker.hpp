@@ -92,6 +92,9 @@ struct NearRangeResult {
   /// With kFlagNearTwinRival: the near twin's fit that explains the lines as well (for the caller's
   /// continuity test).
   Pose near_twin_rival;
+  /// With kFlagAmbiguous: the depth-mirrored fit that explains the lines as well (for the caller's
+  /// continuity test).
+  Pose mirrored_rival;
   NearRangeTiming timing;
 };
 
@@ -202,7 +205,7 @@ class NearRangeTracker {
                        NearRangeResult& out);
   /// True when a start mirrored in depth about the target (composed with a mirror symmetry of the model, so
   /// a rotation) converges to a distinct pose that fits the same lines about as well.
-  bool mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used);
+  bool mirroredRivalFits(const Pose& pose, const PoseFitResult& fit, int lines_used, Pose& rival_out);
   /// True when every measured outline line of `pose`, relabelled through mirror `k`, lies on an edge
   /// `rival` shows (a surface owning it faces the camera or is within kRivalGrazingCos past grazing): a
   /// rival that explains the outline with back-facing edges is no pose the tracker could hold.
