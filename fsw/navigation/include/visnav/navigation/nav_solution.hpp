@@ -46,13 +46,12 @@ using visnav::kFaultTooFewLines;
 /// Why a pose computed this cycle is not valid (NavSolution::withheld): every gate that withheld it, not
 /// only the first (fsw/navigation/README.md, "One frame", item 4). A pose may be withheld by several.
 enum WithheldReason : std::uint32_t {
-  kWithheldUncertain = 1U << 0,    ///< its own 1-sigma above [navigation] max_valid_attitude/position
-  kWithheldDoubted = 1U << 1,      ///< doubted, attitude 1-sigma above doubted_max_attitude_sigma_deg
-  kWithheldFindDoubted = 1U << 2,  ///< its track began with a find not yet cleared (doubt_clear_frames)
-  kWithheldEdgeOn = 1U << 3,       ///< no face seen more than edge-on (max_valid_view_angle_deg)
-  kWithheldJumped = 1U << 4,       ///< disputed by the filter and turned or moved in range in one frame
-  kWithheldMissesOutline =
-      1U << 5,  ///< a minimal fit that left more lines out (minimal_fit_max_missing_lines)
+  kWithheldUncertain = 1U << 0,        ///< its own 1-sigma above [navigation] max_valid_attitude/position
+  kWithheldDoubted = 1U << 1,          ///< doubted, attitude 1-sigma above doubted_max_attitude_sigma_deg
+  kWithheldFindDoubted = 1U << 2,      ///< its track began with a find not yet cleared (doubt_clear_frames)
+  kWithheldEdgeOn = 1U << 3,           ///< no face seen more than edge-on (max_valid_view_angle_deg)
+  kWithheldJumped = 1U << 4,           ///< disputed by the filter and turned or moved in range in one frame
+  kWithheldMissesOutline = 1U << 5,    ///< a 4-line fit missing lines (minimal_fit_max_missing_lines)
   kWithheldAwaitsNearRange = 1U << 6,  ///< an acquisition's own pose (acquisition_awaits_near_range)
   kWithheldBranchUnknown = 1U << 7,  ///< the track's branch is still to be confirmed (branch_confirm_frames)
 };
