@@ -246,10 +246,10 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "toward branch_confirm_frames when the track continues the last valid pose (or the "
              "operator's start pose) without a filter restart since, the filter accepted the fit, and "
              "its prediction rejects the rival ([filter] pose_gate_chi2): the image cannot tell the two "
-             "apart, the motion can. Without it such fits break every count: campaign octagon/11, "
-             "octagon/15 and octagon/20 (seeds 1-40) withheld 211 frames of right poses for their mirror "
-             "alone. Measured in the top-level README, stop 60; false: an ambiguous fit is never "
-             "rival-free"},
+             "apart, the motion can. Without it such fits break every count: on campaign seeds 1-40, 211 "
+             "frames of right poses were withheld for the branch alone with the flag set (octagon/11, /15 "
+             "and /20 the most). Measured in the top-level README, stop 60; false: an ambiguous fit is "
+             "never rival-free"},
             p.mirror_resolved_by_prediction);
   v.boolean({"navigation", "branch_range_after_jump", "-", 0, 1,
              "after a disputed jump breaks the branch, a near-range fit counts toward none of the "
