@@ -83,6 +83,7 @@ void fillPoseEstimate(const nav::NavSolution& nav, std::uint64_t sample_number, 
   out.lines_total = clampCount(nav.lines_total);
   out.symmetric_twins = static_cast<std::uint8_t>(std::clamp(nav.symmetric_twins, 0, 255));
   out.twin_by_continuity = nav.twin_by_continuity;
+  out.withheld = nav.withheld;
 }
 
 void fillFarRangeEstimate(const nav::NavSolution& nav, std::uint64_t sample_number,

@@ -29,6 +29,7 @@ nav::NavSolution makeNavSolution(std::uint64_t i) {
   s.lines_total = static_cast<int>(8 + i % 3);
   s.symmetric_twins = s.pose_valid ? static_cast<int>(1 + i % 4) : 0;
   s.twin_by_continuity = s.pose_valid && i % 2 == 0;
+  s.withheld = lost ? nav::kWithheldDoubted | nav::kWithheldBranchUnknown : 0U;
   s.far.valid = far;
   s.far.direction_c = Vec3(0.01 * x, -0.02, 1.0).normalized();
   s.far.azimuth_rad = 0.001 * x;

@@ -53,6 +53,11 @@ TEST(SampleMapping, PoseEstimateEveryField) {
   EXPECT_EQ(s.lines_total, 9U);
   EXPECT_EQ(s.symmetric_twins, 1U);
   EXPECT_TRUE(s.twin_by_continuity);
+  EXPECT_EQ(s.withheld, 0U);  // a valid pose
+  visnav_PoseEstimate withheld{};
+  fillPoseEstimate(test::makeNavSolution(7), 1, 0, withheld);  // near range, its pose withheld
+  EXPECT_FALSE(withheld.pose_valid);
+  EXPECT_EQ(withheld.withheld, 0x82U) << "the WithheldReason bits as NavSolution gives them";
 }
 
 TEST(SampleMapping, TrackStatusFollowsPoseFaultsAndMode) {

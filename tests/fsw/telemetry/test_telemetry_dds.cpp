@@ -122,6 +122,7 @@ TEST_F(TelemetryDds, PoseAndFarRangeRoundTripFieldByField) {
     EXPECT_EQ(p.lines_total, n.lines_total);
     EXPECT_EQ(p.symmetric_twins, n.symmetric_twins);
     EXPECT_EQ(p.twin_by_continuity, n.twin_by_continuity);
+    EXPECT_EQ(p.withheld, n.withheld);
 
     const visnav_FarRangeEstimate& f = fars[i - 1];
     EXPECT_EQ(f.sample_number, i);

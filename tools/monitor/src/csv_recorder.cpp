@@ -51,7 +51,8 @@ LoadError CsvRecorder::open(const std::string& pose_path) {
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) std::fprintf(m_pose, ",cov_%d_%d", i, j);
   std::fprintf(m_pose,
-               ",tracked_surfaces,lines_total,lines_used,symmetric_twins,twin_by_continuity,sample_number%s",
+               ",tracked_surfaces,lines_total,lines_used,symmetric_twins,twin_by_continuity,withheld,"
+               "sample_number%s",
                kReceptionHeader);
 
   std::fprintf(m_far,
@@ -81,8 +82,8 @@ void CsvRecorder::pose(const visnav_PoseEstimate& s, const Reception& r) {
                s.quaternion[2], s.quaternion[3], s.yaw_rad * kDegPerRad, s.pitch_rad * kDegPerRad,
                s.roll_rad * kDegPerRad);
   for (double c : s.covariance) std::fprintf(m_pose, ",%.6g", c);
-  std::fprintf(m_pose, ",%u,%u,%u,%u,%d,%llu", s.tracked_surfaces, s.lines_total, s.lines_used,
-               s.symmetric_twins, s.twin_by_continuity ? 1 : 0,
+  std::fprintf(m_pose, ",%u,%u,%u,%u,%d,%u,%llu", s.tracked_surfaces, s.lines_total, s.lines_used,
+               s.symmetric_twins, s.twin_by_continuity ? 1 : 0, s.withheld,
                static_cast<unsigned long long>(s.sample_number));
   receptionColumns(m_pose, s.publish_time_ns, r);
 }

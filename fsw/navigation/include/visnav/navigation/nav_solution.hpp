@@ -89,7 +89,8 @@ struct NavSolution {
   /// every pose of that track: each rests on that choice.
   bool twin_by_continuity = false;
   /// With a pose computed (near range, a find, an acquisition) but pose_valid false: the WithheldReason bits
-  /// that withheld it; 0 with a valid pose or without one. Not on the DDS sample yet (idl/visnav.idl).
+  /// that withheld it; 0 with a valid pose or without one. PoseEstimate.withheld on the wire
+  /// (idl/visnav.idl); not in the C ABI's visnav_solution (ABI 2).
   std::uint32_t withheld = 0;
   FarRangeSolution far;
   std::uint32_t fault_bits = 0;  ///< FaultBit set this frame
