@@ -294,12 +294,18 @@ FilterUpdate PoseFilter::update(const Pose& measured, const Mat6& covariance, Re
   return result;
 }
 
+template <int M>
+bool PoseFilter::factorInnovation(int first, const Eigen::Matrix<double, M, M>& r,
+                                  Eigen::LDLT<Eigen::Matrix<double, M, M>>& s_factor) const {
+  const Eigen::Matrix<double, M, M> s = m_covariance.template block<M, M>(first, first) + r;
+  return factorPositive<M>(s, s_factor);
+}
+
 double PoseFilter::poseNis(const Pose& measured, const Mat6& covariance) const {
   if (!m_initialised || !m_attitude_known || !measured.R_c_m.allFinite() || !allFinite(measured.t_c_m))
     return -1.0;
-  const Mat6 s = m_covariance.topLeftCorner<6, 6>() + symmetricPart<6>(covariance);
   Eigen::LDLT<Mat6> s_factor;
-  if (!factorPositive<6>(s, s_factor)) return -1.0;
+  if (!factorInnovation<6>(kAttitude, symmetricPart<6>(covariance), s_factor)) return -1.0;
   const Vec6 y = m_pose.boxMinus(measured);
   return y.dot(s_factor.solve(y));
 }
@@ -323,9 +329,8 @@ void PoseFilter::adaptProcessNoise(const FilterUpdate& result, RejectedInnovatio
 template <int M>
 FilterUpdate PoseFilter::correct(int first, const Eigen::Matrix<double, M, 1>& y,
                                  const Eigen::Matrix<double, M, M>& r, double gate, FilterUpdate result) {
-  const Eigen::Matrix<double, M, M> s = m_covariance.template block<M, M>(first, first) + r;
   Eigen::LDLT<Eigen::Matrix<double, M, M>> s_factor;
-  if (!factorPositive<M>(s, s_factor)) {
+  if (!factorInnovation<M>(first, r, s_factor)) {
     result.status = Status::kInvalidArgument;
     return result;
   }

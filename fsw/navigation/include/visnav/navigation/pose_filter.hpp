@@ -145,6 +145,11 @@ class PoseFilter {
   static constexpr double kAdaptDecayFactor = 0.8;
   void symmetrize();
   FilterUpdate gateResult(FilterUpdate result, double gate);
+  /// The innovation covariance S = P + R of a measurement of M consecutive error-state entries from
+  /// `first`, factored; false when S is not positive definite. Shared by correct() and poseNis().
+  template <int M>
+  bool factorInnovation(int first, const Eigen::Matrix<double, M, M>& r,
+                        Eigen::LDLT<Eigen::Matrix<double, M, M>>& s_factor) const;
   /// The Kalman correction for a measurement of M consecutive error-state entries from `first` (H = [0 I 0]):
   /// innovation y, its covariance R; NIS gate, Joseph-form covariance update, state injection.
   template <int M>
