@@ -18,7 +18,8 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               --doubt-every-line-up-to ([navigation] doubt_every_line_up_to), beside a face the tracker
               saw as a narrow strip (near_flags 0x1000; [navigation] doubt_narrow_face, --no-narrow-face-doubt
               ignores it), that the filter accepted with a NIS above --doubt-nis-chi2 ([navigation]
-              doubt_nis_chi2, frames.csv column nis), the first fit after the operator's start pose whose
+              doubt_nis_chi2, frames.csv column nis), one of the first --start-pose-doubt-fits fits after the
+              operator's start pose ([navigation] start_pose_doubt_fits: 2 since stop 61, 1 before) whose
               NIS exceeds --start-pose-doubt-nis ([navigation] start_pose_doubt_nis_chi2, stop 54), of the
               first --start-pose-doubt-frames frames of a
               scene that starts in near range from the operator's pose (not shipped: built and measured in
@@ -37,7 +38,12 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               judged to have kept the branch by continuity (frames.csv column kept_branch: a clean fit,
               accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
               pose's after a break of at most [navigation] branch_continuity_frames; as the pipeline judged
-              it, so exact only with the shipped gates; --no-branch-continuity ignores it)
+              it, so exact only with the shipped gates; --no-branch-continuity ignores it); a frame
+              without a certain pose that the pipeline judged the track went through unbroken (column
+              continued: rival-free, accepted by the filter, no jump or find; [navigation]
+              branch_resumes_after_continued, stop 61) does not restart the count: after a known branch
+              the next certain rival-free frame confirms it, a count under way goes on (--no-branch-resume:
+              at zero, as before)
   awaited     an acquisition's pose is not valid on its own frame; the next frame confirms the branch if it is
               a near-range frame with a certain, rival-free pose ([navigation] acquisition_awaits_near_range;
               --no-acquisition-await: valid on its own frame and confirming, as before)
@@ -91,6 +97,7 @@ def parse_args(argv):
     p.add_argument('--minimal-fit-max-missing', type=int, default=2)
     p.add_argument('--start-pose-doubt-frames', type=int, default=0)
     p.add_argument('--start-pose-doubt-nis', type=float, default=5.35)
+    p.add_argument('--start-pose-doubt-fits', type=int, default=2)
     p.add_argument('--no-branch-confirm-needs-filter', action='store_true')
     p.add_argument('--no-branch-range-after-jump', action='store_true')
     p.add_argument('--min-edge-support', type=float, default=0.0)
@@ -100,6 +107,7 @@ def parse_args(argv):
     p.add_argument('--no-acquisition-await', action='store_true')
     p.add_argument('--no-branch-continuity', action='store_true')
     p.add_argument('--no-jump-gate', action='store_true')
+    p.add_argument('--no-branch-resume', action='store_true')
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -112,12 +120,15 @@ def replay_scene(rows, a):
     out = []
     # A near scene starts from the operator's pose (startNearRange) on its first frame.
     started_near = bool(rows) and rows[0]['mode'] == 'near_range'
-    start_fit_pending = started_near
+    start_fits_pending = a.start_pose_doubt_fits if started_near else 0
     for r in rows:
-        # The first near-range fit after the start pose (the first with a filter update) is judged against it.
-        start_fit = start_fit_pending and r['mode'] == 'near_range' and r['nis'] != ''
-        if start_fit or r['mode'] != 'near_range':
-            start_fit_pending = False
+        # The first near-range fits after the start pose (those with a filter update; [navigation]
+        # start_pose_doubt_fits, stop 61) are judged against it.
+        start_fit = start_fits_pending > 0 and r['mode'] == 'near_range' and r['nis'] != ''
+        if start_fit:
+            start_fits_pending -= 1
+        if r['mode'] != 'near_range':
+            start_fits_pending = 0
         awaited = awaiting and r['mode'] == 'near_range'
         if r['mode'] != 'acquisition':
             awaiting = False
@@ -164,7 +175,13 @@ def replay_scene(rows, a):
         if a.branch_confirm_frames > 0:
             if not certain:
                 bad += 1
-                run = 0
+                # A withheld frame the track went through unbroken (the pipeline's verdict, column
+                # continued; [navigation] branch_resumes_after_continued, stop 61) does not restart the count.
+                resumes = not a.no_branch_resume and r.get('continued', '0') == '1'
+                if resumes:
+                    run = a.branch_confirm_frames - 1 if known else min(run, a.branch_confirm_frames - 1)
+                else:
+                    run = 0
                 if bad >= a.break_after:
                     known = False
             else:

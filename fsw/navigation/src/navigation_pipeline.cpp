@@ -31,7 +31,8 @@ LoadError NavigationPipeline::init(const PinholeCamera& camera, const PolygonMod
     e = m_reacquisition.init(camera, model, m_params.navigation, params.nearrange, params.acquisition);
   if (!e.ok) return e;
   m_fdir.init(m_params.navigation, model, camera.intrinsics().fx_px);
-  m_branch.init(m_params.navigation.branch_confirm_frames);
+  m_branch.init(m_params.navigation.branch_confirm_frames,
+                m_params.navigation.branch_resumes_after_continued);
   m_max_view_cos = m_params.navigation.max_valid_view_angle_deg > 0.0
                        ? std::cos(m_params.navigation.max_valid_view_angle_deg * kRadPerDeg)
                        : 1.0;
@@ -53,7 +54,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_delivered = {};  // given, not measured on a frame
   m_coasted = 0;
   m_track_doubted = false;  // the operator's pose
-  m_start_fit_pending = true;
+  m_start_fits_pending = std::max(0, m_params.navigation.start_pose_doubt_fits);
   m_fit_restarted_filter = false;
   m_have_valid_range = false;  // a new track: no valid pose's range to keep yet
   m_range_check_active = false;
@@ -236,8 +237,9 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   }
   const std::uint32_t faults = m_fdir.checkNearRange(check);
   m_near_range_faults = faults;
-  const bool start_fit = measured && m_start_fit_pending;  // checked against the start pose alone
-  if (measured) m_start_fit_pending = false;
+  // Checked against the start pose alone (the first), or a prediction from it and one fit, without motion.
+  const bool start_fit = measured && m_start_fits_pending > 0;
+  if (start_fit) --m_start_fits_pending;
   const bool dropped = !measured || m_fdir.faultPersisted();
   if (!dropped && accepted) {
     // A fault (e.g. the innovation gate on a measurement the image supports) is flagged in fault_bits and
@@ -270,8 +272,8 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
         nav.disputed_max_range_change_rel > 0.0 && predicted_range_m > 0.0 &&
         std::fabs(r.pose.t_c_m.norm() / predicted_range_m - 1.0) > nav.disputed_max_range_change_rel;
     const bool jumped = disputed && (turned || moved_in_range);
-    deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out,
-            doubted || m_track_doubted);
+    deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out, doubted || m_track_doubted,
+            r.systematic_gain);
     m_pose_jumped = jumped;
     const bool misses_outline = minimalFitMissesOutline(r, nav);
     if (jumped || misses_outline) {
@@ -289,7 +291,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
 
 void NavigationPipeline::enterMode(NavMode mode) {
   m_fdir.resetPersistence();
-  m_start_fit_pending = false;
+  m_start_fits_pending = 0;
   m_fit_restarted_filter = false;
   m_range_check_active = false;
   m_coasted = 0;
@@ -320,6 +322,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_acquisition_result = acq::AcquisitionResult{};
   m_pose_showed_face = true;
   m_fit_kept_the_branch = false;
+  m_track_continued = false;
   m_near_twin_rival = false;
   m_mirror_nis = -1.0;
   m_pose_jumped = false;

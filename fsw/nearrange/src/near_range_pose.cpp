@@ -320,6 +320,7 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     if (obs.vertex < 0) continue;
     obs.px_ideal = m_vertex_best_px[v];
     obs.variance_px2 = m_vertex_best_var[v];
+    obs.inv_sin2 = 1.0 / (m_vertex_best_sin[v] * m_vertex_best_sin[v]);
     m_vertex_obs.push(obs);
   }
   // Chamfer corners (findChamferCorners), where the bridge edge is too short this frame to give a line
@@ -347,6 +348,7 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     obs.point_m = m_chamfer_corners[static_cast<std::size_t>(corner)].point_m;
     obs.variance_px2 =
         0.5 * (m_edges[i].end_variance_px2 + m_edges[j].end_variance_px2) / (sin_angle * sin_angle);
+    obs.inv_sin2 = 1.0 / (sin_angle * sin_angle);
     if (!m_vertex_obs.push(obs)) break;
   }
   return static_cast<int>(m_vertex_obs.size());

@@ -283,6 +283,8 @@ void NearRangeTracker::finishLost(const Pose& predicted, NearRangeResult& out) c
   out.status = TrackStatus::kLost;
   out.pose = predicted;
   out.covariance = Mat6::Identity() * 1e6;  // "do not trust": a prediction, not a measurement
+  out.systematic_gain = 1.0;
+  out.covariance_terms = CovarianceTerms{};
   out.quality = 0.0;
 }
 
@@ -313,20 +315,38 @@ double residualVarianceFactor(const PoseFitResult& fit, double pixel_sigma_px) {
 
 }  // namespace
 
-double NearRangeTracker::covarianceScale(const PoseFitResult& fit, std::uint32_t flags) const {
+double NearRangeTracker::covarianceScale(const PoseFitResult& fit, std::uint32_t flags,
+                                         NearRangeResult& out) const {
   // The LM's covariance assumes pixel_sigma_px per residual. Eq. 7's residuals are vertices made by
   // intersecting two fitted lines: each is known as well as those lines' ends, divided by the sine of their
   // angle (collectVertices), which is often several times pixel_sigma_px under noise and blur; and with 4
   // vertices the fit has only 2 degrees of freedom left, so its own residual says little. The larger of
   // the two honest scales is used (campaign plate/12 frame 0: 1.6 deg 1-sigma reported, 12.5 deg off).
   const double sigma2 = m_params.pixel_sigma_px * m_params.pixel_sigma_px;
-  double scale = residualVarianceFactor(fit, m_params.pixel_sigma_px);
+  const double residual_factor = residualVarianceFactor(fit, m_params.pixel_sigma_px);
+  double scale = residual_factor;
+  out.covariance_terms = CovarianceTerms{};
+  out.covariance_terms.residual_factor = residual_factor;
+  out.systematic_gain = 1.0;
   const bool vertex_fit = m_params.pose_residual == static_cast<int>(PoseResidualMode::kVertex) &&
                           (flags & kFlagResidualFallback) == 0U;
   if (vertex_fit && !m_vertex_obs.empty() && sigma2 > 0.0) {
     double sum = 0.0;
-    for (const VertexObservation& obs : m_vertex_obs) sum += obs.variance_px2;
-    scale = std::max(scale, sum / static_cast<double>(m_vertex_obs.size()) / sigma2);
+    double inv_sin2_sum = 0.0;
+    for (const VertexObservation& obs : m_vertex_obs) {
+      sum += obs.variance_px2;
+      inv_sin2_sum += obs.inv_sin2;
+    }
+    const double count = static_cast<double>(m_vertex_obs.size());
+    out.covariance_terms.vertex_factor = sum / count / sigma2;
+    out.covariance_terms.bias_factor_per_px2 = inv_sin2_sum / count / sigma2;
+    scale = std::max(scale, out.covariance_terms.vertex_factor);
+    // Each line end's systematic error (line_end_bias_px) moves a vertex by b / sin of its lines' angle on
+    // each axis, like the scatter does, but more points do not shrink it (validityCovariance).
+    const double bias2 = m_params.line_end_bias_px * m_params.line_end_bias_px;
+    const double with_bias = std::max(residual_factor, out.covariance_terms.vertex_factor +
+                                                           bias2 * out.covariance_terms.bias_factor_per_px2);
+    if (scale > 0.0) out.systematic_gain = with_bias / scale;
   }
   return scale;
 }
@@ -340,7 +360,7 @@ void NearRangeTracker::finishMeasured(const Pose& predicted, const Pose& pose, c
     return;
   }
   out.pose = pose;
-  out.covariance = fit.covariance * covarianceScale(fit, out.flags);
+  out.covariance = fit.covariance * covarianceScale(fit, out.flags, out);
   const double r = fit.rms_px / m_params.degraded_rms_px;
   out.quality *= 1.0 / (1.0 + r * r);
   out.status =

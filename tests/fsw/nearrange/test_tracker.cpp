@@ -133,6 +133,51 @@ TEST_F(TrackerTest, SameInputGivesBitIdenticalOutput) {
   EXPECT_EQ(std::memcmp(a.covariance.data(), b.covariance.data(), sizeof(double) * 36), 0);
 }
 
+TEST_F(TrackerTest, ALineEndBiasWidensTheSystematicGainButNotTheFitOrItsCovariance) {
+  // line_end_bias_px is an error more points do not average away: it widens what validity is judged on
+  // (systematic_gain), never the fit or the scatter's covariance the filter takes.
+  const Pose truth = plateAt(15.0, 0.1, 1.0, 1.0);
+  const test::RenderedFrame frame = renderFrame(renderer, truth, 11);
+  NearRangeResult base;
+  double last_gain = 0.0;
+  for (const double bias_px : {0.0, 0.2, 0.5}) {
+    NearRangeParams params;
+    params.line_end_bias_px = bias_px;
+    NearRangeTracker t;
+    ASSERT_TRUE(t.init(vgaCamera(), model, params).ok);
+    NearRangeResult r;
+    t.track(frame.image(), truth, 5, r);
+    ASSERT_EQ(r.status, TrackStatus::kTracking) << bias_px;
+    if (bias_px == 0.0) {
+      base = r;
+      EXPECT_EQ(r.systematic_gain, 1.0);
+    } else {
+      EXPECT_EQ(std::memcmp(r.pose.t_c_m.data(), base.pose.t_c_m.data(), sizeof(double) * 3), 0);
+      EXPECT_EQ(std::memcmp(r.covariance.data(), base.covariance.data(), sizeof(double) * 36), 0);
+      EXPECT_GT(r.systematic_gain, last_gain) << bias_px;
+    }
+    last_gain = r.systematic_gain;
+    // The gain is the covariance scale with the bias over the scale without (covarianceScale).
+    const CovarianceTerms& c = r.covariance_terms;
+    ASSERT_GT(c.vertex_factor, 0.0);
+    ASSERT_GT(c.bias_factor_per_px2, 0.0);
+    const double sigma2 = params.pixel_sigma_px * params.pixel_sigma_px;
+    EXPECT_NEAR(c.bias_factor_per_px2 * sigma2, 1.0, 0.3) << "a plate's corners are near right angles";
+    EXPECT_NEAR(r.systematic_gain,
+                std::max(c.residual_factor, c.vertex_factor + bias_px * bias_px * c.bias_factor_per_px2) /
+                    std::max(c.residual_factor, c.vertex_factor),
+                1e-12);
+  }
+  // A lost frame reports no gain.
+  NearRangeParams params;
+  NearRangeTracker t;
+  ASSERT_TRUE(t.init(vgaCamera(), model, params).ok);
+  NearRangeResult lost;
+  t.track(renderFrame(renderer, plateAt(10.0, 50.0), 5).image(), plateAt(10.0), 0, lost);
+  EXPECT_EQ(lost.status, TrackStatus::kLost);
+  EXPECT_EQ(lost.systematic_gain, 1.0);
+}
+
 TEST_F(TrackerTest, PointToLineResidualAlsoTracks) {
   NearRangeParams params;
   params.pose_residual = static_cast<int>(PoseResidualMode::kPointToLine);

@@ -242,6 +242,13 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     }
     f.near_flags = pipeline->lastNearRange().flags;
     f.withheld = sol.withheld;
+    if (f.has_candidate && sol.mode == nav::NavMode::kNearRange) {
+      const NearRangeResult& near = pipeline->lastNearRange();
+      f.systematic_gain = near.systematic_gain;
+      f.cov_residual_factor = near.covariance_terms.residual_factor;
+      f.cov_vertex_factor = near.covariance_terms.vertex_factor;
+      f.cov_bias_factor_per_px2 = near.covariance_terms.bias_factor_per_px2;
+    }
     f.lines_used = pipeline->lastNearRange().lines_used;
     f.lines_total = pipeline->lastNearRange().lines_total;
     f.scanlines = pipeline->lastNearRange().scanlines;
@@ -252,6 +259,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.shows_face = pipeline->lastPoseShowedAFace();
     f.twin_by_continuity = sol.twin_by_continuity;
     f.kept_branch = pipeline->lastFitKeptTheBranch();
+    f.continued = pipeline->lastFrameContinuedTheTrack();
     f.near_twin_rival = pipeline->lastNearTwinRival();
     f.find_on_branch = !f.reacquired || pipeline->lastFindOnKnownBranch();
     f.jumped = pipeline->lastPoseJumped();

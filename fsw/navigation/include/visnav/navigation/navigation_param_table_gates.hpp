@@ -223,6 +223,13 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
           "1.6-2.5 deg 1-sigma) had NIS 9.0-9.7; right ones 0.0-1.1 (90 %); the paper's plate 0.08. "
           "Measured in the top-level README (stop 54); 0 switches it off"},
          p.start_pose_doubt_nis_chi2);
+  v.integer({"navigation", "start_pose_doubt_fits", "count", 0, 100,
+             "how many near-range fits after a start pose are judged by start_pose_doubt_nis_chi2: the "
+             "second fit's prediction still rests on the start pose and one fit, with no motion measured "
+             "(campaign octagon/29: its second fit 6.2 deg off at 1.9 deg 1-sigma, NIS 11.9, below "
+             "doubt_nis_chi2). Measured in the top-level README (stop 61); 1: the first fit only (stop 54); "
+             "0 switches the check off"},
+            p.start_pose_doubt_fits);
   v.integer({"navigation", "branch_confirm_frames", "count", 0, 1000,
              "a track's branch (which of two mirror poses, e.g. a plate's two tilts) is known from the given "
              "start pose, an acquisition or reacquisition confirmation, or this many consecutive valid "
@@ -240,6 +247,18 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "range, the third of them rejected at NIS 56. Measured in the top-level README (stop 54); "
              "false: rejected fits count"},
             p.branch_confirm_needs_filter);
+  v.boolean({"navigation", "branch_resumes_after_continued", "-", 0, 1,
+             "a frame whose near-range pose was withheld only as doubted (part of its outline missing, the "
+             "start pose disputed) or as a minimal fit missing lines, while the track went through it "
+             "unbroken (the fit rival-free, accepted by the filter with a NIS within doubt_nis_chi2, no "
+             "jump, no find, no face seen as a narrow strip), still loses the branch, but the count of "
+             "branch_confirm_frames does not start again from zero: after a known branch the next valid "
+             "rival-free frame confirms it, a count under way goes on. The track cannot reach the mirror "
+             "branch through such frames: the prediction or the rival refit flags the mirror's fits. Not "
+             "after an uncertain, surprising, edge-on or narrow-face frame, where resumed tracks were 5-6 "
+             "deg off (campaign plate/40, smallsat/40, box/25). Measured in the top-level README (stop 61); "
+             "false: every withheld frame restarts the count"},
+            p.branch_resumes_after_continued);
   v.boolean({"navigation", "mirror_resolved_by_prediction", "-", 0, 1,
              "a near-range fit whose depth-mirrored rival explains its lines as well (the tracker's "
              "kFlagAmbiguous: a plate's other tilt, a box's Necker reversal) still counts as rival-free "

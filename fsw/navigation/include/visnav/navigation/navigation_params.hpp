@@ -51,9 +51,11 @@ struct NavigationParams {
   double start_pose_sigma_deg = 2.5;    ///< 1-sigma (sqrt of trace) of a given start pose's attitude; 0: none
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
   double start_pose_doubt_nis_chi2 = 5.35;  ///< the first fit's NIS vs the start pose above this: doubted
+  int start_pose_doubt_fits = 2;            ///< that many fits after the start pose are judged so
   int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
-  bool branch_confirm_needs_filter = true;    ///< a fit the filter rejected counts toward none of them
-  bool mirror_resolved_by_prediction = true;  ///< a mirrored rival the continued track rejects is no rival
+  bool branch_confirm_needs_filter = true;     ///< a fit the filter rejected counts toward none of them
+  bool branch_resumes_after_continued = true;  ///< a withheld frame the track went through: 1 frame confirms
+  bool mirror_resolved_by_prediction = true;   ///< a mirrored rival the continued track rejects is no rival
   bool branch_range_after_jump = false;  ///< after a disputed jump, nor one off the last valid pose's range
   double branch_range_growth_rel_per_frame = 0.005;  ///< that range's tolerance growth (from 3 %, below)
   bool acquisition_awaits_near_range = true;  ///< an acquisition's pose is valid once near range agrees

@@ -77,6 +77,9 @@ class NavigationPipeline {
   /// Whether the last frame's near-range fit met the branch continuity rule (keptTheBranch), whatever the
   /// branch's state: what tools/campaign/gate_replay.py replays.
   bool lastFitKeptTheBranch() const { return m_fit_kept_the_branch; }
+  /// Whether the last frame's pose was withheld while the track went through it unbroken (confirmBranch,
+  /// [navigation] branch_resumes_after_continued), for the campaign's gate replay.
+  bool lastFrameContinuedTheTrack() const { return m_track_continued; }
   /// Whether the last frame's near-range fit had a near-twin rival the branch rule counted (the tracker's
   /// kFlagNearTwinRival, unless continuity with the last valid or the start pose's look chose): for the
   /// gate replay.
@@ -101,8 +104,10 @@ class NavigationPipeline {
   void runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void coast(NavSolution& out);
   bool closeRange() const;
+  /// `covariance`: the fit's, as the filter takes it; x systematic_gain (NearRangeResult) for the user and
+  /// the validity checks.
   void deliver(const Pose& pose, const Mat6& covariance, double quality, NavSolution& out,
-               bool doubted = false);
+               bool doubted = false, double systematic_gain = 1.0);
   /// The last word on validity: a pose is valid only while the track's mirror branch is known
   /// (track_branch.hpp).
   void confirmBranch(NavMode processed_in, NavSolution& out);
@@ -163,6 +168,7 @@ class NavigationPipeline {
   double m_max_view_cos = 1.0;         ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
   bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
+  bool m_track_continued = false;      ///< lastFrameContinuedTheTrack()
   bool m_near_twin_rival = false;      ///< lastNearTwinRival()
   bool m_pose_jumped = false;          ///< lastPoseJumped()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
@@ -205,8 +211,8 @@ class NavigationPipeline {
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;
-  /// No fit measured since the operator's start pose (start_pose_doubt_nis_chi2).
-  bool m_start_fit_pending = false;
+  /// Fits after the operator's start pose still judged against it (start_pose_doubt_fits).
+  int m_start_fits_pending = 0;
   /// The last near-range fit overruled the filter's innovation gate and restarted it
   /// (doubt_after_filter_restart); cleared by the next frame.
   bool m_fit_restarted_filter = false;

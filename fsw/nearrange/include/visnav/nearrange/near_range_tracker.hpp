@@ -66,12 +66,26 @@ struct NearRangeTiming {
   double total_us = 0.0;
 };
 
+/// What a fit's covariance scale (pixel_sigma_px^2 units) was made of: the larger of the residual's
+/// a-posteriori factor and the vertices' mean variance from their lines' scatter; bias_factor_per_px2 x b^2
+/// is what a systematic line-end error b adds to the latter (line_end_bias_px). Zero where not computed.
+struct CovarianceTerms {
+  double residual_factor = 0.0;
+  double vertex_factor = 0.0;
+  double bias_factor_per_px2 = 0.0;
+};
+
 struct NearRangeResult {
   TrackStatus status = TrackStatus::kLost;
   std::uint32_t flags = 0;
   Pose pose;                       ///< T_c_m; the prediction when lost
-  Mat6 covariance = Mat6::Zero();  ///< over (omega, dt), CONVENTIONS.md
-  double quality = 0.0;            ///< [0, 1]: share of usable lines x mean inlier ratio x residual term
+  Mat6 covariance = Mat6::Zero();  ///< over (omega, dt), CONVENTIONS.md; from the points' scatter
+  /// covariance x this: the pose's uncertainty with each line end's systematic error (line_end_bias_px)
+  /// added, which more points do not average away; what a delivered pose's validity is judged on. 1 where
+  /// not computed (a point-to-line fit, a lost frame).
+  double systematic_gain = 1.0;
+  CovarianceTerms covariance_terms;
+  double quality = 0.0;  ///< [0, 1]: share of usable lines x mean inlier ratio x residual term
   int tracked_surfaces = 0;
   std::uint64_t tracked_surface_mask = 0;  ///< bit i: surface i (first 64 surfaces)
   int lines_total = 0;  ///< selected edges long enough to cast scanlines across (the measurable ones)
@@ -220,7 +234,7 @@ class NearRangeTracker {
   void findNearTwins();
   void findChamferCorners();
   void finishLost(const Pose& predicted, NearRangeResult& out) const;
-  double covarianceScale(const PoseFitResult& fit, std::uint32_t flags) const;
+  double covarianceScale(const PoseFitResult& fit, std::uint32_t flags, NearRangeResult& out) const;
 
   static constexpr int kPolarityBins = 16;
 

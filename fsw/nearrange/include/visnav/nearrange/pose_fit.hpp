@@ -16,6 +16,9 @@ struct VertexObservation {
   Vec2 px_ideal = Vec2::Zero();
   /// Per-axis variance of px_ideal [px^2] propagated from the two fitted lines that made it (0: unknown).
   double variance_px2 = 0.0;
+  /// 1 / sin^2 of the angle between the two lines that made it: a line-end error b moves it by
+  /// b^2 * inv_sin2 in variance per axis (NearRangeTracker::covarianceScale).
+  double inv_sin2 = 0.0;
   /// With vertex -1: the model-frame point observed, e.g. where the lines of two edges of one face meet
   /// across a short edge between them (a chamfered corner, NearRangeTracker).
   Vec3 point_m = Vec3::Zero();

@@ -69,6 +69,12 @@ struct FrameOutcome {
   double position_sigma_rel = 0.0;            ///< sqrt(trace) of its position covariance / range
   std::uint32_t near_flags = 0;               ///< the near-range tracker's flags (0 when it did not run)
   std::uint32_t withheld = 0;                 ///< NavSolution::withheld: why a computed pose was not valid
+  /// The near-range fit's NearRangeResult::systematic_gain and CovarianceTerms (0 where none): a replay of
+  /// [nearrange] line_end_bias_px rescales attitude_sigma_deg by them.
+  double systematic_gain = 0.0;
+  double cov_residual_factor = 0.0;
+  double cov_vertex_factor = 0.0;
+  double cov_bias_factor_per_px2 = 0.0;
   int lines_used = 0;
   int lines_total = 0;
   int scanlines = 0;           ///< scanlines the tracker cast on its selected edges
@@ -79,6 +85,7 @@ struct FrameOutcome {
   bool shows_face = true;   ///< the candidate showed a face (NavigationPipeline::lastPoseShowedAFace)
   bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
   bool kept_branch = false;         ///< NavigationPipeline::lastFitKeptTheBranch
+  bool continued = false;           ///< NavigationPipeline::lastFrameContinuedTheTrack
   bool near_twin_rival = false;     ///< NavigationPipeline::lastNearTwinRival
   bool find_on_branch = true;       ///< a find (reacquired) that confirmed the branch: lastFindOnKnownBranch
   /// The candidate's distance |t| (has_candidate), for range-continuity replays.
