@@ -38,12 +38,7 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               judged to have kept the branch by continuity (frames.csv column kept_branch: a clean fit,
               accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
               pose's after a break of at most [navigation] branch_continuity_frames; as the pipeline judged
-              it, so exact only with the shipped gates; --no-branch-continuity ignores it); a frame
-              without a certain pose that the pipeline judged the track went through unbroken (column
-              continued: rival-free, accepted by the filter, no jump or find; [navigation]
-              branch_resumes_after_continued, stop 61) does not restart the count: after a known branch
-              the next certain rival-free frame confirms it, a count under way goes on (--no-branch-resume:
-              at zero, as before)
+              it, so exact only with the shipped gates; --no-branch-continuity ignores it)
   awaited     an acquisition's pose is not valid on its own frame; the next frame confirms the branch if it is
               a near-range frame with a certain, rival-free pose ([navigation] acquisition_awaits_near_range;
               --no-acquisition-await: valid on its own frame and confirming, as before)
@@ -107,7 +102,6 @@ def parse_args(argv):
     p.add_argument('--no-acquisition-await', action='store_true')
     p.add_argument('--no-branch-continuity', action='store_true')
     p.add_argument('--no-jump-gate', action='store_true')
-    p.add_argument('--no-branch-resume', action='store_true')
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -175,13 +169,7 @@ def replay_scene(rows, a):
         if a.branch_confirm_frames > 0:
             if not certain:
                 bad += 1
-                # A withheld frame the track went through unbroken (the pipeline's verdict, column
-                # continued; [navigation] branch_resumes_after_continued, stop 61) does not restart the count.
-                resumes = not a.no_branch_resume and r.get('continued', '0') == '1'
-                if resumes:
-                    run = a.branch_confirm_frames - 1 if known else min(run, a.branch_confirm_frames - 1)
-                else:
-                    run = 0
+                run = 0
                 if bad >= a.break_after:
                     known = False
             else:

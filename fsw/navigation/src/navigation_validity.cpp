@@ -141,28 +141,7 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
                              processed_in != NavMode::kNearRange ||
                              (m_near_range_faults & kFaultInnovation) == 0U;
   const bool passed_the_pose_gates = out.pose_valid;
-  // Withheld only as doubted (part of the outline missing, the start pose disputed) or as a minimal fit
-  // missing lines, while the track went on unbroken: a rival-free fit the filter accepted without surprise
-  // (NIS within doubt_nis_chi2), certain enough by the undoubted limits, no jump, no find, not a find's
-  // track. Such a frame cannot have carried the track onto the mirror branch,
-  // whose fits the prediction or the rival refit would have flagged; it is no reason to count the branch's
-  // confirmation from zero (campaign seeds 1-40: 750 frames of right poses were withheld for the branch
-  // count alone, most of them after one withheld frame). Not after an uncertain or a surprising frame: a
-  // track flickering about the certainty limit resumed 5.7 deg off at 2.5 deg 1-sigma (plate/40), one
-  // that jumped 4.8 deg at NIS 17.7 resumed 6 deg off (smallsat/40). Nor edge-on, nor beside a face seen
-  // as a narrow strip, whose doubt is a bias (box/25: 5 deg off from its true start, resumed two frames
-  // early).
-  const NavigationParams& nav = m_params.navigation;
-  m_track_continued = processed_in == NavMode::kNearRange && !out.pose_valid &&
-                      m_near_result.status != TrackStatus::kLost && m_last_pose_update.accepted &&
-                      rival_free && motion_agrees && !m_range_broken && !m_pose_jumped &&
-                      !m_reacquisition_step.found && !m_track_doubted &&
-                      (out.withheld & ~(kWithheldDoubted | kWithheldMissesOutline)) == 0U &&
-                      (m_near_result.flags & kFlagNarrowFace) == 0U &&
-                      !(nav.doubt_nis_chi2 > 0.0 && m_last_pose_update.dof == 6 &&
-                        m_last_pose_update.nis > nav.doubt_nis_chi2);
-  out.pose_valid = m_branch.step(out.pose_valid, rival_free && motion_agrees && !m_range_broken, confirmed,
-                                 m_track_continued);
+  out.pose_valid = m_branch.step(out.pose_valid, rival_free && motion_agrees && !m_range_broken, confirmed);
   if (passed_the_pose_gates && !out.pose_valid) out.withheld |= kWithheldBranchUnknown;
 }
 

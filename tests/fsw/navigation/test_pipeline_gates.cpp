@@ -22,6 +22,7 @@ TEST_F(PipelineTest, WeakEvidenceTheFilterRejectsIsNotDelivered) {
   for (const bool weak : {false, true}) {
     PipelineParams p = params;
     p.navigation.doubted_max_attitude_sigma_deg = 0.0;
+    p.navigation.disputed_max_nis = 0.0;  // its own test follows
     if (weak) p.navigation.evidence_max_rms_px = 1e-9;
     NavigationPipeline pipeline;
     NavSolution steady;
@@ -49,6 +50,7 @@ TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
     PipelineParams p = params;
     p.navigation.doubted_max_attitude_sigma_deg = limit_deg;
     p.navigation.branch_continuity_frames = 0;
+    p.navigation.disputed_max_nis = 0.0;  // this jump's NIS is above it (the test after next)
     NavigationPipeline pipeline;
     NavSolution steady;
     NavSolution out;
@@ -82,6 +84,31 @@ TEST_F(PipelineTest, ADisputedPoseWithWeakGeometryIsTrackedButNotValid) {
     EXPECT_EQ(valid,
               limit_deg > sigma_deg ? 5 : 5 - after_restart - (params.navigation.branch_confirm_frames - 1))
         << "limit " << limit_deg;
+  }
+}
+
+TEST_F(PipelineTest, ADisputedPoseFarBeyondTheGateIsTrackedButNotValidOnItsFrame) {
+  // The same 6 px jump, with good image evidence and the other jump rules and the doubted limit off: its
+  // NIS is far above disputed_max_nis, so the pose is tracked (the filter restarts from it) but withheld as
+  // a jump on that frame; with the check off it is valid.
+  for (const double max_nis : {PipelineParams{}.navigation.disputed_max_nis, 0.0}) {
+    PipelineParams p = params;
+    p.navigation.doubted_max_attitude_sigma_deg = 0.0;
+    p.navigation.disputed_max_look_change_deg = 0.0;
+    p.navigation.disputed_max_range_change_rel = 0.0;
+    p.navigation.disputed_max_nis = max_nis;
+    NavigationPipeline pipeline;
+    NavSolution steady;
+    NavSolution out;
+    runToJump(pipeline, p, steady, out);
+    ASSERT_TRUE(steady.pose_valid) << "max NIS " << max_nis;
+    ASSERT_NE(out.fault_bits & kFaultInnovation, 0U);
+    ASSERT_GT(pipeline.lastPoseUpdate().nis, PipelineParams{}.navigation.disputed_max_nis)
+        << "the scene must reach the case";
+    EXPECT_NEAR(out.pose.t_c_m.x(), 0.25, 0.02) << "tracked either way, max NIS " << max_nis;
+    EXPECT_EQ(out.pose_valid, max_nis == 0.0) << "max NIS " << max_nis;
+    EXPECT_EQ(out.withheld & kWithheldJumped,
+              max_nis == 0.0 ? 0U : static_cast<std::uint32_t>(kWithheldJumped));
   }
 }
 
@@ -227,6 +254,7 @@ TEST_F(PipelineTest, ADisputedPoseThatTurnedFasterThanATargetTurnsIsTrackedButNo
   for (const double limit_deg : {5.0, 0.0}) {
     PipelineParams p = params;
     p.navigation.disputed_max_look_change_deg = limit_deg;
+    p.navigation.disputed_max_nis = 0.0;  // this rule alone
     p.navigation.doubted_max_attitude_sigma_deg =
         0.0;  // at 20 m the plate's 1-sigma is above it: this rule alone
     const std::vector<NavSolution> out = solutionsFromFirstTruth(seq, p);
@@ -250,6 +278,7 @@ TEST_F(PipelineTest, ADisputedPoseThatMovedInRangeFasterThanPredictedIsTrackedBu
   for (const double limit_rel : {0.03, 0.0}) {
     PipelineParams p = params;
     p.navigation.disputed_max_range_change_rel = limit_rel;
+    p.navigation.disputed_max_nis = 0.0;
     p.navigation.doubted_max_attitude_sigma_deg = 0.0;  // as above: this rule alone
     bool jumped_on_the_move = false;
     const std::vector<NavSolution> out =
@@ -357,8 +386,8 @@ TEST_F(PipelineTest, APoseTheFilterFindsSurprisingMustMeetTheDoubtedLimit) {
 TEST_F(PipelineTest, AFirstFitThatDisagreesWithTheStartPoseMustMeetTheDoubtedLimit) {
   // The operator's start pose 4 deg off in yaw and in pitch: the first fit finds the plate (26 m, about
   // 2.2 deg 1-sigma, above the doubted limit) and disagrees with the start pose by a NIS above the chi-square
-  // median. Doubted, it is withheld, which breaks the branch for that frame: the next rival-free frame
-  // confirms it again (9 of 10). With the check off all ten are valid, and a start pose
+  // median. Doubted, it is withheld, which breaks the branch: validity returns once branch_confirm_frames
+  // rival-free frames confirmed it again (7 of 10). With the check off all ten are valid, and a start pose
   // on the truth (NIS near 0) is not doubted at all. Tracked throughout.
   const Pose off_start = test::plateAt(26.0, 0.1, 5.0, -5.0);
   ASSERT_GT(PipelineParams{}.navigation.start_pose_doubt_nis_chi2, 0.0);
@@ -368,9 +397,8 @@ TEST_F(PipelineTest, AFirstFitThatDisagreesWithTheStartPoseMustMeetTheDoubtedLim
     p.navigation.max_valid_attitude_sigma_deg = 0.0;  // near this plate's 1-sigma (the tests above)
     NavSolution out;
     const int valid = validOverTenFrames(p, out, off_start);
-    // The track went on through the withheld fit: the next rival-free frame confirms the branch again
-    // (branch_resumes_after_continued).
-    EXPECT_EQ(valid, limit > 0.0 ? 10 - 1 : 10) << "limit " << limit;
+    EXPECT_EQ(valid, limit > 0.0 ? 10 - 1 - (p.navigation.branch_confirm_frames - 1) : 10)
+        << "limit " << limit;
     EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, limit " << limit;
     EXPECT_EQ(validOverTenFrames(p, out), 10) << "a start pose on the truth, limit " << limit;
   }
@@ -378,15 +406,17 @@ TEST_F(PipelineTest, AFirstFitThatDisagreesWithTheStartPoseMustMeetTheDoubtedLim
 
 TEST_F(PipelineTest, TheFirstStartPoseDoubtFitsAreJudgedAgainstTheStartPose) {
   // A NIS limit below any fit's doubts each of the first start_pose_doubt_fits fits (this plate's 2.2 deg
-  // 1-sigma is above the doubted limit): each is withheld; the track went on through them, so the next
-  // rival-free frame confirms the branch again (branch_resumes_after_continued). 0 switches the check off.
+  // 1-sigma is above the doubted limit): each is withheld, and branch_confirm_frames rival-free frames after
+  // them confirm the branch again. 0 switches the check off.
   for (const int fits : {0, 1, 2, 3}) {
     PipelineParams p = params;
     p.navigation.start_pose_doubt_nis_chi2 = 1e-9;
     p.navigation.start_pose_doubt_fits = fits;
     p.navigation.max_valid_attitude_sigma_deg = 0.0;  // near this plate's 1-sigma (the tests above)
     NavSolution out;
-    EXPECT_EQ(validOverTenFrames(p, out), 10 - fits) << fits << " fits";
+    EXPECT_EQ(validOverTenFrames(p, out),
+              fits == 0 ? 10 : 10 - fits - (p.navigation.branch_confirm_frames - 1))
+        << fits << " fits";
     EXPECT_NEAR(out.pose.t_c_m.z(), 26.0 - 0.1 * 9, 0.2) << "tracked either way, " << fits << " fits";
   }
 }

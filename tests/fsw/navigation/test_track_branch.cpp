@@ -10,14 +10,13 @@ namespace visnav::nav {
 namespace {
 
 // One letter per frame: 'V' valid and rival-free, 'A' valid but ambiguous (or a fit without corners),
-// 'C' valid and confirmed by (re)acquisition but ambiguous, '-' no valid pose, 'w' no valid pose but the
-// track went through the frame unbroken (withheld, rival-free, accepted by the filter). Returns what was
-// delivered as valid, one letter per frame: '1' valid, '0' withheld.
+// 'C' valid and confirmed by (re)acquisition but ambiguous, '-' no valid pose. Returns what was delivered
+// as valid, one letter per frame: '1' valid, '0' withheld.
 std::string run(TrackBranch& branch, const std::string& frames) {
   std::string out;
   for (const char c : frames) {
-    const bool valid = c != '-' && c != 'w';
-    out += branch.step(valid, c == 'V', c == 'C', c == 'w') ? '1' : '0';
+    const bool valid = c != '-';
+    out += branch.step(valid, c == 'V', c == 'C') ? '1' : '0';
   }
   return out;
 }
@@ -55,30 +54,6 @@ TEST(TrackBranch, SetKnownIsAGivenPoseAndZeroSwitchesTheCheckOff) {
   TrackBranch off;
   off.init(0);
   EXPECT_EQ(run(off, "V-AA-A"), "101101");
-}
-
-TEST(TrackBranch, AFrameTheTrackWentThroughLeavesTheCountOneShort) {
-  // Resuming: after a known branch, a withheld frame the track went through loses the branch for that
-  // frame only; the next rival-free frame confirms it again. A run still counting keeps its count, an
-  // ambiguous frame still restarts it, and a lost frame ('-') still needs all confirm_frames.
-  TrackBranch b;
-  b.init(3, true);
-  EXPECT_EQ(run(b, "VwVV"), "1011");
-  EXPECT_EQ(run(b, "-VwVV"), "00001");
-  EXPECT_EQ(run(b, "wAVwV"), "00000");
-  EXPECT_EQ(run(b, "V"), "1");
-  EXPECT_EQ(run(b, "wwwV"), "0001");
-  // Without resuming, such a frame is a break like any other.
-  TrackBranch strict;
-  strict.init(3, false);
-  EXPECT_EQ(run(strict, "VwVVV"), "10001");
-  // With confirm_frames 1 every valid rival-free frame confirms anyway; 0 keeps the check off.
-  TrackBranch one;
-  one.init(1, true);
-  EXPECT_EQ(run(one, "VwAV"), "1001");
-  TrackBranch off;
-  off.init(0, true);
-  EXPECT_EQ(run(off, "VwA"), "101");
 }
 
 TEST(TrackBranch, ARunLongerThanAnyIntStaysBounded) {

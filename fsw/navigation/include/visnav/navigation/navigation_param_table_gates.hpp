@@ -192,6 +192,13 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
           "and wrong on that frame and the next). Full campaign: confidently wrong frames 96 -> 88, "
           "tracked 0.6237 -> 0.6228. The track goes on from it; 0 switches the check off"},
          p.disputed_max_range_change_rel);
+  v.real({"navigation", "disputed_max_nis", "-", 0.0, 1e6,
+          "or its NIS (6 dof) exceeds this, however little it turned or moved: the image supports it and "
+          "the filter restarts from it, but on this frame it is as likely a lock on the wrong edges as the "
+          "target's motion (campaign box/5018: 5.3 deg off at NIS 85 and 0.44 deg 1-sigma, its look 4.4 deg "
+          "from the frame before's). Chi-square with 6 dof exceeds 80 with probability below 1e-14. "
+          "Measured in the top-level README (stop 61); 0 switches it off"},
+         p.disputed_max_nis);
   v.real({"navigation", "max_valid_view_angle_deg", "deg", 0.0, 90.0,
           "a 6-DOF pose on which no surface of the model faces the camera within this angle (between its "
           "outward normal and the line of sight to its centre) is tracked but not valid: seen edge-on, a "
@@ -247,18 +254,6 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "range, the third of them rejected at NIS 56. Measured in the top-level README (stop 54); "
              "false: rejected fits count"},
             p.branch_confirm_needs_filter);
-  v.boolean({"navigation", "branch_resumes_after_continued", "-", 0, 1,
-             "a frame whose near-range pose was withheld only as doubted (part of its outline missing, the "
-             "start pose disputed) or as a minimal fit missing lines, while the track went through it "
-             "unbroken (the fit rival-free, accepted by the filter with a NIS within doubt_nis_chi2, no "
-             "jump, no find, no face seen as a narrow strip), still loses the branch, but the count of "
-             "branch_confirm_frames does not start again from zero: after a known branch the next valid "
-             "rival-free frame confirms it, a count under way goes on. The track cannot reach the mirror "
-             "branch through such frames: the prediction or the rival refit flags the mirror's fits. Not "
-             "after an uncertain, surprising, edge-on or narrow-face frame, where resumed tracks were 5-6 "
-             "deg off (campaign plate/40, smallsat/40, box/25). Measured in the top-level README (stop 61); "
-             "false: every withheld frame restarts the count"},
-            p.branch_resumes_after_continued);
   v.boolean({"navigation", "mirror_resolved_by_prediction", "-", 0, 1,
              "a near-range fit whose depth-mirrored rival explains its lines as well (the tracker's "
              "kFlagAmbiguous: a plate's other tilt, a box's Necker reversal) still counts as rival-free "

@@ -77,9 +77,6 @@ class NavigationPipeline {
   /// Whether the last frame's near-range fit met the branch continuity rule (keptTheBranch), whatever the
   /// branch's state: what tools/campaign/gate_replay.py replays.
   bool lastFitKeptTheBranch() const { return m_fit_kept_the_branch; }
-  /// Whether the last frame's pose was withheld while the track went through it unbroken (confirmBranch,
-  /// [navigation] branch_resumes_after_continued), for the campaign's gate replay.
-  bool lastFrameContinuedTheTrack() const { return m_track_continued; }
   /// Whether the last frame's near-range fit had a near-twin rival the branch rule counted (the tracker's
   /// kFlagNearTwinRival, unless continuity with the last valid or the start pose's look chose): for the
   /// gate replay.
@@ -168,7 +165,6 @@ class NavigationPipeline {
   double m_max_view_cos = 1.0;         ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
   bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
-  bool m_track_continued = false;      ///< lastFrameContinuedTheTrack()
   bool m_near_twin_rival = false;      ///< lastNearTwinRival()
   bool m_pose_jumped = false;          ///< lastPoseJumped()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).

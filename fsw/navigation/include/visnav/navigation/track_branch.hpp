@@ -9,23 +9,17 @@
 //   - the branch is known at start (the operator's pose) and after a confirmed acquisition or close-range
 //     reacquisition (several frames, rivals refitted);
 //   - any frame without a valid pose makes it unknown;
-//   - confirm_frames consecutive valid frames whose fit is rival-free make it known again; with
-//     resume_after_continued, a withheld frame the track went through unbroken (its fit rival-free and
-//     accepted by the filter, no jump: `continued`) does not restart that count: after a known branch the
-//     next valid rival-free frame confirms it again, and a count under way goes on;
+//   - confirm_frames consecutive valid frames whose fit is rival-free make it known again;
 //   - while it is unknown no pose is valid.
 #pragma once
-
-#include <algorithm>
 
 namespace visnav::nav {
 
 class TrackBranch {
  public:
   /// confirm_frames <= 0 switches the check off: every valid pose stays valid.
-  void init(int confirm_frames, bool resume_after_continued = false) {
+  void init(int confirm_frames) {
     m_confirm_frames = confirm_frames;
-    m_resume_after_continued = resume_after_continued;
     setKnown();
   }
   /// The branch is known from outside (a given start pose).
@@ -34,19 +28,13 @@ class TrackBranch {
     m_rival_free_run = 0;
   }
   /// One frame. `valid`: the pose passed every other check; `rival_free`: its fit had corners and no
-  /// mirrored rival; `confirmed`: it comes from an acquisition or reacquisition confirmation; `continued`
-  /// (with valid false): the track went through this frame unbroken. Returns whether the pose may be
-  /// delivered as valid.
-  bool step(bool valid, bool rival_free, bool confirmed, bool continued = false) {
+  /// mirrored rival; `confirmed`: it comes from an acquisition or reacquisition confirmation. Returns
+  /// whether the pose may be delivered as valid.
+  bool step(bool valid, bool rival_free, bool confirmed) {
     if (m_confirm_frames <= 0) return valid;
     if (!valid) {
-      if (continued && m_resume_after_continued) {
-        // A known branch needs one more rival-free frame; a count under way goes on from where it was.
-        m_rival_free_run = m_known ? m_confirm_frames - 1 : std::min(m_rival_free_run, m_confirm_frames - 1);
-      } else {
-        m_rival_free_run = 0;
-      }
       m_known = false;
+      m_rival_free_run = 0;
       return false;
     }
     if (confirmed) m_known = true;
@@ -61,7 +49,6 @@ class TrackBranch {
 
  private:
   int m_confirm_frames = 0;
-  bool m_resume_after_continued = false;
   bool m_known = true;
   int m_rival_free_run = 0;
 };
