@@ -3,9 +3,10 @@
 # gate values, every scene's tracked and confidently wrong counts must equal the campaign's own. A gate
 # changed in the pipeline but not in the replay fails here. Then tools/campaign/far_distance.py must read the
 # same frames.csv (the 750 m approach case has far fixes) and print at least one size bin, and
-# tools/campaign/wrong_origins.py must pass its self-test and read it too (the cases have no wrong frame).
+# tools/campaign/wrong_origins.py must pass its self-test and read it too (the cases have no wrong frame), and
+# so must tools/campaign/sigma_consistency.py (a row of near-range poses for the box cases).
 # -DCAMPAIGN=<visnav-campaign> -DPYTHON=<python3> -DREPLAY=<gate_replay.py> -DFAR_DISTANCE=<far_distance.py>
-# -DWRONG_ORIGINS=<wrong_origins.py> -DOUT=<dir>
+# -DWRONG_ORIGINS=<wrong_origins.py> -DSIGMA_CONSISTENCY=<sigma_consistency.py> -DOUT=<dir>
 # Runs the command after WHAT; fails unless it exits 0 and, when EXPECT is not empty, its output matches EXPECT.
 function(run_expecting what expect)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -25,3 +26,5 @@ run_expecting("gate_replay.py --check" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv 
 run_expecting("far_distance.py" "\n +[0-9]+-[0-9inf]+ +[1-9][0-9]* " ${PYTHON} ${FAR_DISTANCE} ${OUT})
 run_expecting("wrong_origins.py --self-test" "" ${PYTHON} ${WRONG_ORIGINS} --self-test)
 run_expecting("wrong_origins.py" "^wrong frames: 0\n" ${PYTHON} ${WRONG_ORIGINS} ${OUT})
+run_expecting("sigma_consistency.py --self-test" "" ${PYTHON} ${SIGMA_CONSISTENCY} --self-test)
+run_expecting("sigma_consistency.py" "\nbox +[0-9]+-[0-9inf]+ px +[1-9][0-9]* " ${PYTHON} ${SIGMA_CONSISTENCY} ${OUT})

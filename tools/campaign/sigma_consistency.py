@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Whether the 6-DOF poses' own attitude 1-sigma is honest, per family and target size in pixels.
+
+Reads a campaign run with --frames (`visnav-campaign --frames --out DIR`): every near-range candidate,
+delivered or withheld, with its attitude error against the truth (modulo the model's symmetries) and the
+1-sigma it reported (square root of the trace of its attitude covariance, so an honest covariance gives
+a mean normalised squared error (e/s)^2 of 1). Gross failures (error above --max-error-deg) are left out:
+they are a wrong lock, not noise. Target size: the bounding sphere's diameter in pixels (scenes.csv).
+
+For each group it prints the candidates, mean, median and 95th percentile of (e/s)^2, and the factor the
+1-sigma would need to make the mean 1 (sqrt of the mean). Above 1: the covariance is too small, and the
+validity limits ([navigation] max_valid_attitude_sigma_deg) let through more than they promise. With the
+columns of stop 61 (cov_residual_factor, cov_vertex_factor, cov_bias_factor_per_px2), --line-end-bias-px B
+first rescales each vertex fit's sigma as [nearrange] line_end_bias_px = B would (NearRangeResult::
+systematic_gain).
+
+    python3 tools/campaign/sigma_consistency.py DIR
+    python3 tools/campaign/sigma_consistency.py DIR --line-end-bias-px 0.2
+    python3 tools/campaign/sigma_consistency.py --self-test
+"""
+import argparse
+import collections
+import csv
+import math
+import sys
+
+SIZE_BUCKETS = [(0, 80), (80, 160), (160, 320), (320, math.inf)]
+
+
+def bucket_name(px):
+    for lo, hi in SIZE_BUCKETS:
+        if lo <= px < hi:
+            return f"{lo}-{'inf' if hi == math.inf else int(hi)} px"
+    return "?"
+
+
+def gain_for_bias(r, bias_px):
+    """NearRangeResult::systematic_gain for line_end_bias_px = bias_px, from the frame's covariance terms."""
+    try:
+        rf = float(r['cov_residual_factor'])
+        vf = float(r['cov_vertex_factor'])
+        bf = float(r['cov_bias_factor_per_px2'])
+    except (KeyError, ValueError):
+        return 1.0
+    base = max(rf, vf)
+    if bias_px <= 0 or vf <= 0 or base <= 0:
+        return 1.0
+    return max(rf, vf + bias_px * bias_px * bf) / base
+
+
+def collect(frames, scenes, max_error_deg, bias_px):
+    """frames, scenes: csv rows. Returns {(family, bucket): [(e/s)^2, ...]}, with family 'all' too."""
+    size_m = {s['name']: (float(s['f_px']), 2.0 * float(s['bounding_radius_m'])) for s in scenes}
+    groups = collections.defaultdict(list)
+    for r in frames:
+        if r['mode'] != 'near_range' or r['candidate'] != '1' or r['attitude_sigma_deg'] == '':
+            continue
+        error = float(r['candidate_attitude_error_deg'])
+        sigma = float(r['attitude_sigma_deg']) * math.sqrt(gain_for_bias(r, bias_px))
+        if error > max_error_deg or not sigma > 0 or r['scene'] not in size_m:
+            continue
+        f_px, diameter_m = size_m[r['scene']]
+        bucket = bucket_name(f_px * diameter_m / float(r['range_m']))
+        z2 = (error / sigma) ** 2
+        groups[(r['family'], bucket)].append(z2)
+        groups[('all', bucket)].append(z2)
+    return groups
+
+
+def report(groups, out=sys.stdout):
+    print(f"{'family':9s} {'size':12s} {'poses':>7s} {'mean':>7s} {'median':>7s} {'p95':>7s} {'sigma x':>8s}",
+          file=out)
+    order = {name: i for i, name in enumerate(bucket_name(lo) for lo, _ in SIZE_BUCKETS)}
+    for (family, bucket) in sorted(groups, key=lambda k: (k[0] == 'all', k[0], order.get(k[1], 9))):
+        v = sorted(groups[(family, bucket)])
+        mean = sum(v) / len(v)
+        print(f"{family:9s} {bucket:12s} {len(v):7d} {mean:7.2f} {v[len(v) // 2]:7.2f} "
+              f"{v[min(len(v) - 1, int(0.95 * len(v)))]:7.2f} {math.sqrt(mean):8.2f}", file=out)
+
+
+def self_test():
+    scenes = [{'name': 'box/1', 'f_px': '1000', 'bounding_radius_m': '1'}]
+
+    def frame(error, sigma, mode='near_range', rf='0', vf='1', bf='100'):
+        return {'scene': 'box/1', 'family': 'box', 'mode': mode, 'candidate': '1', 'range_m': '20',
+                'candidate_attitude_error_deg': str(error), 'attitude_sigma_deg': str(sigma),
+                'cov_residual_factor': rf, 'cov_vertex_factor': vf, 'cov_bias_factor_per_px2': bf}
+    frames = [frame(2.0, 1.0), frame(0.0, 1.0), frame(30.0, 1.0), frame(1.0, 1.0, mode='acquisition')]
+    g = collect(frames, scenes, 20.0, 0.0)
+    assert list(g.keys()) == [('box', '80-160 px'), ('all', '80-160 px')], g  # 100 px across at 20 m
+    assert g[('box', '80-160 px')] == [4.0, 0.0], g  # the 30 deg lock and the acquisition left out
+    # A 0.1 px bias with vertex factor 1 and 100 per px^2 doubles the variance: (e/s)^2 halves.
+    g = collect(frames[:1], scenes, 20.0, 0.1)
+    assert abs(g[('box', '80-160 px')][0] - 2.0) < 1e-12, g
+    # A residual factor above the biased vertex factor leaves the sigma alone.
+    assert gain_for_bias(frame(1, 1, rf='5'), 0.1) == 1.0
+    assert gain_for_bias({'cov_vertex_factor': ''}, 0.1) == 1.0
+    print("sigma_consistency.py: self-test passed")
+    return 0
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    p.add_argument('dir', nargs='?')
+    p.add_argument('--max-error-deg', type=float, default=20.0)
+    p.add_argument('--line-end-bias-px', type=float, default=0.0)
+    p.add_argument('--self-test', action='store_true')
+    a = p.parse_args(argv)
+    if a.self_test:
+        return self_test()
+    if not a.dir:
+        p.error('DIR is required')
+    with open(a.dir + '/frames.csv', newline='') as f:
+        frames = list(csv.DictReader(f))
+    with open(a.dir + '/scenes.csv', newline='') as f:
+        scenes = list(csv.DictReader(f))
+    groups = collect(frames, scenes, a.max_error_deg, a.line_end_bias_px)
+    if not groups:
+        print("no near-range candidates", file=sys.stderr)
+        return 1
+    report(groups)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))
