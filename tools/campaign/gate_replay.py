@@ -23,14 +23,18 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               NIS exceeds --start-pose-doubt-nis ([navigation] start_pose_doubt_nis_chi2, stop 54), of the
               first --start-pose-doubt-frames frames of a
               scene that starts in near range from the operator's pose (not shipped: built and measured in
-              stop 53, README), or whose track began with a reacquisition's find and has not yet had a pose
-              within the doubted limit
+              stop 53, README), whose track began with a reacquisition's find and has not yet had a pose
+              within the doubted limit, or that follows a candidate the filter rejected and the pipeline
+              still delivered, i.e. restarted the filter from ([navigation] doubt_after_filter_restart,
+              stop 59; replayed since stop 61, --no-doubt-after-restart ignores it)
               needs attitude 1-sigma <=
               --doubted-attitude-sigma-deg ([navigation] doubted_max_attitude_sigma_deg /
               doubt_min_line_fraction; 0 switches it off)
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
-              frames whose tracker flags have none of --rival-flags, without a near-twin rival the
+              frames whose tracker flags have none of --rival-flags (less kFlagAmbiguous where the pipeline
+              resolved the mirror by the prediction, column mirror_resolved, stop 61; --no-mirror-resolved
+              ignores it), without a near-twin rival the
               pipeline counted (frames.csv column near_twin_rival) and not rejected by the filter (fault bit
               0x10; [navigation] branch_confirm_needs_filter, stop 54; --no-branch-confirm-needs-filter
               counts them), or an acquisition / reacquisition
@@ -102,6 +106,8 @@ def parse_args(argv):
     p.add_argument('--no-acquisition-await', action='store_true')
     p.add_argument('--no-branch-continuity', action='store_true')
     p.add_argument('--no-jump-gate', action='store_true')
+    p.add_argument('--no-mirror-resolved', action='store_true')
+    p.add_argument('--no-doubt-after-restart', action='store_true')
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -115,7 +121,14 @@ def replay_scene(rows, a):
     # A near scene starts from the operator's pose (startNearRange) on its first frame.
     started_near = bool(rows) and rows[0]['mode'] == 'near_range'
     start_fits_pending = a.start_pose_doubt_fits if started_near else 0
+    restarted_filter = False  # the frame before's near-range fit overruled the filter (a restart)
     for r in rows:
+        # The fit after one that overruled the filter agrees with that one fit only ([navigation]
+        # doubt_after_filter_restart, stop 59): a near-range candidate the innovation gate rejected and the
+        # pipeline still delivered (its image evidence was good, or the track diverged) restarted the filter.
+        follows_restart = restarted_filter and not a.no_doubt_after_restart and r['mode'] == 'near_range'
+        restarted_filter = (r['mode'] == 'near_range' and r['candidate'] == '1'
+                            and (int(r['fault_bits']) & FAULT_INNOVATION) != 0)
         # The first near-range fits after the start pose (those with a filter update; [navigation]
         # start_pose_doubt_fits, stop 61) are judged against it.
         start_fit = start_fits_pending > 0 and r['mode'] == 'near_range' and r['nis'] != ''
@@ -133,7 +146,7 @@ def replay_scene(rows, a):
         certain = (r['candidate'] == '1' and float(r['attitude_sigma_deg']) <= a.attitude_sigma_deg
                    and float(r['position_sigma_rel']) <= a.position_sigma_rel)
         if certain and a.doubted_attitude_sigma_deg > 0 and r['mode'] == 'near_range':
-            doubted = track_doubted or (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
+            doubted = track_doubted or follows_restart or (int(r['fault_bits']) & FAULT_INNOVATION) != 0 or (
                 int(r['lines_used']) < a.doubt_min_line_fraction * int(r['lines_total'])) or (
                 not a.no_narrow_face_doubt and (int(r['near_flags']) & NARROW_FACE) != 0) or (
                 a.weak_evidence_doubt and r.get('evidence_good', '1') == '0') or (
@@ -177,7 +190,12 @@ def replay_scene(rows, a):
                 # A find off a known branch (find_on_branch 0; [navigation]
                 # find_confirms_only_from_reference) confirms nothing and is not rival-free either.
                 find_off_branch = r['reacquired'] == '1' and r.get('find_on_branch', '1') == '0'
-                rival_free = r['mode'] != 'near_range' or ((int(r['near_flags']) & a.rival_flags) == 0
+                # A mirrored rival the prediction resolved is none (column mirror_resolved, the pipeline's
+                # verdict; [navigation] mirror_resolved_by_prediction, stop 60; written since stop 61).
+                rivals = a.rival_flags
+                if not a.no_mirror_resolved and r.get('mirror_resolved', '0') == '1':
+                    rivals &= ~AMBIGUOUS
+                rival_free = r['mode'] != 'near_range' or ((int(r['near_flags']) & rivals) == 0
                                                            and r.get('near_twin_rival', '0') != '1'
                                                            and not find_off_branch)
                 # A fit the filter rejected counts toward no confirmation run (branch_confirm_needs_filter).

@@ -326,6 +326,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_pose_showed_face = true;
   m_fit_kept_the_branch = false;
   m_near_twin_rival = false;
+  m_mirror_resolved = false;
   m_mirror_nis = -1.0;
   m_pose_jumped = false;
   m_range_broken = false;

@@ -110,10 +110,10 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   // A depth-mirrored rival is no rival where the track continues its reference and the prediction rejects
   // the mirror while it accepted the fit: the image cannot tell the two apart, the motion can (a plate's
   // other tilt is twice its tilt away). Campaign octagon/11, /15, /20: right fits withheld for it alone.
-  const bool mirror_resolved = m_mirror_nis > m_filter.params().pose_gate_chi2 &&
-                               m_last_pose_update.accepted && m_frames_since_branch_reference != ~0ULL &&
-                               m_filter.trackEpoch() == m_reference_track_epoch;
-  const std::uint32_t rival_flags = kFlagResidualFallback | (mirror_resolved ? 0U : kFlagAmbiguous);
+  m_mirror_resolved = m_mirror_nis > m_filter.params().pose_gate_chi2 && m_last_pose_update.accepted &&
+                      m_frames_since_branch_reference != ~0ULL &&
+                      m_filter.trackEpoch() == m_reference_track_epoch;
+  const std::uint32_t rival_flags = kFlagResidualFallback | (m_mirror_resolved ? 0U : kFlagAmbiguous);
   const bool rival_free = processed_in != NavMode::kNearRange || ((m_near_result.flags & rival_flags) == 0U &&
                                                                   !m_near_twin_rival && !find_off_branch);
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free

@@ -81,6 +81,9 @@ class NavigationPipeline {
   /// kFlagNearTwinRival, unless continuity with the last valid or the start pose's look chose): for the
   /// gate replay.
   bool lastNearTwinRival() const { return m_near_twin_rival; }
+  /// Whether the last frame's depth-mirrored rival (kFlagAmbiguous) was resolved by the prediction and so
+  /// no rival ([navigation] mirror_resolved_by_prediction): for the gate replay.
+  bool lastMirrorResolved() const { return m_mirror_resolved; }
   /// Whether the last find (lastReacquisition().found) continued a branch a valid pose kept and so confirmed
   /// it (find_confirms_only_from_reference): for the gate replay.
   bool lastFindOnKnownBranch() const { return m_find_on_known_branch; }
@@ -166,6 +169,7 @@ class NavigationPipeline {
   bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
   bool m_near_twin_rival = false;      ///< lastNearTwinRival()
+  bool m_mirror_resolved = false;      ///< lastMirrorResolved()
   bool m_pose_jumped = false;          ///< lastPoseJumped()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
   bool m_track_twin_by_continuity = false;

@@ -85,6 +85,7 @@ struct FrameOutcome {
   bool shows_face = true;   ///< the candidate showed a face (NavigationPipeline::lastPoseShowedAFace)
   bool twin_by_continuity = false;  ///< NavSolution::twin_by_continuity
   bool kept_branch = false;         ///< NavigationPipeline::lastFitKeptTheBranch
+  bool mirror_resolved = false;     ///< NavigationPipeline::lastMirrorResolved
   bool near_twin_rival = false;     ///< NavigationPipeline::lastNearTwinRival
   bool find_on_branch = true;       ///< a find (reacquired) that confirmed the branch: lastFindOnKnownBranch
   /// The candidate's distance |t| (has_candidate), for range-continuity replays.
