@@ -342,7 +342,8 @@ double NearRangeTracker::covarianceScale(const PoseFitResult& fit, std::uint32_t
     out.covariance_terms.bias_factor_per_px2 = inv_sin2_sum / count / sigma2;
     scale = std::max(scale, out.covariance_terms.vertex_factor);
     // Each line end's systematic error (line_end_bias_px) moves a vertex by b / sin of its lines' angle on
-    // each axis, like the scatter does, but more points do not shrink it (validityCovariance).
+    // each axis, like the scatter does, but more points do not shrink it (NavigationPipeline::deliver judges
+    // validity on it).
     const double bias2 = m_params.line_end_bias_px * m_params.line_end_bias_px;
     const double with_bias = std::max(residual_factor, out.covariance_terms.vertex_factor +
                                                            bias2 * out.covariance_terms.bias_factor_per_px2);

@@ -259,6 +259,14 @@ class PipelineTest : public ::testing::Test {
     f.image = jumped.image();
     pipeline.process(&f, f.exposure_time_ns, out);
   }
+  /// runToJump where the steady frames were valid and the filter disputed the jump (the case the disputed-
+  /// pose tests need; call it under ASSERT_NO_FATAL_FAILURE).
+  void runToDisputedJump(NavigationPipeline& pipeline, const PipelineParams& p, NavSolution& out) {
+    NavSolution steady;
+    runToJump(pipeline, p, steady, out);
+    ASSERT_TRUE(steady.pose_valid) << "the steady frames must be valid";
+    ASSERT_NE(out.fault_bits & kFaultInnovation, 0U) << "the filter must dispute the jump";
+  }
   static constexpr int kFrames = 60;
   PolygonModel model;
   synthetic::Renderer renderer;
