@@ -132,10 +132,27 @@ std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const 
                      static_cast<std::size_t>(std::max(0, std::min(n, static_cast<int>(sizeof buf) - 1))));
 }
 
-std::string traceEdges(const NearRangeTracker& tracker, const Pose& truth) {
+// How the truth shows a model edge: 'i' interior (both faces front-facing), 'o' on the outline (one, or an
+// open edge of a front face), 'h' hidden (no front face).
+char edgeKindSeen(const PolygonModel& model, const ModelEdge& edge, const Pose& truth) {
+  const auto front = [&model, &truth](int surface) {
+    if (surface < 0) return false;
+    const ModelSurface& s = model.surfaces()[static_cast<std::size_t>(surface)];
+    return (truth.R_c_m * s.normal_m).dot(truth.transform(s.centroid_m)) < 0.0;
+  };
+  const int fronts = (front(edge.surface_left) ? 1 : 0) + (front(edge.surface_right) ? 1 : 0);
+  return fronts == 2 ? 'i' : (fronts == 1 ? 'o' : 'h');
+}
+
+std::string traceEdges(const NearRangeTracker& tracker, const Pose& fit, const Pose& truth_pose,
+                       const std::vector<Symmetry>& symmetries) {
   // Each measured edge: model edge, points, and the fitted line's distance (ideal px) from the edge's true
   // projection at both ends, and after "|" the 1-sigma the tracker gave those ends (its end_variance_px2);
-  // a line far from the truth is what a wrong fit was built on.
+  // a line far from the truth is what a wrong fit was built on. The truth is taken as the twin the fit is
+  // nearest to: on a symmetric model the fit's edge k is the twin's edge k (before 2026-12-04 the plain
+  // truth: a box fitted on its z180 twin showed every edge ~50 px off, box/7035).
+  Pose truth = truth_pose;
+  truth.R_c_m = nearestTwinOfTruth(fit.R_c_m, truth_pose.R_c_m, symmetries);
   std::string out = "       edges:";
   const PolygonModel& model = tracker.model();
   const BoundedBuffer<EdgeMeasurement>& edges = tracker.lastEdges();
@@ -148,12 +165,15 @@ std::string traceEdges(const NearRangeTracker& tracker, const Pose& truth) {
         tracker.camera().projectIdeal(truth.transform(model.vertices()[static_cast<std::size_t>(me.v0)]),
                                       a) &&
         tracker.camera().projectIdeal(truth.transform(model.vertices()[static_cast<std::size_t>(me.v1)]), b);
-    char buf[64];
+    const char kind = edgeKindSeen(model, me, truth);
+    const char* confusable = e.confusable ? "*" : "";
+    char buf[80];
     if (e.line_ok && projected)
-      std::snprintf(buf, sizeof buf, " %d:%d(%.2f,%.2f|%.2f)", e.model_edge, e.point_count,
-                    e.line.signedDistance(a), e.line.signedDistance(b), std::sqrt(e.end_variance_px2));
+      std::snprintf(buf, sizeof buf, " %d%c%s:%d(%.2f,%.2f|%.2f)", e.model_edge, kind, confusable,
+                    e.point_count, e.line.signedDistance(a), e.line.signedDistance(b),
+                    std::sqrt(e.end_variance_px2));
     else
-      std::snprintf(buf, sizeof buf, " %d:%d(-)", e.model_edge, e.point_count);
+      std::snprintf(buf, sizeof buf, " %d%c%s:%d(-)", e.model_edge, kind, confusable, e.point_count);
     out += buf;
   }
   return out + "\n";
@@ -306,7 +326,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             o.edge_points, o.scanlines);
         res.trace += buf;
       }
-      if (pipeline->lastNearRange().lines_total > 0) res.trace += traceEdges(pipeline->nearRange(), truth);
+      if (pipeline->lastNearRange().lines_total > 0) 
+        res.trace += traceEdges(pipeline->nearRange(), pipeline->lastNearRange().pose, truth, scene.symmetries);
       if (pipeline->filter().initialised()) {
         char buf[160];
         std::snprintf(

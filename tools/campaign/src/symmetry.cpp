@@ -44,4 +44,18 @@ double attitudeErrorModuloDeg(const Mat3& R_est, const Mat3& R_truth,
   return best;
 }
 
+Mat3 nearestTwinOfTruth(const Mat3& R_est, const Mat3& R_truth, const std::vector<Symmetry>& symmetries) {
+  Mat3 nearest = R_truth;
+  double best = logSo3(R_est * R_truth.transpose()).norm();
+  for (const Symmetry& s : symmetries) {
+    const Mat3 twin = R_truth * s.rotation;
+    const double angle = logSo3(R_est * twin.transpose()).norm();
+    if (angle < best) {
+      best = angle;
+      nearest = twin;
+    }
+  }
+  return nearest;
+}
+
 }  // namespace visnav::campaign

@@ -24,6 +24,11 @@ std::vector<Symmetry> modelSymmetries(const PolygonModel& model);
 double attitudeErrorModuloDeg(const Mat3& R_est, const Mat3& R_truth,
                               const std::vector<Symmetry>& symmetries);
 
+/// R_truth S for the S of `symmetries` nearest to R_est (R_truth when empty): the truth as the estimate
+/// labels the model's features, so that a feature of the estimate is compared with the same feature of
+/// the truth (a box's edge 0 fitted on its z180 twin lies where the truth's opposite edge projects).
+Mat3 nearestTwinOfTruth(const Mat3& R_est, const Mat3& R_truth, const std::vector<Symmetry>& symmetries);
+
 /// "z180", "x90", ...: axis-angle name of a rotation (a model axis when it is one).
 std::string rotationName(const Mat3& rotation);
 
