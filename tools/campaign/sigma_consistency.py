@@ -12,10 +12,13 @@ For each group it prints the candidates, mean, median and 95th percentile of (e/
 validity limits ([navigation] max_valid_attitude_sigma_deg) let through more than they promise. With the
 columns of stop 61 (cov_residual_factor, cov_vertex_factor, cov_bias_factor_per_px2), --line-end-bias-px B
 first rescales each vertex fit's sigma as [nearrange] line_end_bias_px = B would (NearRangeResult::
-systematic_gain).
+systematic_gain), and with stop 62's cov_interior_factor_per_px2 and cov_narrow_factor_per_px2,
+--interior-edge-bias-px B and --narrow-face-edge-bias-px B as [nearrange] interior_edge_bias_px and
+narrow_face_edge_bias_px = B would (against a run made with all three off).
 
     python3 tools/campaign/sigma_consistency.py DIR
     python3 tools/campaign/sigma_consistency.py DIR --line-end-bias-px 0.2
+    python3 tools/campaign/sigma_consistency.py DIR --interior-edge-bias-px 0.5
     python3 tools/campaign/sigma_consistency.py --self-test
 """
 import argparse
@@ -34,21 +37,35 @@ def bucket_name(px):
     return "?"
 
 
-def gain_for_bias(r, bias_px):
-    """NearRangeResult::systematic_gain for line_end_bias_px = bias_px, from the frame's covariance terms."""
+def gain_for_bias(r, bias_px, interior_bias_px=0.0, narrow_bias_px=0.0):
+    """NearRangeResult::systematic_gain for line_end_bias_px = bias_px, interior_edge_bias_px =
+    interior_bias_px and narrow_face_edge_bias_px = narrow_bias_px, from the frame's covariance terms
+    (cov_interior_factor_per_px2 and cov_narrow_factor_per_px2 since stop 62; a run without them has
+    neither term)."""
     try:
         rf = float(r['cov_residual_factor'])
         vf = float(r['cov_vertex_factor'])
         bf = float(r['cov_bias_factor_per_px2'])
     except (KeyError, ValueError):
         return 1.0
+    inf = optional_float(r, 'cov_interior_factor_per_px2')
+    nf = optional_float(r, 'cov_narrow_factor_per_px2')
     base = max(rf, vf)
-    if bias_px <= 0 or vf <= 0 or base <= 0:
+    if (bias_px <= 0 and interior_bias_px <= 0 and narrow_bias_px <= 0) or vf <= 0 or base <= 0:
         return 1.0
-    return max(rf, vf + bias_px * bias_px * bf) / base
+    return max(rf, vf + bias_px * bias_px * bf + interior_bias_px * interior_bias_px * inf
+               + narrow_bias_px * narrow_bias_px * nf) / base
 
 
-def collect(frames, scenes, max_error_deg, bias_px):
+def optional_float(r, column):
+    """A column later runs added: 0 when absent or empty."""
+    try:
+        return float(r.get(column) or 0.0)
+    except ValueError:
+        return 0.0
+
+
+def collect(frames, scenes, max_error_deg, bias_px, interior_bias_px=0.0, narrow_bias_px=0.0):
     """frames, scenes: csv rows. Returns {(family, bucket): [(e/s)^2, ...]}, with family 'all' too."""
     size_m = {s['name']: (float(s['f_px']), 2.0 * float(s['bounding_radius_m'])) for s in scenes}
     groups = collections.defaultdict(list)
@@ -56,7 +73,7 @@ def collect(frames, scenes, max_error_deg, bias_px):
         if r['mode'] != 'near_range' or r['candidate'] != '1' or r['attitude_sigma_deg'] == '':
             continue
         error = float(r['candidate_attitude_error_deg'])
-        sigma = float(r['attitude_sigma_deg']) * math.sqrt(gain_for_bias(r, bias_px))
+        sigma = float(r['attitude_sigma_deg']) * math.sqrt(gain_for_bias(r, bias_px, interior_bias_px, narrow_bias_px))
         if error > max_error_deg or not sigma > 0 or r['scene'] not in size_m:
             continue
         f_px, diameter_m = size_m[r['scene']]
@@ -95,6 +112,13 @@ def self_test():
     # A residual factor above the biased vertex factor leaves the sigma alone.
     assert gain_for_bias(frame(1, 1, rf='5'), 0.1) == 1.0
     assert gain_for_bias({'cov_vertex_factor': ''}, 0.1) == 1.0
+    # An interior term of 50 per px^2 at 0.2 px adds 2 to the vertex factor 1: the variance triples.
+    f = dict(frame(1, 1), cov_interior_factor_per_px2='50')
+    assert abs(gain_for_bias(f, 0.0, 0.2) - 3.0) < 1e-12
+    assert abs(gain_for_bias(f, 0.1, 0.2) - 4.0) < 1e-12
+    assert gain_for_bias(frame(1, 1), 0.0, 0.2) == 1.0  # no interior column: no interior term
+    f['cov_narrow_factor_per_px2'] = '25'  # 1 px on it adds 25: with the interior term's 2, gain 28
+    assert abs(gain_for_bias(f, 0.0, 0.2, 1.0) - 28.0) < 1e-12
     print("sigma_consistency.py: self-test passed")
     return 0
 
@@ -104,6 +128,8 @@ def main(argv):
     p.add_argument('dir', nargs='?')
     p.add_argument('--max-error-deg', type=float, default=20.0)
     p.add_argument('--line-end-bias-px', type=float, default=0.0)
+    p.add_argument('--interior-edge-bias-px', type=float, default=0.0)
+    p.add_argument('--narrow-face-edge-bias-px', type=float, default=0.0)
     p.add_argument('--self-test', action='store_true')
     a = p.parse_args(argv)
     if a.self_test:
@@ -114,7 +140,8 @@ def main(argv):
         frames = list(csv.DictReader(f))
     with open(a.dir + '/scenes.csv', newline='') as f:
         scenes = list(csv.DictReader(f))
-    groups = collect(frames, scenes, a.max_error_deg, a.line_end_bias_px)
+    groups = collect(frames, scenes, a.max_error_deg, a.line_end_bias_px, a.interior_edge_bias_px,
+                     a.narrow_face_edge_bias_px)
     if not groups:
         print("no near-range candidates", file=sys.stderr)
         return 1

@@ -57,6 +57,7 @@ bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
   bool any_interior = false;
   for (std::size_t e = 0; e < edges.size(); ++e) {
     m_confusable_partner[e] = -1;
+    m_edge_bounds_narrow_face[e] = 0U;
     any_interior = any_interior || interior(e);
   }
   // A plate, or a body seen face-on with one tracked face, has no interior edge: nothing to project.
@@ -98,8 +99,12 @@ bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
       const auto bordersEdge = [&edge](int surface) {
         return surface >= 0 && (surface == edge.surface_left || surface == edge.surface_right);
       };
-      narrow_strip = narrow_strip || (gap < separation &&
-                                      (bordersEdge(other.surface_left) || bordersEdge(other.surface_right)));
+      if (gap < separation &&
+          (bordersEdge(other.surface_left) || bordersEdge(other.surface_right))) {
+        narrow_strip = true;
+        m_edge_bounds_narrow_face[e] = 1U;  // both edges of the strip (narrow_face_edge_bias_px)
+        m_edge_bounds_narrow_face[f] = 1U;
+      }
       if (gap >= kNegligibleGapPx && gap < best_gap) {
         best_gap = gap;
         m_confusable_partner[e] = static_cast<int>(f);

@@ -281,6 +281,16 @@ void NearRangeTracker::findChamferCorners() {
   }
 }
 
+namespace {
+// Share of a vertex's two lines that are of interior edges: each line's end error moves the vertex alike.
+double interiorShare(const EdgeMeasurement& a, const EdgeMeasurement& b) {
+  return 0.5 * ((a.interior ? 1.0 : 0.0) + (b.interior ? 1.0 : 0.0));
+}
+double narrowShare(const EdgeMeasurement& a, const EdgeMeasurement& b) {
+  return 0.5 * ((a.bounds_narrow_face ? 1.0 : 0.0) + (b.bounds_narrow_face ? 1.0 : 0.0));
+}
+}  // namespace
+
 int NearRangeTracker::collectVertices(int excluded_slot) {
   // A vertex is observed where two measured lines of edges meeting at it intersect (eq. 6, Cramer form).
   // With outline edges a vertex may join three measured edges: the best-conditioned pair (largest |sin| of
@@ -310,6 +320,8 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
       // vertex covariance is (Va + Vb) / sin^2, half of it per axis.
       m_vertex_best_var[shared] =
           0.5 * (m_edges[i].end_variance_px2 + m_edges[j].end_variance_px2) / (sin_angle * sin_angle);
+      m_vertex_best_interior[shared] = interiorShare(m_edges[i], m_edges[j]);
+      m_vertex_best_narrow[shared] = narrowShare(m_edges[i], m_edges[j]);
     }
   }
   for (std::size_t v = 0; v < m_vertex_best_sin.size(); ++v) {
@@ -321,6 +333,8 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     obs.px_ideal = m_vertex_best_px[v];
     obs.variance_px2 = m_vertex_best_var[v];
     obs.inv_sin2 = 1.0 / (m_vertex_best_sin[v] * m_vertex_best_sin[v]);
+    obs.interior_inv_sin2 = m_vertex_best_interior[v] * obs.inv_sin2;
+    obs.narrow_inv_sin2 = m_vertex_best_narrow[v] * obs.inv_sin2;
     m_vertex_obs.push(obs);
   }
   // Chamfer corners (findChamferCorners), where the bridge edge is too short this frame to give a line
@@ -349,6 +363,8 @@ int NearRangeTracker::collectVertices(int excluded_slot) {
     obs.variance_px2 =
         0.5 * (m_edges[i].end_variance_px2 + m_edges[j].end_variance_px2) / (sin_angle * sin_angle);
     obs.inv_sin2 = 1.0 / (sin_angle * sin_angle);
+    obs.interior_inv_sin2 = interiorShare(m_edges[i], m_edges[j]) * obs.inv_sin2;
+    obs.narrow_inv_sin2 = narrowShare(m_edges[i], m_edges[j]) * obs.inv_sin2;
     if (!m_vertex_obs.push(obs)) break;
   }
   return static_cast<int>(m_vertex_obs.size());

@@ -55,15 +55,20 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_slot_of_edge.reserve(edges);
   m_edge_obs.reserve(points);
   m_confusable_partner.reserve(edges);
+  m_edge_bounds_narrow_face.reserve(edges);
   m_vertex_px.reserve(model.vertices().size());
   m_vertex_in_front.reserve(model.vertices().size());
   m_vertex_best_sin.reserve(model.vertices().size());
   m_vertex_best_px.reserve(model.vertices().size());
   m_vertex_best_var.reserve(model.vertices().size());
+  m_vertex_best_interior.reserve(model.vertices().size());
+  m_vertex_best_narrow.reserve(model.vertices().size());
   for (std::size_t i = 0; i < model.vertices().size(); ++i) {
     m_vertex_best_sin.push(0.0);
     m_vertex_best_px.push(Vec2::Zero());
     m_vertex_best_var.push(0.0);
+    m_vertex_best_interior.push(0.0);
+    m_vertex_best_narrow.push(0.0);
     m_vertex_px.push(Vec2::Zero());
     m_vertex_in_front.push(0);
   }
@@ -74,6 +79,7 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   for (std::size_t i = 0; i < edges; ++i) {
     m_edge_selected.push(0);
     m_confusable_partner.push(-1);
+    m_edge_bounds_narrow_face.push(0U);
     m_slot_of_edge.push(-1);
   }
   for (std::size_t i = 0; i < edges * kPolarityBins; ++i) {
@@ -166,6 +172,9 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
   const Vec3 b_c = predicted.transform(m_model.vertices()[edge.v1]);
   EdgeMeasurement slot;
   slot.model_edge = e;
+  slot.interior = edge.surface_left >= 0 && edge.surface_right >= 0 &&
+                  m_surface_front[edge.surface_left] != 0U && m_surface_front[edge.surface_right] != 0U;
+  slot.bounds_narrow_face = m_edge_bounds_narrow_face[e] != 0U;
   slot.first_point = static_cast<int>(m_scan_points.size());
   if (!m_camera.project(a_c, slot.predicted_a_px) || !m_camera.project(b_c, slot.predicted_b_px)) {
     out.flags |= kFlagOutOfImage;
@@ -333,20 +342,31 @@ double NearRangeTracker::covarianceScale(const PoseFitResult& fit, std::uint32_t
   if (vertex_fit && !m_vertex_obs.empty() && sigma2 > 0.0) {
     double sum = 0.0;
     double inv_sin2_sum = 0.0;
+    double interior_sum = 0.0;
+    double narrow_sum = 0.0;
     for (const VertexObservation& obs : m_vertex_obs) {
       sum += obs.variance_px2;
       inv_sin2_sum += obs.inv_sin2;
+      interior_sum += obs.interior_inv_sin2;
+      narrow_sum += obs.narrow_inv_sin2;
     }
     const double count = static_cast<double>(m_vertex_obs.size());
     out.covariance_terms.vertex_factor = sum / count / sigma2;
     out.covariance_terms.bias_factor_per_px2 = inv_sin2_sum / count / sigma2;
+    out.covariance_terms.interior_factor_per_px2 = interior_sum / count / sigma2;
+    out.covariance_terms.narrow_factor_per_px2 = narrow_sum / count / sigma2;
     scale = std::max(scale, out.covariance_terms.vertex_factor);
     // Each line end's systematic error (line_end_bias_px) moves a vertex by b / sin of its lines' angle on
     // each axis, like the scatter does, but more points do not shrink it (NavigationPipeline::deliver judges
     // validity on it).
     const double bias2 = m_params.line_end_bias_px * m_params.line_end_bias_px;
-    const double with_bias = std::max(residual_factor, out.covariance_terms.vertex_factor +
-                                                           bias2 * out.covariance_terms.bias_factor_per_px2);
+    const double interior2 = m_params.interior_edge_bias_px * m_params.interior_edge_bias_px;
+    const double narrow2 = m_params.narrow_face_edge_bias_px * m_params.narrow_face_edge_bias_px;
+    const double with_bias =
+        std::max(residual_factor, out.covariance_terms.vertex_factor +
+                                      bias2 * out.covariance_terms.bias_factor_per_px2 +
+                                      interior2 * out.covariance_terms.interior_factor_per_px2 +
+                                      narrow2 * out.covariance_terms.narrow_factor_per_px2);
     if (scale > 0.0) out.systematic_gain = with_bias / scale;
   }
   return scale;

@@ -412,7 +412,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
        "total,reacquired,time_process_us,symmetric_twins,shows_face,twin_by_continuity,kept_branch,jumped,"
        "oracle,near_twin_rival,scanlines,inlier_points,evidence_good,find_on_branch,candidate_range_m,range_"
        "broken,in_view,far_direction_error_deg,far_off_target,withheld,systematic_gain,cov_residual_factor,"
-       "cov_vertex_factor,cov_bias_factor_per_px2,mirror_resolved\n";
+       "cov_vertex_factor,cov_bias_factor_per_px2,mirror_resolved,cov_interior_factor_per_px2,"
+       "cov_narrow_factor_per_px2\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
@@ -435,7 +436,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << (f.has_candidate ? num(f.candidate_range_m) : "") << "," << f.range_broken << "," << f.in_view
         << "," << (f.far_valid ? num(f.far_direction_error_deg) : "") << "," << f.far_off_target << ","
         << f.withheld << "," << num(f.systematic_gain) << "," << num(f.cov_residual_factor) << ","
-        << num(f.cov_vertex_factor) << "," << num(f.cov_bias_factor_per_px2) << "," << f.mirror_resolved
+        << num(f.cov_vertex_factor) << "," << num(f.cov_bias_factor_per_px2) << "," << f.mirror_resolved << ","
+        << num(f.cov_interior_factor_per_px2) << "," << num(f.cov_narrow_factor_per_px2)
         << "\n";
     }
   }

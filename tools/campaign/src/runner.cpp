@@ -153,7 +153,7 @@ std::string traceEdges(const NearRangeTracker& tracker, const Pose& fit, const P
   // truth: a box fitted on its z180 twin showed every edge ~50 px off, box/7035).
   Pose truth = truth_pose;
   truth.R_c_m = nearestTwinOfTruth(fit.R_c_m, truth_pose.R_c_m, symmetries);
-  std::string out = "       edges:";
+  std::string out = " edges:";
   const PolygonModel& model = tracker.model();
   const BoundedBuffer<EdgeMeasurement>& edges = tracker.lastEdges();
   for (std::size_t i = 0; i < edges.size(); ++i) {
@@ -268,6 +268,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       f.cov_residual_factor = near.covariance_terms.residual_factor;
       f.cov_vertex_factor = near.covariance_terms.vertex_factor;
       f.cov_bias_factor_per_px2 = near.covariance_terms.bias_factor_per_px2;
+      f.cov_interior_factor_per_px2 = near.covariance_terms.interior_factor_per_px2;
+      f.cov_narrow_factor_per_px2 = near.covariance_terms.narrow_factor_per_px2;
     }
     f.lines_used = pipeline->lastNearRange().lines_used;
     f.lines_total = pipeline->lastNearRange().lines_total;
@@ -325,9 +327,10 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             attitudeErrorModuloDeg(o.pose.R_c_m, truth.R_c_m, scene.symmetries), o.flags, o.inlier_points,
             o.edge_points, o.scanlines);
         res.trace += buf;
+        if (o.lines_total > 0) res.trace += "       oracle" + traceEdges(*oracle, o.pose, truth, scene.symmetries);
       }
       if (pipeline->lastNearRange().lines_total > 0) 
-        res.trace += traceEdges(pipeline->nearRange(), pipeline->lastNearRange().pose, truth, scene.symmetries);
+        res.trace += "      " + traceEdges(pipeline->nearRange(), pipeline->lastNearRange().pose, truth, scene.symmetries);
       if (pipeline->filter().initialised()) {
         char buf[160];
         std::snprintf(

@@ -40,6 +40,8 @@ struct NearRangeParams {
   int lm_max_iterations = 100;
   double pixel_sigma_px = 0.1;
   double line_end_bias_px = 0.0;  ///< systematic line-end error, not averaged down by points
+  double interior_edge_bias_px = 0.0;  ///< the same, added on the lines of interior edges
+  double narrow_face_edge_bias_px = 0.0;  ///< the same, added on the two lines of a narrow face's strip
   double max_rms_px = 1.5;
   double degraded_rms_px = 0.6;
   double reject_line_rms_gain = 0.5;
@@ -158,6 +160,20 @@ struct NearRangeParams {
          "2 fewer; run on seeds 1 / 5001 / 7001, 0.1 cost 510 tracked frames and 7 losses never recovered "
          "for 3 fewer wrong frames (top-level README, stop 61); 0 switches it off"},
         line_end_bias_px);
+    v.real({"nearrange", "interior_edge_bias_px", "px", 0.0, 10.0,
+            "1-sigma systematic error of the ends of an interior edge's line (both its faces front-facing), "
+            "added to line_end_bias_px's in the covariance delivered with a pose and its validity, not in "
+            "the filter's: such an edge's step is between two shaded faces and beside the outline, and on "
+            "campaign boxes (seeds 1-40, --trace, delivered poses) their line ends lay 3.7 px rms from the "
+            "true edges (9.6 % beyond 1 px) where outline ends lay 0.73 px rms (1.5 %); 0 switches it off"},
+           interior_edge_bias_px);
+    v.real({"nearrange", "narrow_face_edge_bias_px", "px", 0.0, 10.0,
+            "1-sigma systematic error of the ends of the two lines that bound a face seen as a strip "
+            "narrower than confusable_edge_separation_px (kFlagNarrowFace), added like "
+            "interior_edge_bias_px: the step test cannot tell the strip's two steps apart, and a face "
+            "that turns away puts its edge on the outline (campaign box/25 frame 60: such a line 4.7 px "
+            "off, the pose 6.3 deg off at a 0.78 deg 1-sigma); 0 switches it off"},
+           narrow_face_edge_bias_px);
     v.real({"nearrange", "max_rms_px", "px", 0.01, 100.0, "pose residual above this: status lost"},
            max_rms_px);
     v.real({"nearrange", "degraded_rms_px", "px", 0.01, 100.0, "pose residual above this: status degraded"},

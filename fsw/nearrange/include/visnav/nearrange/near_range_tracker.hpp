@@ -73,6 +73,10 @@ struct CovarianceTerms {
   double residual_factor = 0.0;
   double vertex_factor = 0.0;
   double bias_factor_per_px2 = 0.0;
+  /// x b_i^2: what interior_edge_bias_px b_i adds to vertex_factor (the interior lines' share of the former).
+  double interior_factor_per_px2 = 0.0;
+  /// x b_n^2: what narrow_face_edge_bias_px b_n adds (the share of lines bounding a narrow face).
+  double narrow_factor_per_px2 = 0.0;
 };
 
 struct NearRangeResult {
@@ -120,6 +124,8 @@ struct EdgeMeasurement {
   int point_count = 0;
   int scanlines = 0;        ///< cast across it; 0: too short to measure (not counted in lines_total)
   bool confusable = false;  ///< interior edge beside a parallel outline edge (findConfusableEdges)
+  bool interior = false;    ///< both its faces front-facing at the prediction (interior_edge_bias_px)
+  bool bounds_narrow_face = false;  ///< one of a kFlagNarrowFace strip's two edges (narrow_face_edge_bias_px)
   bool line_ok = false;
   Line2d line;  ///< fitted line, ideal pixels
   /// Variance of the fitted line's normal offset at its ends [px^2]: 4 s^2 / n from its n inliers' scatter s
@@ -263,6 +269,7 @@ class NearRangeTracker {
   BoundedBuffer<Vec2> m_vertex_px;                ///< per model vertex: projected with the prediction, raw px
   BoundedBuffer<std::uint8_t> m_vertex_in_front;  ///< per model vertex: in front of the camera, projected
   BoundedBuffer<int> m_confusable_partner;        ///< per model edge: its parallel outline neighbour, or -1
+  BoundedBuffer<std::uint8_t> m_edge_bounds_narrow_face;  ///< per model edge: bounds a kFlagNarrowFace strip
   BoundedBuffer<std::int8_t> m_polarity;          ///< per model edge x kPolarityBins, last frame
   BoundedBuffer<std::int8_t> m_polarity_next;
 
@@ -275,6 +282,8 @@ class NearRangeTracker {
   BoundedBuffer<double> m_vertex_best_sin;  ///< per model vertex: best |sin| of a measured line pair
   BoundedBuffer<Vec2> m_vertex_best_px;
   BoundedBuffer<double> m_vertex_best_var;  ///< per model vertex: its observation's per-axis variance
+  BoundedBuffer<double> m_vertex_best_interior;  ///< per model vertex: its lines' interior share (0, 1/2, 1)
+  BoundedBuffer<double> m_vertex_best_narrow;    ///< per model vertex: its lines' narrow-face share
   BoundedBuffer<ChamferCorner> m_chamfer_corners;
   BoundedBuffer<int> m_slot_of_edge;  ///< per model edge: its m_edges slot this frame, or -1 (measureEdges)
   BoundedBuffer<EdgePointObservation> m_edge_obs;

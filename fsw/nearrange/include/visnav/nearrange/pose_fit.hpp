@@ -19,6 +19,11 @@ struct VertexObservation {
   /// 1 / sin^2 of the angle between the two lines that made it: a line-end error b moves it by
   /// b^2 * inv_sin2 in variance per axis (NearRangeTracker::covarianceScale).
   double inv_sin2 = 0.0;
+  /// inv_sin2 x the share (0, 1/2 or 1) of its two lines that are of interior edges: an interior line-end
+  /// error b_i adds b_i^2 x this (NearRangeTracker::covarianceScale, interior_edge_bias_px).
+  double interior_inv_sin2 = 0.0;
+  /// The same for the share of its lines that bound a narrow face (narrow_face_edge_bias_px).
+  double narrow_inv_sin2 = 0.0;
   /// With vertex -1: the model-frame point observed, e.g. where the lines of two edges of one face meet
   /// across a short edge between them (a chamfered corner, NearRangeTracker).
   Vec3 point_m = Vec3::Zero();

@@ -75,6 +75,8 @@ struct FrameOutcome {
   double cov_residual_factor = 0.0;
   double cov_vertex_factor = 0.0;
   double cov_bias_factor_per_px2 = 0.0;
+  double cov_interior_factor_per_px2 = 0.0;  ///< CovarianceTerms::interior_factor_per_px2
+  double cov_narrow_factor_per_px2 = 0.0;    ///< CovarianceTerms::narrow_factor_per_px2
   int lines_used = 0;
   int lines_total = 0;
   int scanlines = 0;           ///< scanlines the tracker cast on its selected edges

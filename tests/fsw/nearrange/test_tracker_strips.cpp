@@ -1,0 +1,88 @@
+// The systematic line-end terms of interior edges and of a narrow face's strip (fsw/nearrange/README.md, "A
+// line end's systematic error").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "tracker_fixture.hpp"
+
+namespace visnav {
+namespace {
+
+using test::plateAt;
+using test::renderFrame;
+using test::vgaCamera;
+
+// The box of ConfusableEdges (campaign box/17's size) nearly face-on: its side faces are strips of a few
+// pixels.
+const Pose kStripsTruth = plateAt(14.5, 0.2, 25.0, 7.0);
+
+PolygonModel stripsBox() { return makeBox(0.726, 0.555, 0.48); }
+
+// interior_edge_bias_px and narrow_face_edge_bias_px, like line_end_bias_px, widen what validity is judged
+// on (systematic_gain) by the share of the vertices' lines they concern, never the fit or the scatter's
+// covariance the filter takes; a plate has neither kind of line.
+TEST(SystematicTerms, InteriorAndStripEdgesWidenTheGainOnlyWhereTheFitHasSuchLines) {
+  const PolygonModel model = stripsBox();
+  synthetic::RenderOptions options;
+  options.noise_sigma = 0.03;
+  options.blur_sigma_px = 1.0;
+  options.shading.enabled = true;
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(vgaCamera(), model, options).ok);
+  const test::RenderedFrame frame = renderFrame(renderer, kStripsTruth, 29);
+  const auto track = [&](double interior_px, double narrow_px) {
+    NearRangeParams params;
+    params.interior_edge_bias_px = interior_px;
+    params.narrow_face_edge_bias_px = narrow_px;
+    NearRangeTracker tracker;
+    EXPECT_TRUE(tracker.init(vgaCamera(), model, params).ok);
+    NearRangeResult r;
+    EXPECT_EQ(tracker.track(frame.image(), kStripsTruth, 0, r), Status::kOk);
+    return r;
+  };
+  const NearRangeResult base = track(0.0, 0.0);
+  ASSERT_NE(base.status, TrackStatus::kLost) << "flags " << base.flags;
+  ASSERT_NE(base.flags & kFlagNarrowFace, 0U);
+  EXPECT_EQ(base.systematic_gain, 1.0);
+  const CovarianceTerms& c = base.covariance_terms;
+  ASSERT_GT(c.vertex_factor, 0.0);
+  // Shares of the same vertices' 1/sin^2: each between none and all of them.
+  EXPECT_GT(c.interior_factor_per_px2, 0.0);
+  EXPECT_LT(c.interior_factor_per_px2, c.bias_factor_per_px2);
+  EXPECT_GT(c.narrow_factor_per_px2, 0.0);
+  EXPECT_LE(c.narrow_factor_per_px2, c.bias_factor_per_px2);
+  for (const auto& [interior_px, narrow_px] : {std::pair{0.5, 0.0}, std::pair{0.0, 0.5}, std::pair{0.5, 1.0}}) {
+    const NearRangeResult r = track(interior_px, narrow_px);
+    EXPECT_EQ(std::memcmp(r.pose.t_c_m.data(), base.pose.t_c_m.data(), sizeof(double) * 3), 0);
+    EXPECT_EQ(std::memcmp(r.covariance.data(), base.covariance.data(), sizeof(double) * 36), 0);
+    const double expected =
+        std::max(c.residual_factor, c.vertex_factor + interior_px * interior_px * c.interior_factor_per_px2 +
+                                        narrow_px * narrow_px * c.narrow_factor_per_px2) /
+        std::max(c.residual_factor, c.vertex_factor);
+    EXPECT_NEAR(r.systematic_gain, expected, 1e-12) << interior_px << " " << narrow_px;
+    EXPECT_GT(r.systematic_gain, 1.0) << interior_px << " " << narrow_px;
+  }
+  // A face-on plate: no interior edge, no strip, no term.
+  const PolygonModel plate = makeRectanglePlate(2.3, 1.8);
+  synthetic::Renderer plate_renderer;
+  ASSERT_TRUE(plate_renderer.init(vgaCamera(), plate, synthetic::RenderOptions{}).ok);
+  const Pose plate_truth = plateAt(15.0, 0.1, 1.0, 1.0);
+  NearRangeParams params;
+  params.interior_edge_bias_px = 0.5;
+  params.narrow_face_edge_bias_px = 1.0;
+  NearRangeTracker tracker;
+  ASSERT_TRUE(tracker.init(vgaCamera(), plate, params).ok);
+  NearRangeResult r;
+  tracker.track(renderFrame(plate_renderer, plate_truth, 11).image(), plate_truth, 0, r);
+  ASSERT_EQ(r.status, TrackStatus::kTracking);
+  EXPECT_EQ(r.covariance_terms.interior_factor_per_px2, 0.0);
+  EXPECT_EQ(r.covariance_terms.narrow_factor_per_px2, 0.0);
+  EXPECT_EQ(r.systematic_gain, 1.0);
+}
+
+}  // namespace
+}  // namespace visnav
