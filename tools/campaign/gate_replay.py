@@ -67,7 +67,8 @@ Prints tracked mean and confidently wrong frames (scenes) per family, as visnav-
 the campaign's own (exit 1 otherwise): the replay's self-check, run by ctest campaign_gate_replay.
 --line-end-bias-px B / --interior-edge-bias-px B / --narrow-face-edge-bias-px B: first rescale every
 near-range candidate's sigmas as [nearrange] line_end_bias_px / interior_edge_bias_px /
-narrow_face_edge_bias_px = B would (frames.csv cov_* columns; the run must have been made with all off), so that a systematic covariance term is judged over a whole run offline.
+narrow_face_edge_bias_px = B would, the others at their defaults (frames.csv cov_* columns; the gain the
+run applied, column systematic_gain, is divided out, so a run of any defaults replays any values), so that a systematic covariance term is judged over a whole run offline.
 """
 import argparse
 import collections
@@ -77,7 +78,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sigma_consistency import gain_for_bias  # noqa: E402  (the tracker's systematic_gain, one definition)
+from sigma_consistency import biases_asked, sigma_scale  # noqa: E402  (systematic_gain, one definition)
 
 AMBIGUOUS = 0x400          # kFlagAmbiguous
 RESIDUAL_FALLBACK = 0x100  # kFlagResidualFallback
@@ -116,9 +117,9 @@ def parse_args(argv):
     p.add_argument('--no-jump-gate', action='store_true')
     p.add_argument('--no-mirror-resolved', action='store_true')
     p.add_argument('--no-doubt-after-restart', action='store_true')
-    p.add_argument('--line-end-bias-px', type=float, default=0.0)
-    p.add_argument('--interior-edge-bias-px', type=float, default=0.0)
-    p.add_argument('--narrow-face-edge-bias-px', type=float, default=0.0)
+    p.add_argument('--line-end-bias-px', type=float, default=None)
+    p.add_argument('--interior-edge-bias-px', type=float, default=None)
+    p.add_argument('--narrow-face-edge-bias-px', type=float, default=None)
     p.add_argument('--check', metavar='SCENES_CSV')
     return p.parse_args(argv)
 
@@ -236,12 +237,12 @@ def replay_scene(rows, a):
     return out
 
 
-def rescale_sigmas(r, a):
+def rescale_sigmas(r, biases):
     """A near-range candidate's sigmas as [nearrange] line_end_bias_px, interior_edge_bias_px and
-    narrow_face_edge_bias_px = the options would give them (NearRangeResult::systematic_gain), from a run made with both off."""
+    narrow_face_edge_bias_px = `biases` would make them (NearRangeResult::systematic_gain)."""
     if r['mode'] != 'near_range' or r['candidate'] != '1' or r['attitude_sigma_deg'] == '':
         return
-    root = math.sqrt(gain_for_bias(r, a.line_end_bias_px, a.interior_edge_bias_px, a.narrow_face_edge_bias_px))
+    root = sigma_scale(r, biases)
     r['attitude_sigma_deg'] = str(float(r['attitude_sigma_deg']) * root)
     r['position_sigma_rel'] = str(float(r['position_sigma_rel']) * root)
 
@@ -249,10 +250,11 @@ def rescale_sigmas(r, a):
 def main(argv):
     a = parse_args(argv)
     scenes = collections.OrderedDict()
+    biases = biases_asked(a)
     with open(a.frames_csv, newline='') as f:
         for r in csv.DictReader(f):
-            if a.line_end_bias_px > 0 or a.interior_edge_bias_px > 0 or a.narrow_face_edge_bias_px > 0:
-                rescale_sigmas(r, a)
+            if biases is not None:
+                rescale_sigmas(r, biases)
             scenes.setdefault(r['scene'], []).append(r)
     families = collections.OrderedDict()
     per_scene = {}

@@ -14,7 +14,8 @@ columns of stop 61 (cov_residual_factor, cov_vertex_factor, cov_bias_factor_per_
 first rescales each vertex fit's sigma as [nearrange] line_end_bias_px = B would (NearRangeResult::
 systematic_gain), and with stop 62's cov_interior_factor_per_px2 and cov_narrow_factor_per_px2,
 --interior-edge-bias-px B and --narrow-face-edge-bias-px B as [nearrange] interior_edge_bias_px and
-narrow_face_edge_bias_px = B would (against a run made with all three off).
+narrow_face_edge_bias_px = B would; a term not given keeps its default, and the gain the run applied
+(column systematic_gain) is divided out first.
 
     python3 tools/campaign/sigma_consistency.py DIR
     python3 tools/campaign/sigma_consistency.py DIR --line-end-bias-px 0.2
@@ -35,6 +36,27 @@ def bucket_name(px):
         if lo <= px < hi:
             return f"{lo}-{'inf' if hi == math.inf else int(hi)} px"
     return "?"
+
+
+# [nearrange] defaults of the systematic line-end terms (near_range_params.hpp).
+DEFAULT_BIAS_PX = {'line_end_bias_px': 0.0, 'interior_edge_bias_px': 0.0, 'narrow_face_edge_bias_px': 0.0}
+BIAS_KEYS = ('line_end_bias_px', 'interior_edge_bias_px', 'narrow_face_edge_bias_px')
+
+
+def biases_asked(a):
+    """The three bias values the options ask for, each its default where not given; None: none given."""
+    if all(getattr(a, k) is None for k in BIAS_KEYS):
+        return None
+    return tuple(DEFAULT_BIAS_PX[k] if getattr(a, k) is None else getattr(a, k) for k in BIAS_KEYS)
+
+
+def sigma_scale(r, biases):
+    """What a candidate's delivered sigmas are multiplied by to be as `biases` would make them: the gain
+    the run applied (column systematic_gain) divided out, the asked one applied."""
+    if biases is None:
+        return 1.0
+    applied = float(r.get('systematic_gain') or 1.0)
+    return math.sqrt(gain_for_bias(r, *biases) / applied) if applied > 0 else 1.0
 
 
 def gain_for_bias(r, bias_px, interior_bias_px=0.0, narrow_bias_px=0.0):
@@ -65,7 +87,7 @@ def optional_float(r, column):
         return 0.0
 
 
-def collect(frames, scenes, max_error_deg, bias_px, interior_bias_px=0.0, narrow_bias_px=0.0):
+def collect(frames, scenes, max_error_deg, biases=None):
     """frames, scenes: csv rows. Returns {(family, bucket): [(e/s)^2, ...]}, with family 'all' too."""
     size_m = {s['name']: (float(s['f_px']), 2.0 * float(s['bounding_radius_m'])) for s in scenes}
     groups = collections.defaultdict(list)
@@ -73,7 +95,7 @@ def collect(frames, scenes, max_error_deg, bias_px, interior_bias_px=0.0, narrow
         if r['mode'] != 'near_range' or r['candidate'] != '1' or r['attitude_sigma_deg'] == '':
             continue
         error = float(r['candidate_attitude_error_deg'])
-        sigma = float(r['attitude_sigma_deg']) * math.sqrt(gain_for_bias(r, bias_px, interior_bias_px, narrow_bias_px))
+        sigma = float(r['attitude_sigma_deg']) * sigma_scale(r, biases)
         if error > max_error_deg or not sigma > 0 or r['scene'] not in size_m:
             continue
         f_px, diameter_m = size_m[r['scene']]
@@ -103,11 +125,11 @@ def self_test():
                 'candidate_attitude_error_deg': str(error), 'attitude_sigma_deg': str(sigma),
                 'cov_residual_factor': rf, 'cov_vertex_factor': vf, 'cov_bias_factor_per_px2': bf}
     frames = [frame(2.0, 1.0), frame(0.0, 1.0), frame(30.0, 1.0), frame(1.0, 1.0, mode='acquisition')]
-    g = collect(frames, scenes, 20.0, 0.0)
+    g = collect(frames, scenes, 20.0)
     assert list(g.keys()) == [('box', '80-160 px'), ('all', '80-160 px')], g  # 100 px across at 20 m
     assert g[('box', '80-160 px')] == [4.0, 0.0], g  # the 30 deg lock and the acquisition left out
     # A 0.1 px bias with vertex factor 1 and 100 per px^2 doubles the variance: (e/s)^2 halves.
-    g = collect(frames[:1], scenes, 20.0, 0.1)
+    g = collect(frames[:1], scenes, 20.0, (0.1, 0.0, 0.0))
     assert abs(g[('box', '80-160 px')][0] - 2.0) < 1e-12, g
     # A residual factor above the biased vertex factor leaves the sigma alone.
     assert gain_for_bias(frame(1, 1, rf='5'), 0.1) == 1.0
@@ -119,6 +141,10 @@ def self_test():
     assert gain_for_bias(frame(1, 1), 0.0, 0.2) == 1.0  # no interior column: no interior term
     f['cov_narrow_factor_per_px2'] = '25'  # 1 px on it adds 25: with the interior term's 2, gain 28
     assert abs(gain_for_bias(f, 0.0, 0.2, 1.0) - 28.0) < 1e-12
+    # A run that applied a gain of 2 (a default term) replayed with every term off: sigma / sqrt(2).
+    applied = dict(frame(1, 1), systematic_gain='2')
+    assert abs(sigma_scale(applied, (0.0, 0.0, 0.0)) - math.sqrt(0.5)) < 1e-12
+    assert sigma_scale(applied, None) == 1.0  # nothing asked: the delivered sigma
     print("sigma_consistency.py: self-test passed")
     return 0
 
@@ -127,9 +153,9 @@ def main(argv):
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('dir', nargs='?')
     p.add_argument('--max-error-deg', type=float, default=20.0)
-    p.add_argument('--line-end-bias-px', type=float, default=0.0)
-    p.add_argument('--interior-edge-bias-px', type=float, default=0.0)
-    p.add_argument('--narrow-face-edge-bias-px', type=float, default=0.0)
+    p.add_argument('--line-end-bias-px', type=float, default=None)
+    p.add_argument('--interior-edge-bias-px', type=float, default=None)
+    p.add_argument('--narrow-face-edge-bias-px', type=float, default=None)
     p.add_argument('--self-test', action='store_true')
     a = p.parse_args(argv)
     if a.self_test:
@@ -140,8 +166,7 @@ def main(argv):
         frames = list(csv.DictReader(f))
     with open(a.dir + '/scenes.csv', newline='') as f:
         scenes = list(csv.DictReader(f))
-    groups = collect(frames, scenes, a.max_error_deg, a.line_end_bias_px, a.interior_edge_bias_px,
-                     a.narrow_face_edge_bias_px)
+    groups = collect(frames, scenes, a.max_error_deg, biases_asked(a))
     if not groups:
         print("no near-range candidates", file=sys.stderr)
         return 1

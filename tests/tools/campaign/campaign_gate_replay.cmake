@@ -1,6 +1,7 @@
 # tools/campaign/gate_replay.py replays the pipeline's output gates over frames.csv. Its self-check: on the
 # named cases (acquisition, reacquisition after an eclipse and a slew, near-range tracking), with the shipped
-# gate values, every scene's tracked and confidently wrong counts must equal the campaign's own. A gate
+# gate values, every scene's tracked and confidently wrong counts must equal the campaign's own, also with a
+# systematic line-end term given at its default (the sigmas rescaled from the cov_* columns). A gate
 # changed in the pipeline but not in the replay fails here. Then tools/campaign/far_distance.py must read the
 # same frames.csv (the 750 m approach case has far fixes) and print at least one size bin, and
 # tools/campaign/wrong_origins.py must pass its self-test and read it too (the cases have no wrong frame), and
@@ -22,6 +23,10 @@ endfunction()
 file(REMOVE_RECURSE ${OUT})
 run_expecting("visnav-campaign" "" ${CAMPAIGN} --case all --jobs 2 --frames --no-timing --quiet --out ${OUT})
 run_expecting("gate_replay.py --check" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv --check ${OUT}/scenes.csv)
+# A bias term given at its default value rescales every candidate's sigma by the gain the run applied over
+# the gain it recomputes from the cov_* columns: the same verdicts, or the recomputation is not the tracker's.
+run_expecting("gate_replay.py --check, line-end bias given" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv
+              --line-end-bias-px 0 --check ${OUT}/scenes.csv)
 # A size bin with at least one fix.
 run_expecting("far_distance.py" "\n +[0-9]+-[0-9inf]+ +[1-9][0-9]* " ${PYTHON} ${FAR_DISTANCE} ${OUT})
 run_expecting("wrong_origins.py --self-test" "" ${PYTHON} ${WRONG_ORIGINS} --self-test)
