@@ -57,6 +57,7 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_confusable_partner.reserve(edges);
   m_edge_bounds_narrow_face.reserve(edges);
   m_vertex_px.reserve(model.vertices().size());
+  m_vertex_c.reserve(model.vertices().size());
   m_vertex_in_front.reserve(model.vertices().size());
   m_vertex_best_sin.reserve(model.vertices().size());
   m_vertex_best_px.reserve(model.vertices().size());
@@ -70,6 +71,7 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
     m_vertex_best_interior.push(0.0);
     m_vertex_best_narrow.push(0.0);
     m_vertex_px.push(Vec2::Zero());
+    m_vertex_c.push(Vec3::Zero());
     m_vertex_in_front.push(0);
   }
   for (std::size_t i = 0; i < surfaces; ++i) {
@@ -206,10 +208,15 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
     const Line2d partner_line = partner >= 0 ? Line2d::throughPoints(m_vertex_px[m_model.edges()[partner].v0],
                                                                      m_vertex_px[m_model.edges()[partner].v1])
                                              : own_line;
+    int hidden = 0;
     for (int i = 0; i < count; ++i) {
       const double along_px =
           count == 1 ? 0.5 * length_px
                      : m_params.vertex_margin_px + usable_px * i / static_cast<double>(count - 1);
+      if (m_params.occluded_scanlines && occluded(a_c + (along_px / length_px) * (b_c - a_c), edge, predicted)) {
+        ++hidden;
+        continue;
+      }
       ScanPoint sp;
       if (!measureScanline(image, e, a_c, b_c, along_px / length_px, i, centroid_px, sp)) continue;
       if (partner >= 0 && std::fabs(partner_line.signedDistance(sp.edge_px)) <
@@ -222,6 +229,10 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
       if (!m_scan_points.push(sp)) break;
       m_points_ideal.push(m_camera.undistortPixel(sp.edge_px));
     }
+    // Hidden scanlines were never cast: an edge mostly behind another part is as short as what shows.
+    slot.scanlines -= hidden;
+    out.scanlines -= hidden;
+    out.occluded_scanlines += hidden;
   }
   slot.point_count = static_cast<int>(m_scan_points.size()) - slot.first_point;
   out.edge_points += slot.point_count;
@@ -297,7 +308,45 @@ void NearRangeTracker::finishLost(const Pose& predicted, NearRangeResult& out) c
   out.quality = 0.0;
 }
 
+bool NearRangeTracker::occluded(const Vec3& p_c, const ModelEdge& edge, const Pose& predicted) const {
+  // Ray from the camera centre through p_c: a front-facing surface whose plane it crosses before p_c (by
+  // more than a relative margin: the edge's own corners lie on their neighbours' planes) at a point inside
+  // that surface's polygon hides p_c. Bounded: surfaces x their vertices.
+  constexpr double kMargin = 1e-6;
+  const auto& surfaces = m_model.surfaces();
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    if (m_surface_front[s] == 0U || static_cast<int>(s) == edge.surface_left ||
+        static_cast<int>(s) == edge.surface_right)
+      continue;
+    const ModelSurface& surface = surfaces[s];
+    const Vec3 n_c = predicted.R_c_m * surface.normal_m;
+    const double along_ray = n_c.dot(p_c);
+    if (!(std::fabs(along_ray) > 0.0)) continue;
+    const double scale = n_c.dot(m_vertex_c[static_cast<std::size_t>(surface.vertex_indices[0])]) / along_ray;
+    if (!(scale > 0.0 && scale < 1.0 - kMargin)) continue;
+    const Vec3 q = scale * p_c;
+    // Point in polygon (crossing number) in the plane's two coordinates with the larger normal components.
+    int drop = 0;
+    n_c.cwiseAbs().maxCoeff(&drop);
+    const int u = drop == 0 ? 1 : 0;
+    const int v = drop == 2 ? 1 : 2;
+    bool inside = false;
+    const std::size_t n = surface.vertex_indices.size();
+    for (std::size_t k = 0, j = n - 1; k < n; j = k++) {
+      const Vec3& a = m_vertex_c[static_cast<std::size_t>(surface.vertex_indices[k])];
+      const Vec3& b = m_vertex_c[static_cast<std::size_t>(surface.vertex_indices[j])];
+      if ((a[v] > q[v]) != (b[v] > q[v]) && q[u] < (b[u] - a[u]) * (q[v] - a[v]) / (b[v] - a[v]) + a[u])
+        inside = !inside;
+    }
+    if (inside) return true;
+  }
+  return false;
+}
+
 void NearRangeTracker::measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out) {
+  if (m_params.occluded_scanlines)
+    for (std::size_t v = 0; v < m_model.vertices().size(); ++v)
+      m_vertex_c[v] = predicted.transform(m_model.vertices()[v]);
   m_edges.clear();
   m_scan_points.clear();
   m_points_ideal.clear();

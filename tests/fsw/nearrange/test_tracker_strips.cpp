@@ -1,5 +1,5 @@
 // The systematic line-end terms of interior edges and of a narrow face's strip (fsw/nearrange/README.md, "A
-// line end's systematic error").
+// line end's systematic error"), and edges hidden behind another part ("Occluded scanlines").
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,6 +82,71 @@ TEST(SystematicTerms, InteriorAndStripEdgesWidenTheGainOnlyWhereTheFitHasSuchLin
   EXPECT_EQ(r.covariance_terms.interior_factor_per_px2, 0.0);
   EXPECT_EQ(r.covariance_terms.narrow_factor_per_px2, 0.0);
   EXPECT_EQ(r.systematic_gain, 1.0);
+}
+
+// A plate with a darker bar 0.4 m in front of it, over the middle of its right edge (a solar panel in front
+// of a body edge): the bar's own edge projects 6 px inside the hidden part of the plate's edge, so those
+// scanlines find the bar's step. Without occluded_scanlines they split the edge's points into two lines 6 px
+// apart and the plate's edge gives no line; with it they are not cast and the visible ends give the line.
+TEST(OccludedScanlines, AnEdgeBehindAnotherPartIsMeasuredWhereItShowsOnly) {
+  const std::vector<Vec3> vertices = {
+      {-1.15, -0.9, 0.0}, {1.15, -0.9, 0.0}, {1.15, 0.9, 0.0}, {-1.15, 0.9, 0.0},  // plate
+      {1.05, -0.5, 0.4},  {1.8, -0.5, 0.4},  {1.8, 0.5, 0.4},  {1.05, 0.5, 0.4},   // bar in front
+  };
+  std::vector<ModelSurface> surfaces(2);
+  surfaces[0].vertex_indices = {0, 1, 2, 3};
+  surfaces[1].vertex_indices = {4, 5, 6, 7};
+  PolygonModel model;
+  ASSERT_TRUE(PolygonModel::build(vertices, surfaces, model).ok);
+  synthetic::RenderOptions options;
+  options.noise_sigma = 0.02;
+  options.blur_sigma_px = 0.8;
+  options.surface_albedo = {0.8, 0.35};
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(vgaCamera(), model, options).ok);
+  const Pose truth = plateAt(10.0, -0.3, 2.0, 1.0);
+  const test::RenderedFrame frame = renderFrame(renderer, truth, 37);
+  const auto trackWith = [&](bool rule) {
+    NearRangeParams params;
+    params.occluded_scanlines = rule;
+    NearRangeTracker tracker;
+    EXPECT_TRUE(tracker.init(vgaCamera(), model, params).ok);
+    NearRangeResult r;
+    EXPECT_EQ(tracker.track(frame.image(), truth, 0, r), Status::kOk);
+    return r;
+  };
+  const NearRangeResult with_rule = trackWith(true);
+  const NearRangeResult without = trackWith(false);
+  const auto errors = [&](const NearRangeResult& r) {
+    const Vec6 e = truth.boxMinus(r.pose);
+    return std::pair{e.head<3>().norm() * kDegPerRad, e.tail<3>().norm()};
+  };
+  const auto [att_with, pos_with] = errors(with_rule);
+  const auto [att_without, pos_without] = errors(without);
+  std::printf("plate behind a bar, from the true pose: %.3f deg / %.4f m with the rule (%d scanlines hidden), "
+              "%.3f deg / %.4f m without\n",
+              att_with, pos_with, with_rule.occluded_scanlines, att_without, pos_without);
+  ASSERT_NE(with_rule.status, TrackStatus::kLost) << "flags " << with_rule.flags;
+  ASSERT_NE(without.status, TrackStatus::kLost) << "flags " << without.flags;
+  EXPECT_GT(with_rule.occluded_scanlines, 5);
+  EXPECT_EQ(without.occluded_scanlines, 0);
+  EXPECT_LT(with_rule.scanlines, without.scanlines);
+  EXPECT_LT(att_with, 0.3);
+  EXPECT_LT(pos_with, 0.02);
+  EXPECT_EQ(with_rule.lines_used, with_rule.lines_total) << "every edge gives its line";
+  EXPECT_EQ(with_rule.flags & kFlagLineRejected, 0U);
+  EXPECT_EQ(without.lines_used, with_rule.lines_used - 1) << "the hidden edge's points split";
+  EXPECT_NE(without.flags & kFlagLineRejected, 0U);
+  // A single convex body hides none of its front faces' edges: nothing is left out.
+  const PolygonModel box = makeBox(0.726, 0.555, 0.48);
+  synthetic::Renderer box_renderer;
+  ASSERT_TRUE(box_renderer.init(vgaCamera(), box, synthetic::RenderOptions{}).ok);
+  NearRangeTracker box_tracker;
+  ASSERT_TRUE(box_tracker.init(vgaCamera(), box, NearRangeParams{}).ok);
+  NearRangeResult r;
+  ASSERT_EQ(box_tracker.track(renderFrame(box_renderer, kStripsTruth, 41).image(), kStripsTruth, 0, r), Status::kOk);
+  EXPECT_NE(r.status, TrackStatus::kLost);
+  EXPECT_EQ(r.occluded_scanlines, 0);
 }
 
 }  // namespace

@@ -55,6 +55,7 @@ struct NearRangeParams {
   double visibility_exit_low_deg = 40.0;
   double visibility_exit_high_deg = 140.0;
   bool silhouette_edges = true;
+  bool occluded_scanlines = true;  ///< no scanline where the edge is hidden behind a nearer surface
   // Capacities (memory is sized from these at init).
   int max_tracked_surfaces = 16;
   int max_scanlines_per_edge = 256;
@@ -239,6 +240,14 @@ struct NearRangeParams {
                "front faces) outside the sec. II-H gate: it has contrast against the background when a "
                "multi-face body shows no face inside the gate or faces of equal brightness"},
               silhouette_edges);
+    v.boolean({"nearrange", "occluded_scanlines", "-", 0, 1,
+               "no scanline is cast where its point of the model edge lies behind another front-facing "
+               "surface nearer the camera (a solar panel in front of a body edge, one part of a .cao model "
+               "in front of another): the step found there is the occluder's outline, and it bent the "
+               "hidden edge's line by up to 7 px at one end (campaign smallsat/5001); an edge left with "
+               "fewer visible scanlines than min_points_per_line counts as too short to measure. Back-facing "
+               "surfaces do not occlude (single-sided plates, as the renderer draws them)"},
+              occluded_scanlines);
     v.integer({"nearrange", "max_tracked_surfaces", "count", 1, 256, "capacity: surfaces tracked at once"},
               max_tracked_surfaces);
     v.integer({"nearrange", "max_scanlines_per_edge", "count", 4, 4096, "capacity: scanlines per edge"},

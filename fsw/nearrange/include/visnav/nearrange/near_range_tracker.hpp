@@ -98,6 +98,9 @@ struct NearRangeResult {
   /// Steps found on an interior edge's scanlines nearer its parallel outline neighbour than the edge itself
   /// (findConfusableEdges): the neighbour's, not taken.
   int confusable_points = 0;
+  /// Scanlines not cast because their point of the model edge is hidden behind another front-facing surface
+  /// nearer the camera (occluded_scanlines: a panel in front of a body edge).
+  int occluded_scanlines = 0;
   int scanlines =
       0;  ///< scanlines cast across the predicted edges (edge support = inlier_points / scanlines)
   int edge_points = 0;
@@ -209,6 +212,9 @@ class NearRangeTracker {
   void selectEdges(NearRangeResult& out);
   bool findConfusableEdges(const Pose& predicted);  ///< true: a face is seen as a narrow strip
   void measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out);
+  /// True when the ray to p_c (camera frame) crosses a front-facing surface other than `edge`'s own before
+  /// reaching it (m_vertex_c must hold this frame's vertices).
+  bool occluded(const Vec3& p_c, const ModelEdge& edge, const Pose& predicted) const;
   void measureEdge(const MonoImage& image, const Pose& predicted, int model_edge, NearRangeResult& out);
   bool outwardReference(const ModelEdge& edge, const Pose& predicted, Vec2& centroid_px) const;
   bool measureScanline(const MonoImage& image, int model_edge, const Vec3& a_c, const Vec3& b_c, double t,
@@ -267,6 +273,7 @@ class NearRangeTracker {
   BoundedBuffer<std::uint8_t> m_surface_front;    ///< front-facing with the predicted pose, this frame
   BoundedBuffer<std::uint8_t> m_edge_selected;    ///< per model edge, this frame
   BoundedBuffer<Vec2> m_vertex_px;                ///< per model vertex: projected with the prediction, raw px
+  BoundedBuffer<Vec3> m_vertex_c;                 ///< per model vertex: camera frame at the prediction
   BoundedBuffer<std::uint8_t> m_vertex_in_front;  ///< per model vertex: in front of the camera, projected
   BoundedBuffer<int> m_confusable_partner;        ///< per model edge: its parallel outline neighbour, or -1
   BoundedBuffer<std::uint8_t> m_edge_bounds_narrow_face;  ///< per model edge: bounds a kFlagNarrowFace strip
