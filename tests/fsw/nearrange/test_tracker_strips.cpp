@@ -2,9 +2,10 @@
 // line end's systematic error"), and edges hidden behind another part ("Occluded scanlines").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <utility>
 #include <vector>
 
 #include "tracker_fixture.hpp"
@@ -57,8 +58,8 @@ TEST(SystematicTerms, InteriorAndStripEdgesWidenTheGainOnlyWhereTheFitHasSuchLin
   EXPECT_LE(c.narrow_factor_per_px2, c.bias_factor_per_px2);
   for (const auto& [interior_px, narrow_px] : {std::pair{0.5, 0.0}, std::pair{0.0, 0.5}, std::pair{0.5, 1.0}}) {
     const NearRangeResult r = track(interior_px, narrow_px);
-    EXPECT_EQ(std::memcmp(r.pose.t_c_m.data(), base.pose.t_c_m.data(), sizeof(double) * 3), 0);
-    EXPECT_EQ(std::memcmp(r.covariance.data(), base.covariance.data(), sizeof(double) * 36), 0);
+    EXPECT_TRUE(r.pose.t_c_m == base.pose.t_c_m);  // exactly the same fit
+    EXPECT_TRUE(r.covariance == base.covariance);
     const double expected =
         std::max(c.residual_factor, c.vertex_factor + interior_px * interior_px * c.interior_factor_per_px2 +
                                         narrow_px * narrow_px * c.narrow_factor_per_px2) /

@@ -32,6 +32,7 @@ std::vector<Symmetry> modelSymmetries(const PolygonModel& model) {
   ModelSymmetries found;
   found.find(model);
   std::vector<Symmetry> group;
+  group.reserve(static_cast<std::size_t>(found.size()));
   for (int i = 0; i < found.size(); ++i) group.push_back({found[i], rotationName(found[i])});
   return group;
 }
