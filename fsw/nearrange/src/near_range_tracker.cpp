@@ -58,6 +58,7 @@ LoadError NearRangeTracker::init(const PinholeCamera& camera, const PolygonModel
   m_edge_bounds_narrow_face.reserve(edges);
   m_vertex_px.reserve(model.vertices().size());
   m_vertex_c.reserve(model.vertices().size());
+  m_occluders.reserve(surfaces);
   m_vertex_in_front.reserve(model.vertices().size());
   m_vertex_best_sin.reserve(model.vertices().size());
   m_vertex_best_px.reserve(model.vertices().size());
@@ -213,7 +214,7 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
       const double along_px =
           count == 1 ? 0.5 * length_px
                      : m_params.vertex_margin_px + usable_px * i / static_cast<double>(count - 1);
-      if (m_params.occluded_scanlines && occluded(a_c + (along_px / length_px) * (b_c - a_c), edge, predicted)) {
+      if (m_params.occluded_scanlines && occluded(a_c + (along_px / length_px) * (b_c - a_c), edge)) {
         ++hidden;
         continue;
       }
@@ -308,28 +309,61 @@ void NearRangeTracker::finishLost(const Pose& predicted, NearRangeResult& out) c
   out.quality = 0.0;
 }
 
-bool NearRangeTracker::occluded(const Vec3& p_c, const ModelEdge& edge, const Pose& predicted) const {
-  // Ray from the camera centre through p_c: a front-facing surface whose plane it crosses before p_c (by
-  // more than a relative margin: the edge's own corners lie on their neighbours' planes) at a point inside
-  // that surface's polygon hides p_c. Bounded: surfaces x their vertices.
-  constexpr double kMargin = 1e-6;
+void NearRangeTracker::prepareOccluders(const Pose& predicted) {
+  for (std::size_t v = 0; v < m_model.vertices().size(); ++v)
+    m_vertex_c[v] = predicted.transform(m_model.vertices()[v]);
+  m_occluders.clear();
   const auto& surfaces = m_model.surfaces();
   for (std::size_t s = 0; s < surfaces.size(); ++s) {
-    if (m_surface_front[s] == 0U || static_cast<int>(s) == edge.surface_left ||
-        static_cast<int>(s) == edge.surface_right)
-      continue;
+    if (m_surface_front[s] == 0U) continue;
     const ModelSurface& surface = surfaces[s];
-    const Vec3 n_c = predicted.R_c_m * surface.normal_m;
-    const double along_ray = n_c.dot(p_c);
+    Occluder o;
+    o.surface = static_cast<int>(s);
+    o.n_c = predicted.R_c_m * surface.normal_m;
+    o.d = o.n_c.dot(m_vertex_c[static_cast<std::size_t>(surface.vertex_indices[0])]);
+    constexpr double kUnbounded = 1e300;
+    o.min_px = Vec2::Constant(kUnbounded);
+    o.max_px = Vec2::Constant(-kUnbounded);
+    for (const int index : surface.vertex_indices) {
+      Vec2 px;
+      if (!m_camera.project(m_vertex_c[static_cast<std::size_t>(index)], px)) {
+        o.min_px = Vec2::Constant(-kUnbounded);  // behind the camera: no image bound
+        o.max_px = Vec2::Constant(kUnbounded);
+        break;
+      }
+      o.min_px = o.min_px.cwiseMin(px);
+      o.max_px = o.max_px.cwiseMax(px);
+    }
+    (void)m_occluders.push(o);  // capacity: one per surface
+  }
+}
+
+bool NearRangeTracker::occluded(const Vec3& p_c, const ModelEdge& edge) const {
+  // Ray from the camera centre through p_c: an occluder whose plane it crosses before p_c (by more than a
+  // relative margin: the edge's own corners lie on their neighbours' planes) at a point inside that
+  // surface's polygon hides p_c. The projection's bounding box (one pixel of slack for the lens model)
+  // screens the occluders first. Bounded: occluders x their vertices.
+  constexpr double kMargin = 1e-6;
+  constexpr double kSlackPx = 1.0;
+  Vec2 p_px;
+  if (!m_camera.project(p_c, p_px)) return false;
+  const auto& surfaces = m_model.surfaces();
+  for (const Occluder& o : m_occluders) {
+    if (o.surface == edge.surface_left || o.surface == edge.surface_right) continue;
+    if (p_px.x() < o.min_px.x() - kSlackPx || p_px.x() > o.max_px.x() + kSlackPx ||
+        p_px.y() < o.min_px.y() - kSlackPx || p_px.y() > o.max_px.y() + kSlackPx)
+      continue;
+    const double along_ray = o.n_c.dot(p_c);
     if (!(std::fabs(along_ray) > 0.0)) continue;
-    const double scale = n_c.dot(m_vertex_c[static_cast<std::size_t>(surface.vertex_indices[0])]) / along_ray;
+    const double scale = o.d / along_ray;
     if (!(scale > 0.0 && scale < 1.0 - kMargin)) continue;
     const Vec3 q = scale * p_c;
     // Point in polygon (crossing number) in the plane's two coordinates with the larger normal components.
     int drop = 0;
-    n_c.cwiseAbs().maxCoeff(&drop);
+    o.n_c.cwiseAbs().maxCoeff(&drop);
     const int u = drop == 0 ? 1 : 0;
     const int v = drop == 2 ? 1 : 2;
+    const ModelSurface& surface = surfaces[static_cast<std::size_t>(o.surface)];
     bool inside = false;
     const std::size_t n = surface.vertex_indices.size();
     for (std::size_t k = 0, j = n - 1; k < n; j = k++) {
@@ -344,9 +378,7 @@ bool NearRangeTracker::occluded(const Vec3& p_c, const ModelEdge& edge, const Po
 }
 
 void NearRangeTracker::measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out) {
-  if (m_params.occluded_scanlines)
-    for (std::size_t v = 0; v < m_model.vertices().size(); ++v)
-      m_vertex_c[v] = predicted.transform(m_model.vertices()[v]);
+  if (m_params.occluded_scanlines) prepareOccluders(predicted);
   m_edges.clear();
   m_scan_points.clear();
   m_points_ideal.clear();

@@ -212,9 +212,11 @@ class NearRangeTracker {
   void selectEdges(NearRangeResult& out);
   bool findConfusableEdges(const Pose& predicted);  ///< true: a face is seen as a narrow strip
   void measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out);
-  /// True when the ray to p_c (camera frame) crosses a front-facing surface other than `edge`'s own before
-  /// reaching it (m_vertex_c must hold this frame's vertices).
-  bool occluded(const Vec3& p_c, const ModelEdge& edge, const Pose& predicted) const;
+  /// This frame's occluders (m_occluders): every front-facing surface with its plane and image bounds.
+  void prepareOccluders(const Pose& predicted);
+  /// True when the ray to p_c (camera frame) crosses an occluder other than `edge`'s own faces before
+  /// reaching it.
+  bool occluded(const Vec3& p_c, const ModelEdge& edge) const;
   void measureEdge(const MonoImage& image, const Pose& predicted, int model_edge, NearRangeResult& out);
   bool outwardReference(const ModelEdge& edge, const Pose& predicted, Vec2& centroid_px) const;
   bool measureScanline(const MonoImage& image, int model_edge, const Vec3& a_c, const Vec3& b_c, double t,
@@ -274,6 +276,16 @@ class NearRangeTracker {
   BoundedBuffer<std::uint8_t> m_edge_selected;    ///< per model edge, this frame
   BoundedBuffer<Vec2> m_vertex_px;                ///< per model vertex: projected with the prediction, raw px
   BoundedBuffer<Vec3> m_vertex_c;                 ///< per model vertex: camera frame at the prediction
+  /// A front-facing surface as a possible occluder this frame: plane n_c . x = d (camera frame), and the
+  /// bounding box of its projection (unbounded when a vertex is behind the camera).
+  struct Occluder {
+    int surface = -1;
+    Vec3 n_c = Vec3::Zero();
+    double d = 0.0;
+    Vec2 min_px = Vec2::Zero();
+    Vec2 max_px = Vec2::Zero();
+  };
+  BoundedBuffer<Occluder> m_occluders;
   BoundedBuffer<std::uint8_t> m_vertex_in_front;  ///< per model vertex: in front of the camera, projected
   BoundedBuffer<int> m_confusable_partner;        ///< per model edge: its parallel outline neighbour, or -1
   BoundedBuffer<std::uint8_t> m_edge_bounds_narrow_face;  ///< per model edge: bounds a kFlagNarrowFace strip
