@@ -99,8 +99,7 @@ bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
       const auto bordersEdge = [&edge](int surface) {
         return surface >= 0 && (surface == edge.surface_left || surface == edge.surface_right);
       };
-      if (gap < separation &&
-          (bordersEdge(other.surface_left) || bordersEdge(other.surface_right))) {
+      if (gap < separation && (bordersEdge(other.surface_left) || bordersEdge(other.surface_right))) {
         narrow_strip = true;
         m_edge_bounds_narrow_face[e] = 1U;  // both edges of the strip (narrow_face_edge_bias_px)
         m_edge_bounds_narrow_face[f] = 1U;

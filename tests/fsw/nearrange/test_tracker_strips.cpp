@@ -56,7 +56,8 @@ TEST(SystematicTerms, InteriorAndStripEdgesWidenTheGainOnlyWhereTheFitHasSuchLin
   EXPECT_LT(c.interior_factor_per_px2, c.bias_factor_per_px2);
   EXPECT_GT(c.narrow_factor_per_px2, 0.0);
   EXPECT_LE(c.narrow_factor_per_px2, c.bias_factor_per_px2);
-  for (const auto& [interior_px, narrow_px] : {std::pair{0.5, 0.0}, std::pair{0.0, 0.5}, std::pair{0.5, 1.0}}) {
+  for (const auto& [interior_px, narrow_px] :
+       {std::pair{0.5, 0.0}, std::pair{0.0, 0.5}, std::pair{0.5, 1.0}}) {
     const NearRangeResult r = track(interior_px, narrow_px);
     EXPECT_TRUE(r.pose.t_c_m == base.pose.t_c_m);  // exactly the same fit
     EXPECT_TRUE(r.covariance == base.covariance);
@@ -124,9 +125,10 @@ TEST(OccludedScanlines, AnEdgeBehindAnotherPartIsMeasuredWhereItShowsOnly) {
   };
   const auto [att_with, pos_with] = errors(with_rule);
   const auto [att_without, pos_without] = errors(without);
-  std::printf("plate behind a bar, from the true pose: %.3f deg / %.4f m with the rule (%d scanlines hidden), "
-              "%.3f deg / %.4f m without\n",
-              att_with, pos_with, with_rule.occluded_scanlines, att_without, pos_without);
+  std::printf(
+      "plate behind a bar, from the true pose: %.3f deg / %.4f m with the rule (%d scanlines hidden), "
+      "%.3f deg / %.4f m without\n",
+      att_with, pos_with, with_rule.occluded_scanlines, att_without, pos_without);
   ASSERT_NE(with_rule.status, TrackStatus::kLost) << "flags " << with_rule.flags;
   ASSERT_NE(without.status, TrackStatus::kLost) << "flags " << without.flags;
   EXPECT_GT(with_rule.occluded_scanlines, 5);
@@ -145,7 +147,8 @@ TEST(OccludedScanlines, AnEdgeBehindAnotherPartIsMeasuredWhereItShowsOnly) {
   NearRangeTracker box_tracker;
   ASSERT_TRUE(box_tracker.init(vgaCamera(), box, NearRangeParams{}).ok);
   NearRangeResult r;
-  ASSERT_EQ(box_tracker.track(renderFrame(box_renderer, kStripsTruth, 41).image(), kStripsTruth, 0, r), Status::kOk);
+  ASSERT_EQ(box_tracker.track(renderFrame(box_renderer, kStripsTruth, 41).image(), kStripsTruth, 0, r),
+            Status::kOk);
   EXPECT_NE(r.status, TrackStatus::kLost);
   EXPECT_EQ(r.occluded_scanlines, 0);
 }

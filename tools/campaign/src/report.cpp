@@ -436,9 +436,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << (f.has_candidate ? num(f.candidate_range_m) : "") << "," << f.range_broken << "," << f.in_view
         << "," << (f.far_valid ? num(f.far_direction_error_deg) : "") << "," << f.far_off_target << ","
         << f.withheld << "," << num(f.systematic_gain) << "," << num(f.cov_residual_factor) << ","
-        << num(f.cov_vertex_factor) << "," << num(f.cov_bias_factor_per_px2) << "," << f.mirror_resolved << ","
-        << num(f.cov_interior_factor_per_px2) << "," << num(f.cov_narrow_factor_per_px2)
-        << "\n";
+        << num(f.cov_vertex_factor) << "," << num(f.cov_bias_factor_per_px2) << "," << f.mirror_resolved
+        << "," << num(f.cov_interior_factor_per_px2) << "," << num(f.cov_narrow_factor_per_px2) << "\n";
     }
   }
 }

@@ -327,10 +327,12 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             attitudeErrorModuloDeg(o.pose.R_c_m, truth.R_c_m, scene.symmetries), o.flags, o.inlier_points,
             o.edge_points, o.scanlines);
         res.trace += buf;
-        if (o.lines_total > 0) res.trace += "       oracle" + traceEdges(*oracle, o.pose, truth, scene.symmetries);
+        if (o.lines_total > 0)
+          res.trace += "       oracle" + traceEdges(*oracle, o.pose, truth, scene.symmetries);
       }
-      if (pipeline->lastNearRange().lines_total > 0) 
-        res.trace += "      " + traceEdges(pipeline->nearRange(), pipeline->lastNearRange().pose, truth, scene.symmetries);
+      if (pipeline->lastNearRange().lines_total > 0)
+        res.trace += "      " + traceEdges(pipeline->nearRange(), pipeline->lastNearRange().pose, truth,
+                                           scene.symmetries);
       if (pipeline->filter().initialised()) {
         char buf[160];
         std::snprintf(

@@ -39,8 +39,8 @@ struct NearRangeParams {
   int pose_residual = static_cast<int>(PoseResidualMode::kVertex);
   int lm_max_iterations = 100;
   double pixel_sigma_px = 0.1;
-  double line_end_bias_px = 0.0;  ///< systematic line-end error, not averaged down by points
-  double interior_edge_bias_px = 0.0;  ///< the same, added on the lines of interior edges
+  double line_end_bias_px = 0.0;          ///< systematic line-end error, not averaged down by points
+  double interior_edge_bias_px = 0.0;     ///< the same, added on the lines of interior edges
   double narrow_face_edge_bias_px = 0.0;  ///< the same, added on the two lines of a narrow face's strip
   double max_rms_px = 1.5;
   double degraded_rms_px = 0.6;
@@ -169,7 +169,8 @@ struct NearRangeParams {
             "true edges (9.6 % beyond 1 px) where outline ends lay 0.73 px rms (1.5 %). Off by default: "
             "replayed on seeds 1 / 5001 / 7001, 0.8 px removed 7 of the 8 wrong frames for 460 of 45 104 "
             "tracked frames, but already 0.3 px lifts 33 of slew_box's doubted poses across the 1 deg "
-            "doubted limit (117 -> 84 of 120 tracked, below the case's 97 % gate; top-level README, stop 62); 0 switches it off"},
+            "doubted limit (117 -> 84 of 120 tracked, below the case's 97 % gate; top-level README, stop "
+            "62); 0 switches it off"},
            interior_edge_bias_px);
     v.real({"nearrange", "narrow_face_edge_bias_px", "px", 0.0, 10.0,
             "1-sigma systematic error of the ends of the two lines that bound a face seen as a strip "

@@ -125,9 +125,9 @@ struct EdgeMeasurement {
   int model_edge = -1;
   int first_point = 0;  ///< range [first_point, first_point + point_count) in the point arrays
   int point_count = 0;
-  int scanlines = 0;        ///< cast across it; 0: too short to measure (not counted in lines_total)
-  bool confusable = false;  ///< interior edge beside a parallel outline edge (findConfusableEdges)
-  bool interior = false;    ///< both its faces front-facing at the prediction (interior_edge_bias_px)
+  int scanlines = 0;                ///< cast across it; 0: too short to measure (not counted in lines_total)
+  bool confusable = false;          ///< interior edge beside a parallel outline edge (findConfusableEdges)
+  bool interior = false;            ///< both its faces front-facing at the prediction (interior_edge_bias_px)
   bool bounds_narrow_face = false;  ///< one of a kFlagNarrowFace strip's two edges (narrow_face_edge_bias_px)
   bool line_ok = false;
   Line2d line;  ///< fitted line, ideal pixels
@@ -289,7 +289,7 @@ class NearRangeTracker {
   BoundedBuffer<std::uint8_t> m_vertex_in_front;  ///< per model vertex: in front of the camera, projected
   BoundedBuffer<int> m_confusable_partner;        ///< per model edge: its parallel outline neighbour, or -1
   BoundedBuffer<std::uint8_t> m_edge_bounds_narrow_face;  ///< per model edge: bounds a kFlagNarrowFace strip
-  BoundedBuffer<std::int8_t> m_polarity;          ///< per model edge x kPolarityBins, last frame
+  BoundedBuffer<std::int8_t> m_polarity;                  ///< per model edge x kPolarityBins, last frame
   BoundedBuffer<std::int8_t> m_polarity_next;
 
   BoundedBuffer<EdgeMeasurement> m_edges;
@@ -300,7 +300,7 @@ class NearRangeTracker {
   BoundedBuffer<VertexObservation> m_vertex_obs;
   BoundedBuffer<double> m_vertex_best_sin;  ///< per model vertex: best |sin| of a measured line pair
   BoundedBuffer<Vec2> m_vertex_best_px;
-  BoundedBuffer<double> m_vertex_best_var;  ///< per model vertex: its observation's per-axis variance
+  BoundedBuffer<double> m_vertex_best_var;       ///< per model vertex: its observation's per-axis variance
   BoundedBuffer<double> m_vertex_best_interior;  ///< per model vertex: its lines' interior share (0, 1/2, 1)
   BoundedBuffer<double> m_vertex_best_narrow;    ///< per model vertex: its lines' narrow-face share
   BoundedBuffer<ChamferCorner> m_chamfer_corners;
