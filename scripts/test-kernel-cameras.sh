@@ -67,6 +67,15 @@ log() { echo "test-kernel-cameras: $*"; }
 die() { echo "test-kernel-cameras: $*" >&2; exit 2; }
 cannot() { echo "test-kernel-cameras: cannot run here: $*" >&2; exit 3; }
 
+# The VM mounts its own tmpfs on /tmp, /run and /dev/shm over the shared host root (init below): a checkout,
+# binaries, cache or output there would vanish inside it (a clone in /tmp ran nothing and said only "the VM
+# produced no results").
+for d in "$REPO" "$BIN" "$CACHE" "$OUT"; do
+  case "$(realpath -m "$d")/" in
+    /tmp/* | /run/* | /dev/shm/*)
+      die "$d is under /tmp, /run or /dev/shm, which the VM replaces by its own tmpfs: put the checkout (and --bin, --cache, --out) elsewhere" ;;
+  esac
+done
 for b in visnavd visnav-monitor test_v4l2 test_libcamera; do
   [ -x "$BIN/$b" ] || die "$BIN/$b is missing: build it first (cmake --build build/release --target $b), or pass --bin DIR"
 done
