@@ -23,6 +23,16 @@ const Pose kStripsTruth = plateAt(14.5, 0.2, 25.0, 7.0);
 
 PolygonModel stripsBox() { return makeBox(0.726, 0.555, 0.48); }
 
+// One track() from `predicted` by a fresh tracker with `params`.
+NearRangeResult trackOnce(const PolygonModel& model, const NearRangeParams& params, const MonoImage& image,
+                          const Pose& predicted) {
+  NearRangeTracker tracker;
+  EXPECT_TRUE(tracker.init(vgaCamera(), model, params).ok);
+  NearRangeResult r;
+  EXPECT_EQ(tracker.track(image, predicted, 0, r), Status::kOk);
+  return r;
+}
+
 // interior_edge_bias_px and narrow_face_edge_bias_px, like line_end_bias_px, widen what validity is judged
 // on (systematic_gain) by the share of the vertices' lines they concern, never the fit or the scatter's
 // covariance the filter takes; a plate has neither kind of line.
@@ -39,11 +49,7 @@ TEST(SystematicTerms, InteriorAndStripEdgesWidenTheGainOnlyWhereTheFitHasSuchLin
     NearRangeParams params;
     params.interior_edge_bias_px = interior_px;
     params.narrow_face_edge_bias_px = narrow_px;
-    NearRangeTracker tracker;
-    EXPECT_TRUE(tracker.init(vgaCamera(), model, params).ok);
-    NearRangeResult r;
-    EXPECT_EQ(tracker.track(frame.image(), kStripsTruth, 0, r), Status::kOk);
-    return r;
+    return trackOnce(model, params, frame.image(), kStripsTruth);
   };
   const NearRangeResult base = track(0.0, 0.0);
   ASSERT_NE(base.status, TrackStatus::kLost) << "flags " << base.flags;
@@ -76,10 +82,8 @@ TEST(SystematicTerms, InteriorAndStripEdgesWidenTheGainOnlyWhereTheFitHasSuchLin
   NearRangeParams params;
   params.interior_edge_bias_px = 0.5;
   params.narrow_face_edge_bias_px = 1.0;
-  NearRangeTracker tracker;
-  ASSERT_TRUE(tracker.init(vgaCamera(), plate, params).ok);
-  NearRangeResult r;
-  tracker.track(renderFrame(plate_renderer, plate_truth, 11).image(), plate_truth, 0, r);
+  const NearRangeResult r =
+      trackOnce(plate, params, renderFrame(plate_renderer, plate_truth, 11).image(), plate_truth);
   ASSERT_EQ(r.status, TrackStatus::kTracking);
   EXPECT_EQ(r.covariance_terms.interior_factor_per_px2, 0.0);
   EXPECT_EQ(r.covariance_terms.narrow_factor_per_px2, 0.0);
@@ -111,11 +115,7 @@ TEST(OccludedScanlines, AnEdgeBehindAnotherPartIsMeasuredWhereItShowsOnly) {
   const auto trackWith = [&](bool rule) {
     NearRangeParams params;
     params.occluded_scanlines = rule;
-    NearRangeTracker tracker;
-    EXPECT_TRUE(tracker.init(vgaCamera(), model, params).ok);
-    NearRangeResult r;
-    EXPECT_EQ(tracker.track(frame.image(), truth, 0, r), Status::kOk);
-    return r;
+    return trackOnce(model, params, frame.image(), truth);
   };
   const NearRangeResult with_rule = trackWith(true);
   const NearRangeResult without = trackWith(false);
@@ -144,11 +144,8 @@ TEST(OccludedScanlines, AnEdgeBehindAnotherPartIsMeasuredWhereItShowsOnly) {
   const PolygonModel box = makeBox(0.726, 0.555, 0.48);
   synthetic::Renderer box_renderer;
   ASSERT_TRUE(box_renderer.init(vgaCamera(), box, synthetic::RenderOptions{}).ok);
-  NearRangeTracker box_tracker;
-  ASSERT_TRUE(box_tracker.init(vgaCamera(), box, NearRangeParams{}).ok);
-  NearRangeResult r;
-  ASSERT_EQ(box_tracker.track(renderFrame(box_renderer, kStripsTruth, 41).image(), kStripsTruth, 0, r),
-            Status::kOk);
+  const NearRangeResult r =
+      trackOnce(box, NearRangeParams{}, renderFrame(box_renderer, kStripsTruth, 41).image(), kStripsTruth);
   EXPECT_NE(r.status, TrackStatus::kLost);
   EXPECT_EQ(r.occluded_scanlines, 0);
 }
