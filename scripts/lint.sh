@@ -5,12 +5,19 @@
 #   scripts/lint.sh              all three (clang-tidy takes minutes on 2 cores)
 #   scripts/lint.sh --format     clang-format only (seconds; CI runs it as the ctest `format_check`)
 #   scripts/lint.sh --cppcheck   cppcheck only (seconds; CI runs it as the ctest `cppcheck`)
+#   scripts/lint.sh --fix        rewrites every tracked C++ file with clang-format (the others only check)
 # Exit status is non-zero when any check reports something.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 only=${1:-all}
-case $only in all | --format | --cppcheck) ;; *) echo "usage: scripts/lint.sh [--format | --cppcheck]" >&2; exit 2 ;; esac
+case $only in all | --format | --cppcheck | --fix) ;; *) echo "usage: scripts/lint.sh [--format | --cppcheck | --fix]" >&2; exit 2 ;; esac
 status=0
+if [[ $only == --fix ]]; then
+  mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h')
+  echo "lint: clang-format -i over ${#files[@]} files"
+  clang-format -i "${files[@]}"
+  exit $?
+fi
 if [[ $only == all || $only == --format ]]; then
   mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h')
   echo "lint: clang-format over ${#files[@]} files"
