@@ -20,6 +20,7 @@ narrow_face_edge_bias_px = B would; a term not given keeps its default, and the 
     python3 tools/campaign/sigma_consistency.py DIR
     python3 tools/campaign/sigma_consistency.py DIR --line-end-bias-px 0.2
     python3 tools/campaign/sigma_consistency.py DIR --interior-edge-bias-px 0.5
+    python3 tools/campaign/sigma_consistency.py DIR --by-edge-kind   # grouped by what the vertices stand on
     python3 tools/campaign/sigma_consistency.py --self-test
 """
 import argparse
@@ -87,8 +88,19 @@ def optional_float(r, column):
         return 0.0
 
 
-def collect(frames, scenes, max_error_deg, biases=None):
-    """frames, scenes: csv rows. Returns {(family, bucket): [(e/s)^2, ...]}, with family 'all' too."""
+NARROW_FACE = 0x1000  # kFlagNarrowFace
+
+
+def edge_kind(r):
+    """What the fit's vertices stand on: 'interior' when some of their lines are of interior edges
+    (cov_interior_factor_per_px2 > 0), else 'outline'; '+narrow' with kFlagNarrowFace."""
+    kind = 'interior' if optional_float(r, 'cov_interior_factor_per_px2') > 0 else 'outline'
+    return kind + ('+narrow' if int(r.get('near_flags') or 0) & NARROW_FACE else '')
+
+
+def collect(frames, scenes, max_error_deg, biases=None, by_edge_kind=False):
+    """frames, scenes: csv rows. Returns {(family, bucket): [(e/s)^2, ...]}, with family 'all' too; with
+    by_edge_kind the bucket is edge_kind() instead of the target size."""
     size_m = {s['name']: (float(s['f_px']), 2.0 * float(s['bounding_radius_m'])) for s in scenes}
     groups = collections.defaultdict(list)
     for r in frames:
@@ -99,7 +111,7 @@ def collect(frames, scenes, max_error_deg, biases=None):
         if error > max_error_deg or not sigma > 0 or r['scene'] not in size_m:
             continue
         f_px, diameter_m = size_m[r['scene']]
-        bucket = bucket_name(f_px * diameter_m / float(r['range_m']))
+        bucket = edge_kind(r) if by_edge_kind else bucket_name(f_px * diameter_m / float(r['range_m']))
         z2 = (error / sigma) ** 2
         groups[(r['family'], bucket)].append(z2)
         groups[('all', bucket)].append(z2)
@@ -107,13 +119,13 @@ def collect(frames, scenes, max_error_deg, biases=None):
 
 
 def report(groups, out=sys.stdout):
-    print(f"{'family':9s} {'size':12s} {'poses':>7s} {'mean':>7s} {'median':>7s} {'p95':>7s} {'sigma x':>8s}",
+    print(f"{'family':9s} {'size/kind':15s} {'poses':>7s} {'mean':>7s} {'median':>7s} {'p95':>7s} {'sigma x':>8s}",
           file=out)
     order = {name: i for i, name in enumerate(bucket_name(lo) for lo, _ in SIZE_BUCKETS)}
     for (family, bucket) in sorted(groups, key=lambda k: (k[0] == 'all', k[0], order.get(k[1], 9))):
         v = sorted(groups[(family, bucket)])
         mean = sum(v) / len(v)
-        print(f"{family:9s} {bucket:12s} {len(v):7d} {mean:7.2f} {v[len(v) // 2]:7.2f} "
+        print(f"{family:9s} {bucket:15s} {len(v):7d} {mean:7.2f} {v[len(v) // 2]:7.2f} "
               f"{v[min(len(v) - 1, int(0.95 * len(v)))]:7.2f} {math.sqrt(mean):8.2f}", file=out)
 
 
@@ -145,6 +157,10 @@ def self_test():
     applied = dict(frame(1, 1), systematic_gain='2')
     assert abs(sigma_scale(applied, (0.0, 0.0, 0.0)) - math.sqrt(0.5)) < 1e-12
     assert sigma_scale(applied, None) == 1.0  # nothing asked: the delivered sigma
+    # By edge kind: a vertex fit with interior lines, and one with a narrow face flagged.
+    kinds = dict(frame(1.0, 1.0), cov_interior_factor_per_px2='5', near_flags=str(NARROW_FACE))
+    g = collect([frame(2.0, 1.0), kinds], scenes, 20.0, by_edge_kind=True)
+    assert g[('box', 'outline')] == [4.0] and g[('box', 'interior+narrow')] == [1.0], g
     print("sigma_consistency.py: self-test passed")
     return 0
 
@@ -156,6 +172,7 @@ def main(argv):
     p.add_argument('--line-end-bias-px', type=float, default=None)
     p.add_argument('--interior-edge-bias-px', type=float, default=None)
     p.add_argument('--narrow-face-edge-bias-px', type=float, default=None)
+    p.add_argument('--by-edge-kind', action='store_true')
     p.add_argument('--self-test', action='store_true')
     a = p.parse_args(argv)
     if a.self_test:
@@ -166,7 +183,7 @@ def main(argv):
         frames = list(csv.DictReader(f))
     with open(a.dir + '/scenes.csv', newline='') as f:
         scenes = list(csv.DictReader(f))
-    groups = collect(frames, scenes, a.max_error_deg, biases_asked(a))
+    groups = collect(frames, scenes, a.max_error_deg, biases_asked(a), a.by_edge_kind)
     if not groups:
         print("no near-range candidates", file=sys.stderr)
         return 1

@@ -33,7 +33,12 @@ void NearRangeTracker::selectEdges(NearRangeResult& out) {
   if (out.tracked_surfaces == 0 && out.silhouette_lines == 0) out.flags |= kFlagNoSurface;
 }
 
-bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
+bool NearRangeTracker::interiorEdge(const ModelEdge& edge) const {
+  return edge.surface_left >= 0 && edge.surface_right >= 0 && m_surface_front[edge.surface_left] != 0U &&
+         m_surface_front[edge.surface_right] != 0U;
+}
+
+bool NearRangeTracker::findConfusableEdges() {
   // An interior edge (both neighbouring surfaces front-facing) next to a face seen at a grazing angle lies a
   // few pixels from the outline edge on that face's far side. Closer than the step test can resolve (its two
   // w-sample windows plus the blur: confusable_edge_separation_px), the interior edge's scanlines may find
@@ -50,9 +55,7 @@ bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
   constexpr double kNegligibleGapPx = 1.0;
   const auto& edges = m_model.edges();
   const auto interior = [this, &edges](std::size_t e) {
-    const ModelEdge& edge = edges[e];
-    return m_edge_selected[e] != 0U && edge.surface_left >= 0 && edge.surface_right >= 0 &&
-           m_surface_front[edge.surface_left] != 0U && m_surface_front[edge.surface_right] != 0U;
+    return m_edge_selected[e] != 0U && interiorEdge(edges[e]);
   };
   bool any_interior = false;
   for (std::size_t e = 0; e < edges.size(); ++e) {
@@ -62,9 +65,8 @@ bool NearRangeTracker::findConfusableEdges(const Pose& predicted) {
   }
   // A plate, or a body seen face-on with one tracked face, has no interior edge: nothing to project.
   if (!any_interior || !(m_params.confusable_edge_separation_px > 0.0)) return false;
-  const auto& vertices = m_model.vertices();
-  for (std::size_t v = 0; v < vertices.size(); ++v) {
-    const Vec3 p_c = predicted.transform(vertices[v]);
+  for (std::size_t v = 0; v < m_vertex_c.size(); ++v) {
+    const Vec3& p_c = m_vertex_c[v];  // at the prediction (transformVertices)
     m_vertex_in_front[v] = p_c.z() > 0.0 && m_camera.project(p_c, m_vertex_px[v]) ? 1U : 0U;
   }
   const double separation = m_params.confusable_edge_separation_px;

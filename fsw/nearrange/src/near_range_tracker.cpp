@@ -122,6 +122,11 @@ void NearRangeTracker::updateSurfaces(const Pose& predicted) {
   m_first_frame = false;
 }
 
+void NearRangeTracker::transformVertices(const Pose& predicted) {
+  for (std::size_t v = 0; v < m_model.vertices().size(); ++v)
+    m_vertex_c[v] = predicted.transform(m_model.vertices()[v]);
+}
+
 bool NearRangeTracker::outwardReference(const ModelEdge& edge, const Pose& predicted,
                                         Vec2& centroid_px) const {
   // Outward side: away from the projected centroid of a tracked (else front-facing) surface owning the edge.
@@ -175,8 +180,7 @@ void NearRangeTracker::measureEdge(const MonoImage& image, const Pose& predicted
   const Vec3 b_c = predicted.transform(m_model.vertices()[edge.v1]);
   EdgeMeasurement slot;
   slot.model_edge = e;
-  slot.interior = edge.surface_left >= 0 && edge.surface_right >= 0 &&
-                  m_surface_front[edge.surface_left] != 0U && m_surface_front[edge.surface_right] != 0U;
+  slot.interior = interiorEdge(edge);
   slot.bounds_narrow_face = m_edge_bounds_narrow_face[e] != 0U;
   slot.first_point = static_cast<int>(m_scan_points.size());
   if (!m_camera.project(a_c, slot.predicted_a_px) || !m_camera.project(b_c, slot.predicted_b_px)) {
@@ -419,7 +423,8 @@ Status NearRangeTracker::track(const MonoImage& image, const Pose& predicted, st
                               std::sqrt(2.0 * m_params.scanline_band_half_width_px + 1.0);
   updateSurfaces(predicted);  // 1 surfaces (sec. II-H)
   selectEdges(out);
-  if (findConfusableEdges(predicted)) out.flags |= kFlagNarrowFace;
+  transformVertices(predicted);
+  if (findConfusableEdges()) out.flags |= kFlagNarrowFace;
   out.timing.project_us = elapsedUs(stamp);
   if ((out.flags & kFlagNoSurface) != 0U) {
     finishLost(predicted, out);

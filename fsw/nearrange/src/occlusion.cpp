@@ -8,8 +8,6 @@
 namespace visnav {
 
 void NearRangeTracker::prepareOccluders(const Pose& predicted) {
-  for (std::size_t v = 0; v < m_model.vertices().size(); ++v)
-    m_vertex_c[v] = predicted.transform(m_model.vertices()[v]);
   m_occluders.clear();
   const auto& surfaces = m_model.surfaces();
   for (std::size_t s = 0; s < surfaces.size(); ++s) {

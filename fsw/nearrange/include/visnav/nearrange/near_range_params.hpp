@@ -244,8 +244,9 @@ struct NearRangeParams {
     v.boolean({"nearrange", "occluded_scanlines", "-", 0, 1,
                "no scanline is cast where its point of the model edge lies behind another front-facing "
                "surface nearer the camera (a solar panel in front of a body edge, one part of a .cao model "
-               "in front of another): the step found there is the occluder's outline, and it bent the "
-               "hidden edge's line by up to 7 px at one end (campaign smallsat/5001); an edge left with "
+               "in front of another): the step found there is the occluder's (test OccludedScanlines: a bar "
+               "6 px inside split a plate edge's points and it gave no line; campaign seeds 1 / 5001 / 7001: "
+               "smallsat 155 / 176 / 80 more tracked frames, no other family changed); an edge left with "
                "fewer visible scanlines than min_points_per_line counts as too short to measure. Back-facing "
                "surfaces do not occlude (single-sided plates, as the renderer draws them)"},
               occluded_scanlines);

@@ -210,9 +210,14 @@ class NearRangeTracker {
   double elapsedUs(std::int64_t& since) const;
   void updateSurfaces(const Pose& predicted);
   void selectEdges(NearRangeResult& out);
-  bool findConfusableEdges(const Pose& predicted);  ///< true: a face is seen as a narrow strip
+  bool findConfusableEdges();  ///< true: a face is seen as a narrow strip (m_vertex_c must be this frame's)
+  /// Both faces of `edge` front-facing at the prediction (updateSurfaces).
+  bool interiorEdge(const ModelEdge& edge) const;
+  /// m_vertex_c: every model vertex in the camera frame at the prediction, once a frame.
+  void transformVertices(const Pose& predicted);
   void measureEdges(const MonoImage& image, const Pose& predicted, NearRangeResult& out);
-  /// This frame's occluders (m_occluders): every front-facing surface with its plane and image bounds.
+  /// This frame's occluders (m_occluders): every front-facing surface with its plane and image bounds
+  /// (m_vertex_c must be this frame's).
   void prepareOccluders(const Pose& predicted);
   /// True when the ray to p_c (camera frame) crosses an occluder other than `edge`'s own faces before
   /// reaching it.
