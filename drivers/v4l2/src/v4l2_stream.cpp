@@ -180,6 +180,12 @@ void V4l2Camera::parkBuffer(int index, const char* what, int error_number) {
     m_parked[slot] = true;
     ++m_pending_count;
   }
+  reportRefusedBuffer(index, what, error_number);
+}
+
+void V4l2Camera::reportRefusedBuffer(int index, const char* what, int error_number) {
+  // Every refusal is counted and reported, a retry's too: a fault monitor (or a test pressing vivid's
+  // injection) must see each one, whichever QBUF it hit.
   ++m_requeue_errors;
   ++m_counters.errors;
   setError(what, error_number);
@@ -203,9 +209,7 @@ bool V4l2Camera::requeueParked() {
       deviceFailure("VIDIOC_QBUF (retry)", m_last_errno);
       return false;
     } else {
-      ++m_requeue_errors;
-      ++m_counters.errors;
-      setError("VIDIOC_QBUF (retry)", m_last_errno);
+      reportRefusedBuffer(i, "VIDIOC_QBUF (retry)", m_last_errno);
     }
   }
   if (m_pending_count == 0) {

@@ -69,6 +69,27 @@ TEST_F(V4l2Faults, ARefusedQbufKeepsTheBufferAndTheNextAcquireRequeuesIt) {
   EXPECT_EQ(camera.counters().device_losses, 0U);
 }
 
+TEST_F(V4l2Faults, ARefusedRetryIsReportedLikeTheFirstRefusal) {
+  // vivid's injection is consumed by whichever QBUF comes next, a parked buffer's retry included: a monitor
+  // counting release-error events must see that refusal too (the kernel-camera test waits on it).
+  Frame frame;
+  produceAndAcquire(device, camera, frame);
+  device.failQbuf(1);
+  camera.release(frame);
+  ASSERT_EQ(drain().size(), 1U);
+  device.failQbuf(1);  // the retry in the next acquire() is refused
+  EXPECT_EQ(cycle(), AcquireResult::kFrame);
+  const std::vector<CameraEvent> events = drain();
+  ASSERT_EQ(events.size(), 1U);
+  EXPECT_EQ(events[0].kind, CameraEventKind::kReleaseError);
+  EXPECT_NE(std::strstr(events[0].text, "VIDIOC_QBUF (retry): EINVAL"), nullptr) << events[0].text;
+  EXPECT_NE(std::strstr(events[0].text, "buffer 0 kept for a retry"), nullptr) << events[0].text;
+  EXPECT_EQ(camera.counters().errors, 2U);
+  EXPECT_EQ(camera.requeueErrors(), 2U);
+  EXPECT_EQ(cycle(), AcquireResult::kFrame);  // the second retry goes through
+  EXPECT_EQ(camera.pendingRequeues(), 0);
+}
+
 TEST_F(V4l2Faults, FourRefusedQbufsInARowNoLongerEmptyTheRing) {
   // The run: 4 injected errors emptied a 4-buffer ring for good. Now each is retried.
   for (int i = 0; i < 4; ++i) {
