@@ -32,6 +32,8 @@ LoadError LocalReacquisition::init(const PinholeCamera& camera, const PolygonMod
   wide.scanline_half_length_px = params.reacquire_scanline_half_length_px;
   m_step_px = std::max(1.0, params.reacquire_step_rel * params.reacquire_scanline_half_length_px);
   m_bounding_radius_m = model.boundingRadius();
+  m_cue_min_radius_px =
+      camera.intrinsics().fx_px * std::tan(params.reacquire_cue_min_radius_deg * kRadPerDeg);
   LoadError e = m_wide.init(camera, model, wide);
   if (e.ok) e = m_flight.init(camera, model, nearrange);
   if (e.ok) e = m_cue_window.init(kCueWindowSidePx, 256, 2 * std::max(camera.width(), camera.height()));
@@ -165,11 +167,16 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
   // is most likely there); the rest of the budget walks the outer rings, continuing where the last frame
   // stopped, so the whole widening grid is covered over the frames.
   const int inner = std::min(hypothesesWithinRings(1), total);
-  const int budget = std::min(m_params.reacquire_hypotheses_per_frame, total);
+  const int per_frame = m_params.reacquire_hypotheses_per_frame;
   // Then the outline's best matches over the disc, then the outer rings with what is left of the budget.
-  const int cues = budget > inner ? findCues(image, predicted, out.search_radius_px,
-                                             std::min(m_params.reacquire_cue_starts, budget - inner))
-                                  : 0;
+  // A slew moves the target a hundred pixels at once: the cue may look wider than the grid has grown, and
+  // then its starts may also take the part of the budget the grid cannot fill yet.
+  const double cue_radius_px = std::max<double>(out.search_radius_px, m_cue_min_radius_px);
+  const bool wide_cue = cue_radius_px > out.search_radius_px;
+  const int room = (wide_cue ? per_frame : std::min(per_frame, total)) - inner;
+  const int cues =
+      room > 0 ? findCues(image, predicted, cue_radius_px, std::min(m_params.reacquire_cue_starts, room)) : 0;
+  const int budget = std::min(per_frame, wide_cue ? total + cues : total);
   for (int n = 0; n < budget; ++n) {
     Pose start;
     if (n < inner) {

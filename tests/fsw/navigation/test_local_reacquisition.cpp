@@ -146,6 +146,24 @@ TEST_F(ReacquisitionTest, TheOutlineCueFindsATargetFarFromThePredictionWithinAFe
       << "the grid alone found it on frame " << without_cue << ", the cue on " << with_cue;
 }
 
+TEST_F(ReacquisitionTest, AWideCueDiscFindsASlewedTargetBeforeTheGridHasGrownToIt) {
+  // The same 150 px slew: with the cue's disc at the default 10 deg (176 px at f = 1000 px) from the first
+  // frame, the cue points at the target on frame 0 and the two confirming frames deliver it on frame 2; with
+  // the cue's disc the grid's (19 + 40 px a frame), it reaches the target on frame 3.
+  ASSERT_EQ(params.reacquire_cue_min_radius_deg, 10.0);
+  const Pose predicted = slewed(-8.5);
+  int cue_starts = 0;
+  const int with_wide_cue = framesToFind(reacquisition, renderer, truth, predicted, 12, cue_starts);
+  EXPECT_EQ(with_wide_cue, 2) << "a candidate on frame 0, two confirming frames";
+  EXPECT_GT(cue_starts, 0);
+  NavigationParams grown = params;
+  grown.reacquire_cue_min_radius_deg = 0.0;
+  LocalReacquisition control;
+  ASSERT_TRUE(control.init(test::vgaCamera(), model, grown, NearRangeParams{}).ok);
+  const int with_grown_cue = framesToFind(control, renderer, truth, predicted, 12, cue_starts);
+  EXPECT_GT(with_grown_cue, with_wide_cue) << "the grown disc alone found it as early";
+}
+
 TEST_F(ReacquisitionTest, TheLookCheckIgnoresRangeAndSlewButNotATurnAndWidensWithAge) {
   // What the close-range acquisition's find must keep against the last valid pose: the attitude seen along
   // its own line of sight, within reacquire_attitude_tolerance_deg (15) + 1 deg per frame since that pose.
@@ -183,8 +201,11 @@ TEST_F(ReacquisitionTest, AnEmptyImageNeverYieldsAPoseAndTheSearchWidens) {
     reacquisition.step(frame.image(), truth, static_cast<std::uint64_t>(i), step);
     EXPECT_FALSE(step.found) << "frame " << i;
     EXPECT_FALSE(step.candidate) << "frame " << i;
-    // The first frame's grid holds the prediction and one ring (7 starts); later ones the full budget.
-    EXPECT_EQ(step.hypotheses, i == 0 ? 7 : params.reacquire_hypotheses_per_frame);
+    // The first frame's grid holds the prediction and one ring (7 starts), and the cue's wide disc adds its
+    // peaks (reacquire_cue_min_radius_deg; on noise too: a cue costs a start, never a pose); later frames
+    // the full budget.
+    EXPECT_EQ(step.hypotheses, i == 0 ? 7 + step.cue_starts : params.reacquire_hypotheses_per_frame);
+    EXPECT_LE(step.cue_starts, params.reacquire_cue_starts);
     // Every start is accounted for by why it was not taken (the campaign's --trace prints these).
     EXPECT_EQ(step.starts_lost + step.starts_weak + step.starts_inconsistent, step.hypotheses);
     EXPECT_EQ(step.best_quality, 0.0);

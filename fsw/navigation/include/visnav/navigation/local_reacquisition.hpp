@@ -135,7 +135,8 @@ class LocalReacquisition {
   bool m_candidate_moving = false;         ///< m_candidate_motion measured
   Pose m_predicted;                        ///< this frame's prediction (step())
   double m_bounding_radius_m = 0.0;
-  acq::WorkingImage m_cue_window;  ///< the searched disc, box-averaged to kCueWindowSidePx at most
+  double m_cue_min_radius_px = 0.0;  ///< reacquire_cue_min_radius_deg on this camera
+  acq::WorkingImage m_cue_window;    ///< the searched disc, box-averaged to kCueWindowSidePx at most
   acq::EdgeScorer m_cue_scorer;
   acq::AcquisitionParams m_evidence;  ///< fine/coarse spread and cap of m_cue_window
   /// This frame's cue: bestShifts' peaks, then (findCues) their offsets in full-resolution px.
