@@ -33,6 +33,8 @@ class ReacquisitionTest : public ::testing::Test {
     p.t_c_m = r * truth.t_c_m;
     return p;
   }
+  /// framesToFind (below) with a search of its own on `with` (the control of a test): 12 frames.
+  int framesToFindWith(const NavigationParams& with, const Pose& predicted, int& cue_starts);
   NavigationParams params;
   PolygonModel model;
   synthetic::Renderer renderer;
@@ -125,22 +127,27 @@ int framesToFind(LocalReacquisition& reacquisition, synthetic::Renderer& rendere
   return -1;
 }
 
+int ReacquisitionTest::framesToFindWith(const NavigationParams& with, const Pose& predicted,
+                                        int& cue_starts) {
+  LocalReacquisition control;
+  EXPECT_TRUE(control.init(test::vgaCamera(), model, with, NearRangeParams{}).ok);
+  return framesToFind(control, renderer, truth, predicted, 12, cue_starts);
+}
+
 TEST_F(ReacquisitionTest, TheOutlineCueFindsATargetFarFromThePredictionWithinAFewFrames) {
-  // 8.5 deg at f = 1000 px: 150 px from the prediction. The searched disc reaches it on frame 3 (19 + 40 px
-  // a frame); the grid alone would walk ~200 starts to its ring, 5 a frame. The cue slides the predicted
-  // outline over the disc and starts the tracker where it matches.
+  // 8.5 deg at f = 1000 px: 150 px from the prediction. The grid's disc reaches it on frame 3 (19 + 40 px
+  // a frame), and the grid alone would walk ~200 starts to its ring, 5 a frame. The cue slides the predicted
+  // outline over its disc (the grid's, or wider: the next test) and starts the tracker where it matches.
   const Pose predicted = slewed(-8.5);
   int cue_starts = 0;
   const int with_cue = framesToFind(reacquisition, renderer, truth, predicted, 12, cue_starts);
   EXPECT_GE(with_cue, 0) << "not found in 12 frames with the cue";
-  EXPECT_LE(with_cue, 6) << "disc on frame 3, a candidate there, two confirming frames";
+  EXPECT_LE(with_cue, 6) << "a candidate by frame 3 at the latest, two confirming frames";
   EXPECT_GT(cue_starts, 0);
   // The control: the grid alone.
   NavigationParams grid_only = params;
   grid_only.reacquire_cue_starts = 0;
-  LocalReacquisition without;
-  ASSERT_TRUE(without.init(test::vgaCamera(), model, grid_only, NearRangeParams{}).ok);
-  const int without_cue = framesToFind(without, renderer, truth, predicted, 12, cue_starts);
+  const int without_cue = framesToFindWith(grid_only, predicted, cue_starts);
   EXPECT_EQ(cue_starts, 0);
   EXPECT_TRUE(without_cue < 0 || without_cue > with_cue + 3)
       << "the grid alone found it on frame " << without_cue << ", the cue on " << with_cue;
@@ -158,9 +165,7 @@ TEST_F(ReacquisitionTest, AWideCueDiscFindsASlewedTargetBeforeTheGridHasGrownToI
   EXPECT_GT(cue_starts, 0);
   NavigationParams grown = params;
   grown.reacquire_cue_min_radius_deg = 0.0;
-  LocalReacquisition control;
-  ASSERT_TRUE(control.init(test::vgaCamera(), model, grown, NearRangeParams{}).ok);
-  const int with_grown_cue = framesToFind(control, renderer, truth, predicted, 12, cue_starts);
+  const int with_grown_cue = framesToFindWith(grown, predicted, cue_starts);
   EXPECT_GT(with_grown_cue, with_wide_cue) << "the grown disc alone found it as early";
 }
 
