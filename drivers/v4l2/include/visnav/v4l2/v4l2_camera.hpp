@@ -101,6 +101,7 @@ class V4l2Camera final : public CameraSource {
   AcquireResult deviceFailure(const char* what, int error_number);
   /// A buffer the kernel refused (not a lost device): kept for a retry, counted, reported.
   void parkBuffer(int index, const char* what, int error_number);
+  /// Counts one refused QBUF of buffer `index` (a first refusal or a retry's) and queues its event.
   void reportRefusedBuffer(int index, const char* what, int error_number);
   /// Retries the parked buffers; false when the stream had to be restarted or the device is gone.
   bool requeueParked();

@@ -254,8 +254,8 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
           "close-range reacquisition: the outline cue (reacquire_cue_starts) slides over a disc of at least "
           "this angular radius about the prediction (f tan of it in pixels) from the first searched frame, "
           "while the grid's disc grows by reacquire_growth_px_per_frame: a slew moves the target by its "
-          "angle at once (3-10 deg in the campaign, 50-250 px), which the grown disc reaches only on "
-          "frame 2-6; 0: the cue's disc is the grid's"},
+          "angle at once (3-10 deg in the campaign, 30-250 px), which the grown disc reaches only on "
+          "frame 1-6; 0: the cue's disc is the grid's"},
          p.reacquire_cue_min_radius_deg);
 }
 
