@@ -170,13 +170,12 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
   const int per_frame = m_params.reacquire_hypotheses_per_frame;
   // Then the outline's best matches over the disc, then the outer rings with what is left of the budget.
   // A slew moves the target a hundred pixels at once: the cue may look wider than the grid has grown, and
-  // then its starts may also take the part of the budget the grid cannot fill yet.
+  // its starts may also take the part of the budget a grid of one ring cannot fill.
   const double cue_radius_px = std::max<double>(out.search_radius_px, m_cue_min_radius_px);
-  const bool wide_cue = cue_radius_px > out.search_radius_px;
-  const int room = (wide_cue ? per_frame : std::min(per_frame, total)) - inner;
+  const int room = per_frame - inner;
   const int cues =
       room > 0 ? findCues(image, predicted, cue_radius_px, std::min(m_params.reacquire_cue_starts, room)) : 0;
-  const int budget = std::min(per_frame, wide_cue ? total + cues : total);
+  const int budget = std::min(per_frame, total + cues);
   for (int n = 0; n < budget; ++n) {
     Pose start;
     if (n < inner) {
