@@ -39,6 +39,7 @@ LoadError FarRangeEstimator::init(const PinholeCamera& camera, const FarRangePar
   m_row_max.reserve(static_cast<std::size_t>(h));
   m_edge_row_max.reserve(static_cast<std::size_t>(h));
   m_finder.init(w, h, params.max_clusters, params.max_cluster_pixels);
+  if (m_robust && params.silhouette_min_half_px > 0.0) m_silhouette.init();
   // "Exceeds t": S / 255 > t  <=>  S > floor(255 t) for the integer S.
   m_t_in_q = static_cast<std::uint8_t>(std::floor(params.t_in * 255.0));
   m_t_out_q = static_cast<std::uint8_t>(std::floor(params.t_out * 255.0));
@@ -230,6 +231,7 @@ Status FarRangeEstimator::estimate(const MonoImage& image, FarRangeResult& out) 
     out.cluster_count = static_cast<int>(m_finder.clusters().size());
     out.selected = selected;
     report(m_finder.clusters()[static_cast<std::size_t>(selected)], gate, out);
+    measureSilhouette(out);
   } else {
     out.flags |= m_finder.clusters().empty() ? kFlagNoCluster : kFlagNoCandidate;
   }
@@ -299,6 +301,40 @@ void FarRangeEstimator::report(const Cluster& c, const Gate& gate, FarRangeResul
   if ((out.flags & kFlagAmbiguous) != 0U) q *= 0.5;
   if ((out.flags & kFlagAtBorder) != 0U) q *= 0.5;
   out.quality = q;
+}
+
+void FarRangeEstimator::measureSilhouette(FarRangeResult& out) {
+  if (!m_robust || !(m_params.silhouette_min_half_px > 0.0) || !(m_target_radius_m > 0.0) || !out.valid ||
+      !(out.extent_px >= m_params.extent_distance_min_px))
+    return;
+  // Experimental, off by default (fsw/farrange/README.md item 11): a glow as bright as the target and
+  // touching it joins the silhouette, which then reads the target up to 2x too near (campaign box/6: 15 m
+  // at 29 m, never acquired). The window holds the fix with room for a target several times its extent. It
+  // doubles (bounded) until a silhouette is taken: a window inside a target many times the fix's size fits
+  // its background on the target itself, and finds nothing or the fragment again. A silhouette is taken
+  // only when it holds the fix and reaches beyond it (a fix's own extent stands otherwise), and only a
+  // body's: its outline must be sharp (a glow's is a ramp; without this rule box/6 read 17-22 m at 58-417 m).
+  double half = std::max(m_params.silhouette_min_half_px, 4.0 * out.extent_px);
+  SilhouetteMeasure s;
+  bool taken = false;
+  for (int attempt = 0; attempt < kSilhouetteAttempts && !taken; ++attempt) {
+    s = m_silhouette.measure(m_frame, out.centroid_px, half, out.extent_px, m_params.silhouette_block_px,
+                             m_params.silhouette_k_sigma, m_params.silhouette_level_ratio);
+    if (s.found && s.extent_px > out.extent_px && (s.centroid_px - out.centroid_px).norm() <= s.extent_px) {
+      const OutlineSharpness sharpness = measureOutlineSharpness(m_frame, s.centroid_px, s.extent_px);
+      taken = sharpness.measured && sharpness.ratio >= m_params.min_outline_sharpness;
+    }
+    if (taken || s.cut_by_image || half >= m_params.silhouette_max_half_px) break;
+    half = std::min(2.0 * half, m_params.silhouette_max_half_px);
+  }
+  if (!taken) return;
+  out.silhouette_extent_px = s.extent_px;
+  const double distance_m = m_camera.intrinsics().fx_px * m_target_radius_m / s.extent_px;
+  if (distance_m < out.distance_m) {
+    out.distance_m = distance_m;
+    out.extent_distance_m = distance_m;
+    out.flags |= kFlagSilhouetteExtent | kFlagExtentDistance;
+  }
 }
 
 void FarRangeEstimator::updateTrack(const FarRangeResult& out) {

@@ -191,6 +191,12 @@ TEST(FarRangeEstimator, RejectsABadConfigAndABadImage) {
   const LoadError error = e.init(test::farCamera(), p);
   EXPECT_FALSE(error.ok);
   EXPECT_NE(error.message.find("eq. 14"), std::string::npos);
+  FarRangeParams window;
+  window.silhouette_min_half_px = 96.0;
+  window.silhouette_max_half_px = 64.0;
+  const LoadError shrinking = e.init(test::farCamera(), window);
+  EXPECT_FALSE(shrinking.ok);
+  EXPECT_NE(shrinking.message.find("silhouette_max_half_px"), std::string::npos) << shrinking.message;
   ASSERT_TRUE(e.init(test::farCamera(), FarRangeParams{}).ok);
   std::vector<std::uint8_t> small(100U * 100U, 0);
   FarRangeResult r;

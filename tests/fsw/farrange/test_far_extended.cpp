@@ -2,6 +2,9 @@
 // rarity fails, an outline enclosing a fragment, and the distance from the extent when the radius is known.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include "far_approach.hpp"
 #include "visnav/farrange/nav_conversion.hpp"
 
@@ -65,6 +68,7 @@ TEST(FarRangeEstimator, AnExtendedTargetIsPutAtItsDistanceByItsExtentWhenItsRadi
   FarRangeParams params = withOutlineSearch();
   params.outline_min_coverage = 2.0;
   params.untracked_outline_fill_ratio = 0.0;
+  params.silhouette_min_half_px = 0.0;  // the cluster's own extent (the block-mean silhouette: below)
   double last_gamma = 0.0;
   const std::vector<FarRangeResult> gamma = approach(scene, params, last_gamma);
   double last_extent = 0.0;
@@ -142,6 +146,60 @@ struct PlateOnGradientWithGlint {
     return good;
   }
 };
+
+TEST(FarRangeEstimator, ADimTargetsFragmentIsPutAtTheDistanceOfItsBlockMeanSilhouette) {
+  // The dim plate of the test above with the same searches: the fixes below 40 m are fragments of the
+  // plate's outline whose extent reads up to 4x too far. Its silhouette of 4 x 4 block means holds the
+  // whole plate; where it reaches farther than the fragment, its extent's distance is delivered when
+  // nearer (flag silhouette_extent). The same clusters are selected: only the distance differs.
+  const ApproachScene scene = dimPlateInNoise();
+  FarRangeParams params = withOutlineSearch();
+  params.outline_min_coverage = 2.0;
+  params.untracked_outline_fill_ratio = 0.0;
+  params.silhouette_min_half_px = 48.0;  // experimental, off by default
+  FarRangeParams off = params;
+  off.silhouette_min_half_px = 0.0;
+  const double radius_m = scene.model.boundingRadius();
+  double last_off = 0.0;
+  const std::vector<FarRangeResult> fragments = approach(scene, off, last_off, radius_m);
+  double last_on = 0.0;
+  const std::vector<FarRangeResult> silhouettes = approach(scene, params, last_on, radius_m);
+  int fixes = 0;
+  int good_off = 0;
+  int good_on = 0;
+  int measured = 0;
+  double worst_short = 1.0;  // the smallest delivered / true range of a silhouette's distance
+  for (std::size_t i = 0; i < silhouettes.size(); ++i) {
+    const double range = 200.0 * std::pow(0.97, static_cast<double>(i));
+    const FarRangeResult& r = silhouettes[i];
+    ASSERT_EQ(r.valid, fragments[i].valid) << "frame " << i;
+    if (!r.valid) continue;
+    EXPECT_EQ(r.centroid_px, fragments[i].centroid_px) << "frame " << i;
+    EXPECT_EQ(r.extent_px, fragments[i].extent_px) << "frame " << i;
+    if ((r.flags & kFlagSilhouetteExtent) != 0U) {
+      ++measured;
+      EXPECT_GT(r.silhouette_extent_px, r.extent_px) << "frame " << i;
+      EXPECT_NEAR(r.distance_m, scene.camera.intrinsics().fx_px * radius_m / r.silhouette_extent_px, 1e-9);
+      EXPECT_LT(r.distance_m, fragments[i].distance_m) << "frame " << i;
+      EXPECT_NE(r.flags & kFlagExtentDistance, 0U);
+      worst_short = std::min(worst_short, r.distance_m / range);
+    } else {
+      EXPECT_EQ(r.distance_m, fragments[i].distance_m) << "frame " << i;
+    }
+    if (range > 40.0) continue;
+    ++fixes;
+    good_off += std::abs(fragments[i].distance_m / range - 1.0) < 0.25 ? 1 : 0;
+    good_on += std::abs(r.distance_m / range - 1.0) < 0.25 ? 1 : 0;
+  }
+  std::printf("fixes below 40 m %d, within 25 %%: fragment %d, silhouette %d; silhouettes %d, worst %.3f\n",
+              fixes, good_off, good_on, measured, worst_short);
+  EXPECT_GE(fixes, 15);
+  EXPECT_GE(measured, 5);
+  EXPECT_GE(good_on, good_off + 5) << "of " << fixes << " fixes below 40 m";
+  // The silhouette is never larger than the plate: its distance is never short by more than the blocks'
+  // quantisation and the blur.
+  EXPECT_GT(worst_short, 0.8);
+}
 
 TEST(FarRangeEstimator, WithoutATrackAnExtendedTargetOverItsOwnGreyLevelsIsFoundByItsSilhouette) {
   // eq. 13 takes the glint (the plate's grey levels are the gradient's, not rare); the plate's closed

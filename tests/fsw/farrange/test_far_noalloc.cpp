@@ -154,6 +154,45 @@ TEST(FarRangeNoAlloc, TheSilhouetteSearchWithoutATrackAndTheHullOfAnOutlineWithG
       << "and kept it: a plate's edge is sharp";
 }
 
+TEST(FarRangeNoAlloc, TheBlockMeanSilhouetteOfADimTargetsFragment) {
+  // test_far_extended.cpp's dim plate (contrast 0.27 in noise 0.08, 1024 x 768, f 1134 px) from 32 m to 12 m:
+  // its fixes are fragments, and the block-mean silhouette (its windows doubling, the outline sharpness of
+  // each region found) runs on each, and is taken on some.
+  synthetic::RenderOptions o;
+  o.background = 0.246;
+  o.target_brightness = 0.52;
+  o.noise_sigma = 0.08;
+  o.blur_sigma_px = 0.4;
+  CameraIntrinsics k = CameraIntrinsics::fromSi(1024, 768, 6e-3, 6e-6, 6e-6, 0.0, 512.0, 384.0);
+  k.fx_px = k.fy_px = 1134.0;
+  const PinholeCamera camera(k);
+  const PolygonModel plate = makeRectanglePlate(2.9, 1.2);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(camera, plate, o).ok);
+  std::vector<test::FarFrame> frames;
+  for (int i = 0; i < 24; ++i) {
+    const double range = 32.0 * std::pow(0.96, i);
+    frames.push_back(
+        test::renderFar(renderer, test::satAt(range, 1.0 + 0.02 * i, -0.5, 10.0 + 0.3 * i), 300 + i, i));
+  }
+  FarRangeParams p;
+  p.gamma = 1134.0 * std::sqrt(2.9 * 1.2);
+  p.silhouette_min_half_px = 48.0;  // experimental, off by default
+  FarRangeEstimator e;
+  ASSERT_TRUE(e.init(camera, p).ok);
+  e.setTargetRadius(plate.boundingRadius());
+  FarRangeResult r;
+  int silhouettes = 0;
+  const std::uint64_t before = test::allocationCount();
+  for (int round = 0; round < 3; ++round)
+    for (const test::FarFrame& f : frames) {
+      e.estimate(f.image(), r);
+      silhouettes += (r.flags & kFlagSilhouetteExtent) != 0U ? 1 : 0;
+    }
+  EXPECT_EQ(test::allocationCount() - before, 0U) << "(malloc counted: " << test::countsMalloc() << ")";
+  EXPECT_GE(silhouettes, 6) << "the path really ran (8 of the 72)";
+}
+
 // The track recheck (recheck_frames): the whole-frame search, and the switch from a glow tracked alone to
 // the satellite at 40 m (test_far_refuted.cpp, TrackRecheck), many times over.
 TEST(FarRangeNoAlloc, TheTrackRecheckAndItsSwitch) {

@@ -19,6 +19,7 @@
 #include "visnav/farrange/far_range_params.hpp"
 #include "visnav/farrange/histogram_filter.hpp"
 #include "visnav/farrange/outline_sharpness.hpp"
+#include "visnav/farrange/silhouette_extent.hpp"
 #include "visnav/farrange/weighted_sum.hpp"
 #include "visnav/geometry/camera.hpp"
 
@@ -26,23 +27,24 @@ namespace visnav::far {
 
 /// Why a frame has no target, or what is special about it (bit set; several may hold).
 enum FarRangeFlag : std::uint32_t {
-  kFlagNoCluster = 1U << 0,         ///< no response above t_in
-  kFlagNoCandidate = 1U << 1,       ///< clusters exist, none accepted (size, shape, gate)
-  kFlagClusterCapacity = 1U << 2,   ///< more spawn pixels than max_clusters
-  kFlagPixelCapacity = 1U << 3,     ///< a cluster's growth stopped at max_cluster_pixels
-  kFlagRoi = 1U << 4,               ///< searched a region of interest only
-  kFlagRoiFallback = 1U << 5,       ///< the region yielded no target: the full frame was searched
-  kFlagGated = 1U << 6,             ///< selected inside the gate of the prediction
-  kFlagCoasting = 1U << 7,          ///< no target this frame, the track is kept (robust)
-  kFlagAtBorder = 1U << 8,          ///< the target touches the image border: n is too small
-  kFlagAmbiguous = 1U << 9,         ///< a second acceptable cluster came close in score
-  kFlagUnconfirmed = 1U << 10,      ///< picked without a track (largest plausible cluster)
-  kFlagExtended = 1U << 11,         ///< found by its outline on the edge response alone (extended target)
-  kFlagExtentDistance = 1U << 12,   ///< distance_m from the cluster's extent and the target's radius
-  kFlagRefutedSkipped = 1U << 13,   ///< a cluster inside a refuted region was passed over (refuteLastFix)
-  kFlagFlattened = 1U << 14,        ///< found over the flattened background (background_fallback_only)
-  kFlagPrintedWins = 1U << 15,      ///< the printed search ended a flattened track (printed_search_wins)
-  kFlagRecheckSwitched = 1U << 16,  ///< a track recheck found a far larger, hand-over-near target elsewhere
+  kFlagNoCluster = 1U << 0,          ///< no response above t_in
+  kFlagNoCandidate = 1U << 1,        ///< clusters exist, none accepted (size, shape, gate)
+  kFlagClusterCapacity = 1U << 2,    ///< more spawn pixels than max_clusters
+  kFlagPixelCapacity = 1U << 3,      ///< a cluster's growth stopped at max_cluster_pixels
+  kFlagRoi = 1U << 4,                ///< searched a region of interest only
+  kFlagRoiFallback = 1U << 5,        ///< the region yielded no target: the full frame was searched
+  kFlagGated = 1U << 6,              ///< selected inside the gate of the prediction
+  kFlagCoasting = 1U << 7,           ///< no target this frame, the track is kept (robust)
+  kFlagAtBorder = 1U << 8,           ///< the target touches the image border: n is too small
+  kFlagAmbiguous = 1U << 9,          ///< a second acceptable cluster came close in score
+  kFlagUnconfirmed = 1U << 10,       ///< picked without a track (largest plausible cluster)
+  kFlagExtended = 1U << 11,          ///< found by its outline on the edge response alone (extended target)
+  kFlagExtentDistance = 1U << 12,    ///< distance_m from the cluster's extent and the target's radius
+  kFlagRefutedSkipped = 1U << 13,    ///< a cluster inside a refuted region was passed over (refuteLastFix)
+  kFlagFlattened = 1U << 14,         ///< found over the flattened background (background_fallback_only)
+  kFlagPrintedWins = 1U << 15,       ///< the printed search ended a flattened track (printed_search_wins)
+  kFlagRecheckSwitched = 1U << 16,   ///< a track recheck found a far larger, hand-over-near target elsewhere
+  kFlagSilhouetteExtent = 1U << 17,  ///< distance_m from the block-mean silhouette's extent (silhouette_*)
 };
 
 /// Execution time of one estimate() per stage [us] (zeros when no clock is set).
@@ -66,6 +68,8 @@ struct FarRangeResult {
   double extent_px = 0.0;            ///< largest distance of a cluster pixel from its centre of mass
   /// f x target radius / extent_px: the distance from the cluster's extent (0 without setTargetRadius())
   double extent_distance_m = 0.0;
+  /// The block-mean silhouette's extent about the fix (SilhouetteExtent), 0: not measured or not found
+  double silhouette_extent_px = 0.0;
   Vec2 centroid_px = Vec2::Zero();  ///< raw pixels
   int cluster_pixels = 0;           ///< n used in eq. 16 (filled n for the robust method)
   int raw_pixels = 0;               ///< n of eq. 15 (responses above t_out)
@@ -214,6 +218,9 @@ class FarRangeEstimator {
   bool touchesImageBorder(const Cluster& c) const;
   void report(const Cluster& c, const Gate& gate, FarRangeResult& out) const;
   void updateTrack(const FarRangeResult& out);
+  /// silhouette_*: measures the fix's block-mean silhouette and delivers its extent's distance when nearer.
+  static constexpr int kSilhouetteAttempts = 4;  ///< windows tried, each twice the last (48 .. 384 px half)
+  void measureSilhouette(FarRangeResult& out);
 
   PinholeCamera m_camera;
   FarRangeParams m_params;
@@ -232,6 +239,7 @@ class FarRangeEstimator {
   std::array<ResponseImage, kMaxExtraFilters> m_extra_responses;
   int m_extra_count = 0;
   ClusterFinder m_finder;
+  SilhouetteExtent m_silhouette;
   ResponseImage m_edge_response;
   ResponseImage m_histogram_response;
   ResponseImage m_combined;
