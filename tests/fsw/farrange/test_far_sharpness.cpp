@@ -10,33 +10,14 @@
 #include <random>
 #include <vector>
 
+#include "drawn_image.hpp"
 #include "visnav/farrange/outline_sharpness.hpp"
 
 namespace visnav::far {
 namespace {
 
-struct Drawn {
-  int w = 640;
-  int h = 480;
-  std::vector<std::uint8_t> px;
-  MonoImage view() const { return MonoImage::from8(ImageView8(px.data(), w, h)); }
-};
-
-/// brightness(x, y) on [0, 1] at pixel centres, plus Gaussian noise of `noise` (fixed seed), quantised.
-Drawn draw(const std::function<double(double, double)>& brightness, double noise, unsigned seed = 7U) {
-  Drawn d;
-  d.px.resize(static_cast<std::size_t>(d.w) * static_cast<std::size_t>(d.h));
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  for (int y = 0; y < d.h; ++y)
-    for (int x = 0; x < d.w; ++x) {
-      const double v = brightness(x + 0.5, y + 0.5) + noise * gauss(rng);
-      const int i = y * d.w + x;
-      d.px[static_cast<std::size_t>(i)] =
-          static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
-    }
-  return d;
-}
+using drawn::draw;
+using drawn::Drawn;
 
 /// A disc of `radius` px around (cx, cy), `inside` on `outside`, its edge blurred by a Gaussian of
 /// `blur` px (the optics).

@@ -3,38 +3,20 @@
 // disc the image border cuts, a disc wider than the largest window. Drawn directly, not rendered.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <functional>
-#include <random>
-#include <vector>
 
+#include "drawn_image.hpp"
 #include "visnav/farrange/silhouette_extent.hpp"
 
 namespace visnav::far::silhouette_test {
 namespace {
 
-struct Drawn {
-  int w = 640;
-  int h = 480;
-  std::vector<std::uint8_t> px;
-  MonoImage view() const { return MonoImage::from8(ImageView8(px.data(), w, h)); }
-};
+using drawn::Drawn;
 
-/// brightness(x, y) on [0, 1] at pixel centres plus Gaussian noise of `noise` (fixed seed), quantised.
-Drawn draw(const std::function<double(double, double)>& brightness, double noise, unsigned seed = 11U) {
-  Drawn d;
-  d.px.resize(static_cast<std::size_t>(d.w) * static_cast<std::size_t>(d.h));
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  for (int y = 0; y < d.h; ++y)
-    for (int x = 0; x < d.w; ++x) {
-      const double v = brightness(x + 0.5, y + 0.5) + noise * gauss(rng);
-      d.px[static_cast<std::size_t>(y * d.w + x)] =
-          static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
-    }
-  return d;
+/// The shared drawing with this file's noise seed.
+Drawn draw(const std::function<double(double, double)>& brightness, double noise) {
+  return drawn::draw(brightness, noise, 11U);
 }
 
 /// A disc of `radius` about (cx, cy), `contrast` above `background(x, y)`.
@@ -46,6 +28,13 @@ std::function<double(double, double)> disc(double cx, double cy, double radius, 
 }
 
 const auto kFlat = [](double, double) { return 0.15; };
+
+/// A Gaussian glow of sigma 40 px and `peak` centred at (cx, 240) on a level of 0.1.
+std::function<double(double, double)> glow(double cx, double peak) {
+  return [=](double x, double y) {
+    return 0.1 + peak * std::exp(-0.5 * ((x - cx) * (x - cx) + (y - 240.0) * (y - 240.0)) / (40.0 * 40.0));
+  };
+}
 
 TEST(SilhouetteExtent, ADimDiscInNoiseIsMeasuredWholeFromAFragmentOfIt) {
   // Contrast 0.08 under noise 0.07: about one sigma a pixel, which no pixel-wise threshold separates; a
@@ -111,11 +100,7 @@ TEST(SilhouetteExtent, AFaintGlowBesideABrightTargetIsNotPartOfItsSilhouette) {
   // target several times too near.
   SilhouetteExtent s;
   s.init();
-  const auto glow = [](double x, double y) {
-    return 0.1 +
-           0.1 * std::exp(-0.5 * ((x - 360.0) * (x - 360.0) + (y - 240.0) * (y - 240.0)) / (40.0 * 40.0));
-  };
-  const Drawn d = draw(disc(300.0, 240.0, 14.0, 0.6, glow), 0.04);
+  const Drawn d = draw(disc(300.0, 240.0, 14.0, 0.6, glow(360.0, 0.1)), 0.04);
   const Vec2 fix(300.0, 240.0);
   const SilhouetteMeasure any = s.measure(d.view(), fix, 160.0, 14.0, 4, 4.0, 0.0);
   ASSERT_TRUE(any.found) << "the control: any departing block grows the region";
@@ -132,11 +117,7 @@ TEST(SilhouetteExtent, ARegionMostlyFainterThanItsCoreIsNotFound) {
   // than the body, and it is not taken.
   SilhouetteExtent s;
   s.init();
-  const auto glow = [](double x, double y) {
-    return 0.1 +
-           0.25 * std::exp(-0.5 * ((x - 340.0) * (x - 340.0) + (y - 240.0) * (y - 240.0)) / (40.0 * 40.0));
-  };
-  const Drawn d = draw(disc(300.0, 240.0, 14.0, 0.6, glow), 0.04);
+  const Drawn d = draw(disc(300.0, 240.0, 14.0, 0.6, glow(340.0, 0.25)), 0.04);
   const SilhouetteMeasure m = s.measure(d.view(), Vec2(300.0, 240.0), 160.0, 14.0, 4, 4.0, 0.25);
   EXPECT_GT(m.extent_px, 30.0) << "the region took in the glow's core";
   EXPECT_LT(m.median_level_ratio, 0.5);
