@@ -60,11 +60,10 @@ struct FarRangeParams {
   double recheck_static_growth = 1.25;  ///< a track whose n grew more since the last check is kept
   double min_outline_sharpness = 0.5;   ///< a cluster whose outline is a ramp is never the target (0: off)
   double silhouette_min_half_px = 0.0;  ///< the block-mean silhouette's smallest window (0: off; 48 tried)
-  double silhouette_max_half_px =
-      512.0;                        ///< ... and its largest (the window doubles while the region fills it)
-  int silhouette_block_px = 4;      ///< ... its smallest block side
-  double silhouette_k_sigma = 4.0;  ///< ... a block departs beyond this many of the ring's 1-sigma
-  double silhouette_level_ratio = 0.25;  ///< ... and grows the region beyond this share of the fix's level
+  double silhouette_max_half_px = 512.0;  ///< ... and its largest (the window doubles until one is taken)
+  int silhouette_block_px = 4;            ///< ... its smallest block side
+  double silhouette_k_sigma = 4.0;        ///< ... a block departs beyond this many of the ring's 1-sigma
+  double silhouette_level_ratio = 0.25;   ///< ... and grows the region beyond this share of the fix's level
   // Capacities (memory is sized from these and the image size at init).
   int max_clusters = 256;
   int max_cluster_pixels = 262144;
@@ -312,11 +311,12 @@ struct FarRangeParams {
          "at 29 m and was never acquired), tracked frames -43 / 0 / -5, approaches acquired 29 -> 28, 19, "
          "16 -> 15, wrong frames unchanged; 0: off"},
         silhouette_min_half_px);
-    v.real({"farrange", "silhouette_max_half_px", "px", 8.0, 4096.0,
-            "robust: the silhouette's window doubles, up to this half side, while its region reaches the "
-            "window's border ring; a region still on the ring (a limb, a gradient, a blob the target sits "
-            "on) gives no silhouette"},
-           silhouette_max_half_px);
+    v.real(
+        {"farrange", "silhouette_max_half_px", "px", 8.0, 4096.0,
+         "robust: the silhouette's window doubles, up to this half side, until a silhouette is taken (a "
+         "window inside a large target fits its background on the target and finds only the fragment); "
+         "a region on the window's border ring (a limb, a gradient, a glow the target sits on) gives none"},
+        silhouette_max_half_px);
     v.integer({"farrange", "silhouette_block_px", "px", 1, 64,
                "robust: the silhouette's smallest block side (larger where the window is wider than 64 "
                "blocks): the noise of a block's mean is the pixels' over this side"},
