@@ -3,12 +3,8 @@
 // so each case is the shape its name says.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <functional>
-#include <random>
-#include <vector>
 
 #include "drawn_image.hpp"
 #include "visnav/farrange/outline_sharpness.hpp"

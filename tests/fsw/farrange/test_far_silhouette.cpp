@@ -50,6 +50,13 @@ TEST(SilhouetteExtent, ADimDiscInNoiseIsMeasuredWholeFromAFragmentOfIt) {
     EXPECT_NEAR(m.extent_px, radius, 0.12 * radius) << radius;
     EXPECT_LT((m.centroid_px - Vec2(300.0, 250.0)).norm(), 0.1 * radius) << radius;
     EXPECT_GE(m.block_px, 4);
+    // The ring's spread is the block means' noise (0.07 / block side). At 4 x 4 blocks the contrast is 4.6 of
+    // it, so some of the disc's blocks fall under the 4-sigma threshold (57 % kept at radius 30): the region
+    // has holes but its extent is the disc's; never more than the disc.
+    EXPECT_NEAR(m.noise, 0.07 / m.block_px, 0.004) << radius;
+    const double disc_blocks = kPi * radius * radius / (m.block_px * m.block_px);
+    EXPECT_GT(m.blocks, 0.5 * disc_blocks) << radius;
+    EXPECT_LT(m.blocks, 1.1 * disc_blocks) << radius;
   }
 }
 

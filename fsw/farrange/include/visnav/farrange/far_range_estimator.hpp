@@ -219,7 +219,8 @@ class FarRangeEstimator {
   void report(const Cluster& c, const Gate& gate, FarRangeResult& out) const;
   void updateTrack(const FarRangeResult& out);
   /// silhouette_*: measures the fix's block-mean silhouette and delivers its extent's distance when nearer.
-  static constexpr int kSilhouetteAttempts = 4;  ///< windows tried, each twice the last (48 .. 384 px half)
+  static constexpr int kSilhouetteAttempts =
+      4;  ///< windows tried, each twice the last, within silhouette_max_half_px
   void measureSilhouette(FarRangeResult& out);
 
   PinholeCamera m_camera;
