@@ -183,7 +183,10 @@ bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance)
   if (nav.branch_continuity_frames <= 0 || m_frames_since_valid == ~0ULL ||
       m_frames_since_valid > static_cast<std::uint64_t>(nav.branch_continuity_frames))
     return false;
-  if (m_near_result.status != TrackStatus::kTracking || !m_last_pose_update.accepted) return false;
+  if (!m_last_pose_update.accepted) return false;
+  if (m_near_result.status != TrackStatus::kTracking &&
+      !onlyLinesMissing(nav.branch_continuity_missing_lines))
+    return false;
   if (nav.doubted_max_attitude_sigma_deg > 0.0 &&
       poseSigmas(pose, covariance).attitude_deg > nav.doubted_max_attitude_sigma_deg)
     return false;
@@ -192,6 +195,18 @@ bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance)
        nav.reacquire_tolerance_growth_deg_per_frame * static_cast<double>(m_frames_since_valid + 1)) *
       kRadPerDeg;
   return m_reacquisition.symmetries().lookDistanceRad(m_last_valid_pose, pose) <= tolerance_rad;
+}
+
+bool NavigationPipeline::onlyLinesMissing(int allowed) const {
+  // A fit degraded only because some selected lines found too few points (an edge along a dark face, a
+  // gradient where the contrast passes through zero) is measured on the others as well as any: no high
+  // residual, no point-to-line fallback, no rival of either kind, no face seen as a strip whose lines may be
+  // biased. What it lacks is lines, and a short break does not change which twin those lines follow.
+  constexpr std::uint32_t kOtherDoubts =
+      kFlagResidualHigh | kFlagResidualFallback | kFlagAmbiguous | kFlagNearTwinRival | kFlagNarrowFace;
+  const NearRangeResult& r = m_near_result;
+  return allowed > 0 && r.status == TrackStatus::kDegraded && (r.flags & kOtherDoubts) == 0U &&
+         r.lines_total - r.lines_used <= allowed;
 }
 
 bool NavigationPipeline::fitLeftTheValidRange(const Pose& pose) const {

@@ -59,6 +59,123 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
   }
 }
 
+namespace missing_line {
+
+/// Erases `model`'s edge `edge` from `frame` as its truth projects it, but for 6 px at either end: a
+/// rectangle 16 px to either side of it is filled with the mean brightness of its inner half (the face's side), so that the
+/// edge's scanlines there find no step and its line too few points.
+void eraseEdge(const PolygonModel& model, int edge, test::RenderedFrame& frame) {
+  const PinholeCamera camera = test::vgaCamera();
+  const ModelEdge& e = model.edges()[static_cast<std::size_t>(edge)];
+  Vec2 a, b, centre = Vec2::Zero();
+  ASSERT_TRUE(camera.project(
+      frame.truth.R_c_m * model.vertices()[static_cast<std::size_t>(e.v0)] + frame.truth.t_c_m, a));
+  ASSERT_TRUE(camera.project(
+      frame.truth.R_c_m * model.vertices()[static_cast<std::size_t>(e.v1)] + frame.truth.t_c_m, b));
+  for (const Vec3& v : model.vertices()) {
+    Vec2 px;
+    ASSERT_TRUE(camera.project(frame.truth.R_c_m * v + frame.truth.t_c_m, px));
+    centre += px / static_cast<double>(model.vertices().size());
+  }
+  const Vec2 along = (b - a).normalized();
+  Vec2 inward(-along.y(), along.x());
+  if (inward.dot(centre - a) < 0.0) inward = -inward;
+  const double length = (b - a).norm();
+  const auto inside = [&](int x, int y, double from_px, double to_px) {
+    const Vec2 d = Vec2(x + 0.5, y + 0.5) - a;
+    const double s = d.dot(along), n = d.dot(inward);
+    return s > 6.0 && s < length - 6.0 && n >= from_px && n <= to_px;
+  };
+  double sum = 0.0;
+  int count = 0;
+  for (int y = 0; y < 480; ++y)
+    for (int x = 0; x < 640; ++x)
+      if (inside(x, y, 2.0, 16.0)) {
+        sum += frame.pixels[static_cast<std::size_t>(y * 640 + x)];
+        ++count;
+      }
+  ASSERT_GT(count, 100);
+  const auto fill = static_cast<std::uint8_t>(std::lround(sum / count));
+  for (int y = 0; y < 480; ++y)
+    for (int x = 0; x < 640; ++x)
+      if (inside(x, y, -16.0, 16.0)) frame.pixels[static_cast<std::size_t>(y * 640 + x)] = fill;
+}
+
+}  // namespace missing_line
+
+TEST_F(PipelineTest, AFitMissingOnlyALineAfterAShortBreakContinuesTheBranchWhenAllowed) {
+  // An octagonal plate at 15 m, frame 4 dropped (the branch becomes unknown), and from frame 5 on one of
+  // its long edges erased: each fit after the break finds 7 of its 8 lines, status degraded for that alone,
+  // right, accepted by the filter and looking as frame 3's did. With branch_continuity_missing_lines 1 it
+  // keeps the branch at once; at 0 (only a clean fit does) frames 5 and 6 wait for the third rival-free
+  // fit; with a second edge erased (2 missing) 1 is not enough. No valid pose is ever off the truth.
+  const PolygonModel octagon = makeOctagonPlate(2.658, 2.513, 0.437);
+  synthetic::Renderer octagon_renderer;
+  ASSERT_TRUE(octagon_renderer.init(test::vgaCamera(), octagon, synthetic::RenderOptions{}).ok);
+  // The two longest edges (the plate's sides, not its chamfers).
+  int longest = -1, second = -1;
+  const auto edgeLength = [&](int i) {
+    const ModelEdge& e = octagon.edges()[static_cast<std::size_t>(i)];
+    return (octagon.vertices()[static_cast<std::size_t>(e.v1)] -
+            octagon.vertices()[static_cast<std::size_t>(e.v0)])
+        .norm();
+  };
+  for (int i = 0; i < static_cast<int>(octagon.edges().size()); ++i) {
+    if (longest < 0 || edgeLength(i) > edgeLength(longest)) {
+      second = longest;
+      longest = i;
+    } else if (second < 0 || edgeLength(i) > edgeLength(second)) {
+      second = i;
+    }
+  }
+  ASSERT_GE(second, 0);
+  struct Variant {
+    int allowed;
+    int erased;
+    int valid;
+  };
+  const int waited = params.navigation.branch_confirm_frames - 1;
+  for (const Variant v : {Variant{1, 1, 9}, Variant{0, 1, 9 - waited}, Variant{1, 2, 9 - waited}}) {
+    SCOPED_TRACE(testing::Message() << "allowed " << v.allowed << ", erased " << v.erased);
+    std::vector<test::RenderedFrame> seq;
+    for (int i = 0; i < 10; ++i) {
+      seq.push_back(
+          test::renderFrame(octagon_renderer, test::plateAt(15.0 - 0.02 * i, 0.2, 6.0, -4.0), 90U + i));
+      if (i < 5) continue;
+      ASSERT_NO_FATAL_FAILURE(missing_line::eraseEdge(octagon, longest, seq.back()));
+      if (v.erased > 1) {
+        ASSERT_NO_FATAL_FAILURE(missing_line::eraseEdge(octagon, second, seq.back()));
+      }
+    }
+    PipelineParams p = params;
+    p.navigation.branch_continuity_missing_lines = v.allowed;
+    p.navigation.max_valid_attitude_sigma_deg = 0.0;
+    p.navigation.doubted_max_attitude_sigma_deg = 3.0;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), octagon, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int valid = 0;
+    for (int i = 0; i < 10; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      pipeline.process(i == 4 ? nullptr : &f, f.exposure_time_ns, out);
+      ASSERT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
+      const NearRangeResult& near = pipeline.lastNearRange();
+      if (i >= 5) {
+        EXPECT_EQ(near.status, TrackStatus::kDegraded) << "the case: frame " << i;
+        EXPECT_EQ(near.flags & ~(kFlagLineRejected | kFlagTextureFallback), 0U) << "the case: frame " << i;
+        EXPECT_EQ(near.lines_total - near.lines_used, v.erased) << "the case: frame " << i;
+      }
+      if (!out.pose_valid) continue;
+      ++valid;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0) << "frame " << i;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.15) << "frame " << i;
+    }
+    EXPECT_EQ(valid, v.valid);
+  }
+}
+
 TEST_F(PipelineTest, AnUnconfirmedTrackThatLostLinesToItsNearTwinFollowsTheTwin) {
   // Campaign octagon/172's near-square plate at 20 m, the track started on its quarter turn (as an
   // acquisition on that twin would leave it), then a dropped frame: the branch is unknown. The start pose's

@@ -307,6 +307,13 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
           "see branch_continuity_frames: the look tolerance on the frame right after the last valid "
           "pose"},
          p.branch_continuity_look_deg);
+  v.integer({"navigation", "branch_continuity_missing_lines", "count", 0, 64,
+             "see branch_continuity_frames: a fit may also keep the branch with up to this many of its "
+             "selected lines not found, when that is its only degradation (no residual above "
+             "[nearrange] degraded_rms_px, no point-to-line fallback, no mirrored or near-twin rival, no "
+             "face seen as a narrow strip); the other conditions hold as for a clean fit. 0: status "
+             "tracking only"},
+            p.branch_continuity_missing_lines);
   v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
              "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
              "filter from it"},

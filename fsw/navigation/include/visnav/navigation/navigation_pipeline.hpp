@@ -153,6 +153,9 @@ class NavigationPipeline {
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
   /// last valid pose's look (confirms the branch).
   bool keptTheBranch(const Pose& pose, const Mat6& covariance) const;
+  /// This frame's near-range fit is degraded only by at most `allowed` selected lines it did not find
+  /// (branch_continuity_missing_lines); false when `allowed` <= 0.
+  bool onlyLinesMissing(int allowed) const;
   /// After a disputed jump: whether `pose` left the range the last valid pose predicts
   /// (branch_range_after_jump).
   bool fitLeftTheValidRange(const Pose& pose) const;
