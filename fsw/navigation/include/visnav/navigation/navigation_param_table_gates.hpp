@@ -311,8 +311,12 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "see branch_continuity_frames: a fit may also keep the branch with up to this many of its "
              "selected lines not found, when that is its only degradation (no residual above "
              "[nearrange] degraded_rms_px, no point-to-line fallback, no mirrored or near-twin rival, no "
-             "face seen as a narrow strip); the other conditions hold as for a clean fit. 0: status "
-             "tracking only"},
+             "face seen as a narrow strip); the other conditions hold as for a clean fit. On campaign "
+             "seeds 1-40, 51 of the 372 right poses withheld for the branch alone after a break of 1-3 "
+             "frames were such fits with one line missing, and none of the 2 wrong ones. 1 against 0 on "
+             "seeds 1 / 5001 / 7001: tracked frames 15 176 / 15 103 / 15 486 -> 15 242 / 15 163 / "
+             "15 527, every scene that changed gained, confidently wrong frames 1 / 1 / 6 unchanged "
+             "(top-level README, stop 65). 0: status tracking only"},
             p.branch_continuity_missing_lines);
   v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
              "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
