@@ -62,8 +62,8 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
 namespace missing_line {
 
 /// Erases `model`'s edge `edge` from `frame` as its truth projects it, but for 6 px at either end: a
-/// rectangle 16 px to either side of it is filled with the mean brightness of its inner half (the face's side), so that the
-/// edge's scanlines there find no step and its line too few points.
+/// rectangle 16 px to either side of it is filled with the mean brightness of its inner half (the face's
+/// side), so that the edge's scanlines there find no step and its line too few points.
 void eraseEdge(const PolygonModel& model, int edge, test::RenderedFrame& frame) {
   const PinholeCamera camera = test::vgaCamera();
   const ModelEdge& e = model.edges()[static_cast<std::size_t>(edge)];
@@ -91,14 +91,15 @@ void eraseEdge(const PolygonModel& model, int edge, test::RenderedFrame& frame) 
   for (int y = 0; y < 480; ++y)
     for (int x = 0; x < 640; ++x)
       if (inside(x, y, 2.0, 16.0)) {
-        sum += frame.pixels[static_cast<std::size_t>(y * 640 + x)];
+        sum += frame.pixels[static_cast<std::size_t>(y) * 640U + static_cast<std::size_t>(x)];
         ++count;
       }
   ASSERT_GT(count, 100);
   const auto fill = static_cast<std::uint8_t>(std::lround(sum / count));
   for (int y = 0; y < 480; ++y)
     for (int x = 0; x < 640; ++x)
-      if (inside(x, y, -16.0, 16.0)) frame.pixels[static_cast<std::size_t>(y * 640 + x)] = fill;
+      if (inside(x, y, -16.0, 16.0))
+        frame.pixels[static_cast<std::size_t>(y) * 640U + static_cast<std::size_t>(x)] = fill;
 }
 
 }  // namespace missing_line
