@@ -150,8 +150,6 @@ TEST_F(PipelineTest, AFitMissingOnlyALineAfterAShortBreakContinuesTheBranchWhenA
     }
     PipelineParams p = params;
     p.navigation.branch_continuity_missing_lines = v.allowed;
-    p.navigation.max_valid_attitude_sigma_deg = 0.0;
-    p.navigation.doubted_max_attitude_sigma_deg = 3.0;
     NavigationPipeline pipeline;
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), octagon, p).ok);
     pipeline.startNearRange(seq[0].truth, 0);
