@@ -152,6 +152,7 @@ int main(int argc, char** argv) {
   if (runs.size() <= 12)
     for (const SceneRun& r : runs) std::printf("%s\n", sceneLine(r).c_str());
   std::fputs(summaryTable(groups, runs, options.timing).c_str(), stdout);
+  std::fputs(lossTable(groups).c_str(), stdout);
   if (options.oracle) std::fputs(oracleTable(runs).c_str(), stdout);
 
   {

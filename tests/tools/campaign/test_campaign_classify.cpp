@@ -264,6 +264,54 @@ TEST(CampaignRecovery, TheSummaryCountsEachKindAgainstTheFiveFrameTarget) {
             std::string::npos);
 }
 
+TEST(CampaignLossBudget, EachUntrackedFrameHasOneCauseAndTheyAddUpToTheUntracked) {
+  // One expected frame per cause, in lossCause's order, then a tracked frame and an unexpected one.
+  SceneRun r = fakeRun("box/1", 1, "LLLLLLLLLLT-", 0, 0);
+  std::vector<FrameOutcome>& f = r.result.frames;
+  for (FrameOutcome& x : f) {
+    x.expected = x.visible;
+    x.mode = nav::NavMode::kNearRange;
+    x.has_candidate = true;
+  }
+  f[0].pose_valid = true;  // confidently wrong: valid, not tracked
+  f[0].wrong = true;
+  f[1].mode = nav::NavMode::kFarRange;
+  f[2].has_candidate = false;
+  f[3].withheld = nav::kWithheldUncertain | nav::kWithheldBranchUnknown;  // the first bit decides
+  f[4].withheld = nav::kWithheldDoubted | nav::kWithheldBranchUnknown;
+  f[5].withheld = nav::kWithheldFindDoubted;
+  f[6].withheld = nav::kWithheldJumped | nav::kWithheldBranchUnknown;  // not the branch alone
+  f[7].withheld = nav::kWithheldBranchUnknown;
+  f[8].withheld = 0;  // computed, refused without a withheld reason
+  f[9].withheld = nav::kWithheldEdgeOn;
+  const LossCause want[] = {LossCause::kWrong,         LossCause::kNotNearRange, LossCause::kNoCandidate,
+                            LossCause::kUncertain,     LossCause::kDoubted,      LossCause::kFindDoubted,
+                            LossCause::kWithheldOther, LossCause::kBranch,       LossCause::kRejected,
+                            LossCause::kWithheldOther};
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(lossCause(f[static_cast<std::size_t>(i)]), want[i]) << "frame " << i;
+  summariseScene(r.scene, Thresholds{}, r.result);
+  const std::vector<SceneRun> runs{r};
+  const auto groups = summariseAll(runs);
+  const GroupSummary& all = groups[0];
+  int total = 0;
+  for (const int n : all.untracked_by_cause) total += n;
+  EXPECT_EQ(total, all.expected - all.tracked);
+  EXPECT_EQ(total, 10);
+  EXPECT_EQ(all.untracked_by_cause[static_cast<std::size_t>(LossCause::kWithheldOther)], 2);
+  EXPECT_EQ(all.untracked_by_cause[static_cast<std::size_t>(LossCause::kBranch)], 1);
+  const std::string table = lossTable(groups);
+  EXPECT_NE(table.find("no_candidate"), std::string::npos) << table;
+  std::ostringstream json;
+  CampaignOptions o;
+  o.timing = false;
+  writeJson(json, o, runs, groups, checkGates(runs, Gates{}));
+  EXPECT_NE(
+      json.str().find("\"untracked_by_cause\": {\"wrong\": 1, \"not_near_range\": 1, \"no_candidate\": 1, "
+                      "\"uncertain\": 1, \"doubted\": 1, \"find_doubted\": 1, \"withheld_other\": 2, "
+                      "\"branch\": 1, \"rejected\": 1}"),
+      std::string::npos);
+}
+
 TEST(CampaignGates, WorstSceneAndVerdicts) {
   std::vector<SceneRun> runs;
   runs.push_back(fakeRun("box/1", 1, "TTTTTTTTTT", 0, 0));

@@ -119,6 +119,31 @@ std::string oracleTable(const std::vector<SceneRun>& runs) {
   return o.str();
 }
 
+std::string lossTable(const std::vector<GroupSummary>& groups) {
+  std::ostringstream o;
+  o << "expected frames without a tracked pose, by cause (the first that applies, in this order):\n";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%-8s %8s", "group", "untrack");
+  o << buf;
+  for (int c = 0; c < kLossCauseCount; ++c) {
+    std::snprintf(buf, sizeof(buf), " %14s", toString(static_cast<LossCause>(c)));
+    o << buf;
+  }
+  o << "\n";
+  for (const GroupSummary& g : groups) {
+    int total = 0;
+    for (const int n : g.untracked_by_cause) total += n;
+    std::snprintf(buf, sizeof(buf), "%-8s %8d", g.name.c_str(), total);
+    o << buf;
+    for (const int n : g.untracked_by_cause) {
+      std::snprintf(buf, sizeof(buf), " %14d", n);
+      o << buf;
+    }
+    o << "\n";
+  }
+  return o.str();
+}
+
 std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vector<SceneRun>& runs,
                          bool timing) {
   std::ostringstream o;
@@ -283,7 +308,12 @@ void writeJson(std::ostream& o, const CampaignOptions& options, const std::vecto
       << ", \"acquisition_never\": " << g.acquisition_never << ",\n      \"nis\": " << distributionJson(g.nis)
       << ", \"nis_above_gate\": " << g.nis_above_gate << ", \"nis_above_gate_fraction\": "
       << num(g.nis.count > 0 ? static_cast<double>(g.nis_above_gate) / g.nis.count : 0.0)
-      << ",\n      \"far_fixes\": " << g.far_fixes << ", \"far_off_target\": " << g.far_off_target << "}";
+      << ",\n      \"far_fixes\": " << g.far_fixes << ", \"far_off_target\": " << g.far_off_target
+      << ",\n      \"untracked_by_cause\": {";
+    for (int c = 0; c < kLossCauseCount; ++c)
+      o << (c ? ", " : "") << "\"" << toString(static_cast<LossCause>(c))
+        << "\": " << g.untracked_by_cause[static_cast<std::size_t>(c)];
+    o << "}}";
   }
   o << "\n  },\n";
   o << "  \"scenes\": [";

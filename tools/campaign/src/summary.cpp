@@ -22,6 +22,34 @@ Distribution distribution(std::vector<double> values) {
   return d;
 }
 
+const char* toString(LossCause cause) {
+  switch (cause) {
+    case LossCause::kWrong: return "wrong";
+    case LossCause::kNotNearRange: return "not_near_range";
+    case LossCause::kNoCandidate: return "no_candidate";
+    case LossCause::kUncertain: return "uncertain";
+    case LossCause::kDoubted: return "doubted";
+    case LossCause::kFindDoubted: return "find_doubted";
+    case LossCause::kWithheldOther: return "withheld_other";
+    case LossCause::kBranch: return "branch";
+    case LossCause::kRejected: return "rejected";
+  }
+  return "?";
+}
+
+LossCause lossCause(const FrameOutcome& f) {
+  if (f.pose_valid && f.wrong) return LossCause::kWrong;
+  if (f.mode != nav::NavMode::kNearRange) return LossCause::kNotNearRange;
+  if (!f.has_candidate) return LossCause::kNoCandidate;
+  if ((f.withheld & nav::kWithheldUncertain) != 0U) return LossCause::kUncertain;
+  if ((f.withheld & nav::kWithheldDoubted) != 0U) return LossCause::kDoubted;
+  if ((f.withheld & nav::kWithheldFindDoubted) != 0U) return LossCause::kFindDoubted;
+  if ((f.withheld & nav::kWithheldBranchUnknown) != 0U && f.withheld == nav::kWithheldBranchUnknown)
+    return LossCause::kBranch;
+  if (f.withheld != 0U) return LossCause::kWithheldOther;
+  return LossCause::kRejected;
+}
+
 GroupSummary summarise(const std::string& name, const std::vector<const SceneRun*>& runs) {
   GroupSummary g;
   g.name = name;
@@ -91,6 +119,7 @@ GroupSummary summarise(const std::string& name, const std::vector<const SceneRun
         if (f.nis > kNisGate) ++g.nis_above_gate;
       }
       steps[static_cast<std::size_t>(f.mode)].push_back(f.process_us);
+      if (f.expected && !f.tracked) ++g.untracked_by_cause[static_cast<std::size_t>(lossCause(f))];
     }
   }
   g.tracked_fraction = distribution(tracked_fractions);

@@ -37,6 +37,24 @@ constexpr int kModeCount = 4;  ///< nav::NavMode values
 /// The recovery target: tracked again within this many frames of the event (the per-kind counts).
 constexpr int kRecoveryTargetFrames = 5;
 
+/// Why an expected frame has no tracked pose: the first that applies, in this order (lossCause). The
+/// withheld causes are NavSolution::withheld bits of a pose the pipeline computed and did not deliver.
+enum class LossCause : int {
+  kWrong = 0,      ///< valid, but confidently wrong
+  kNotNearRange,   ///< far range, acquisition or standby: no 6-DOF pose of near range's
+  kNoCandidate,    ///< near range without a pose: the tracker lost it, or the search has not found it
+  kUncertain,      ///< withheld: its own 1-sigma above the validity limits
+  kDoubted,        ///< withheld: doubted, above the doubted limit
+  kFindDoubted,    ///< withheld: its track began with a find not yet cleared
+  kWithheldOther,  ///< withheld: edge-on, jumped, missing outline lines, awaiting near range
+  kBranch,         ///< withheld for the branch alone (branch_confirm_frames)
+  kRejected,       ///< computed, not withheld, not valid (the pipeline's own checks refused it)
+};
+constexpr int kLossCauseCount = 9;
+const char* toString(LossCause cause);
+/// The cause for a frame that is expected and not tracked.
+LossCause lossCause(const FrameOutcome& f);
+
 struct GroupSummary {
   std::string name;  ///< family name or "overall"
   int scenes = 0;
@@ -75,6 +93,8 @@ struct GroupSummary {
   int far_fixes = 0;                               ///< SceneResult::far_fixes, summed
   int far_off_target = 0;                          ///< SceneResult::far_off_target, summed
   std::array<Distribution, kModeCount> step_us{};  ///< timing: per mode the frame was processed in
+  /// Expected frames without a tracked pose, per LossCause (they add up to expected - tracked).
+  std::array<int, kLossCauseCount> untracked_by_cause{};
 };
 
 GroupSummary summarise(const std::string& name, const std::vector<const SceneRun*>& runs);
@@ -100,6 +120,9 @@ std::string summaryTable(const std::vector<GroupSummary>& groups, const std::vec
 /// truth made of them (FrameOutcome::oracle): a right and certain fit (the search or the gates lost the
 /// frame), a wrong or uncertain fit, no fit (the image, as this tracker measures it).
 std::string oracleTable(const std::vector<SceneRun>& runs);
+/// Per group, the expected frames without a tracked pose split by LossCause
+/// (GroupSummary::untracked_by_cause).
+std::string lossTable(const std::vector<GroupSummary>& groups);
 
 void writeJson(std::ostream& out, const CampaignOptions& options, const std::vector<SceneRun>& runs,
                const std::vector<GroupSummary>& groups, const std::vector<GateResult>& gates);
