@@ -180,13 +180,18 @@ bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance)
   // tracked and 13 more were confidently wrong (5-8 deg off, the last valid pose already 2-7 deg off), where
   // the three rival-free frames had withheld them.
   const NavigationParams& nav = m_params.navigation;
-  if (nav.branch_continuity_frames <= 0 || m_frames_since_valid == ~0ULL ||
-      m_frames_since_valid > static_cast<std::uint64_t>(nav.branch_continuity_frames))
-    return false;
+  if (nav.branch_continuity_frames <= 0 || m_frames_since_valid == ~0ULL) return false;
+  const int longest = std::max(nav.branch_continuity_frames, nav.branch_continuity_spotless_frames);
+  if (m_frames_since_valid > static_cast<std::uint64_t>(longest)) return false;
   if (!m_last_pose_update.accepted) return false;
-  if (m_near_result.status != TrackStatus::kTracking &&
-      !onlyLinesMissing(nav.branch_continuity_missing_lines))
+  if (m_frames_since_valid > static_cast<std::uint64_t>(nav.branch_continuity_frames)) {
+    // A longer break keeps the branch only on a spotless fit: every line, no flag of any doubt.
+    if (m_near_result.status != TrackStatus::kTracking || (m_near_result.flags & ~kFlagTextureFallback) != 0U)
+      return false;
+  } else if (m_near_result.status != TrackStatus::kTracking &&
+             !onlyLinesMissing(nav.branch_continuity_missing_lines)) {
     return false;
+  }
   if (nav.doubted_max_attitude_sigma_deg > 0.0 &&
       poseSigmas(pose, covariance).attitude_deg > nav.doubted_max_attitude_sigma_deg)
     return false;

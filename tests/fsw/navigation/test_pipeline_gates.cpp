@@ -175,6 +175,73 @@ TEST_F(PipelineTest, AFitMissingOnlyALineAfterAShortBreakContinuesTheBranchWhenA
   }
 }
 
+TEST_F(PipelineTest, ASpotlessFitAfterALongerBreakContinuesTheBranchWhenAllowed) {
+  // The octagonal plate at 15 m, frames 4-8 dropped: five frames, longer than branch_continuity_frames (3).
+  // From frame 9 every fit is spotless (all 8 lines, no flag of any doubt), right, accepted by the filter
+  // and looking as frame 3's did: with branch_continuity_spotless_frames 10 it keeps the branch at once;
+  // at 0 it waits for branch_confirm_frames rival-free fits. With one long side erased from frame 9 on the
+  // fit misses a line: after a break this long that is not enough, and it waits either way.
+  const PolygonModel octagon = makeOctagonPlate(2.658, 2.513, 0.437);
+  synthetic::Renderer octagon_renderer;
+  ASSERT_TRUE(octagon_renderer.init(test::vgaCamera(), octagon, synthetic::RenderOptions{}).ok);
+  int longest = 0;
+  const auto edgeLength = [&](int i) {
+    const ModelEdge& e = octagon.edges()[static_cast<std::size_t>(i)];
+    return (octagon.vertices()[static_cast<std::size_t>(e.v1)] -
+            octagon.vertices()[static_cast<std::size_t>(e.v0)])
+        .norm();
+  };
+  for (int i = 1; i < static_cast<int>(octagon.edges().size()); ++i)
+    if (edgeLength(i) > edgeLength(longest)) longest = i;
+  struct Variant {
+    int spotless_frames;
+    bool erased;
+    int valid;
+  };
+  const int waited = params.navigation.branch_confirm_frames - 1;
+  ASSERT_GT(waited, 0);
+  // Frames 0-3 valid, 4-8 dropped, 9-13 valid unless they wait.
+  for (const Variant v :
+       {Variant{10, false, 9}, Variant{0, false, 9 - waited}, Variant{10, true, 9 - waited}}) {
+    SCOPED_TRACE(testing::Message() << "spotless frames " << v.spotless_frames << ", erased " << v.erased);
+    std::vector<test::RenderedFrame> seq;
+    for (int i = 0; i < 14; ++i) {
+      seq.push_back(
+          test::renderFrame(octagon_renderer, test::plateAt(15.0 - 0.02 * i, 0.2, 6.0, -4.0), 90U + i));
+      if (v.erased && i >= 9) {
+        ASSERT_NO_FATAL_FAILURE(missing_line::eraseEdge(octagon, longest, seq.back()));
+      }
+    }
+    PipelineParams p = params;
+    p.navigation.branch_continuity_spotless_frames = v.spotless_frames;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), octagon, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int valid = 0;
+    for (int i = 0; i < 14; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      const bool dropped = i >= 4 && i <= 8;
+      pipeline.process(dropped ? nullptr : &f, f.exposure_time_ns, out);
+      ASSERT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
+      const NearRangeResult& near = pipeline.lastNearRange();
+      if (i >= 9 && !v.erased) {
+        EXPECT_EQ(near.status, TrackStatus::kTracking) << "the case: frame " << i;
+        EXPECT_EQ(near.flags & ~kFlagTextureFallback, 0U) << "the case: frame " << i;
+      }
+      if (i == 9) {
+        EXPECT_EQ(out.pose_valid, v.valid == 9) << "the first frame after the break";
+      }
+      if (!out.pose_valid) continue;
+      ++valid;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0) << "frame " << i;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.15) << "frame " << i;
+    }
+    EXPECT_EQ(valid, v.valid);
+  }
+}
+
 TEST_F(PipelineTest, AnUnconfirmedTrackThatLostLinesToItsNearTwinFollowsTheTwin) {
   // Campaign octagon/172's near-square plate at 20 m, the track started on its quarter turn (as an
   // acquisition on that twin would leave it), then a dropped frame: the branch is unknown. The start pose's

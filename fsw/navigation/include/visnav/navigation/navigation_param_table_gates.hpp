@@ -318,6 +318,12 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "15 527, every scene that changed gained, confidently wrong frames 1 / 1 / 6 unchanged "
              "(top-level README, stop 65). 0: status tracking only"},
             p.branch_continuity_missing_lines);
+  v.integer({"navigation", "branch_continuity_spotless_frames", "count", 0, 1000,
+             "see branch_continuity_frames: after a longer break, of at most this many frames, a fit "
+             "keeps the branch only when it is spotless: status tracking with no tracker flag but the "
+             "informational texture fallback (no face seen as a narrow strip, no line rejected), and the "
+             "other conditions as for a clean fit; at or below branch_continuity_frames: off"},
+            p.branch_continuity_spotless_frames);
   v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
              "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
              "filter from it"},
