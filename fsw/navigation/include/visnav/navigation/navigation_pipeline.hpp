@@ -151,7 +151,8 @@ class NavigationPipeline {
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
-  /// last valid pose's look (confirms the branch).
+  /// last valid pose's look (confirms the branch); after a longer one, up to
+  /// branch_continuity_spotless_frames, only a spotless fit (no tracker flag but the texture fallback) does.
   bool keptTheBranch(const Pose& pose, const Mat6& covariance) const;
   /// This frame's near-range fit is degraded only by at most `allowed` selected lines it did not find
   /// (branch_continuity_missing_lines); false when `allowed` <= 0.
