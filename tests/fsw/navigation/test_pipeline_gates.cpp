@@ -102,6 +102,18 @@ void eraseEdge(const PolygonModel& model, int edge, test::RenderedFrame& frame) 
         frame.pixels[static_cast<std::size_t>(y) * 640U + static_cast<std::size_t>(x)] = fill;
 }
 
+double edgeLengthM(const PolygonModel& model, int i) {
+  const ModelEdge& e = model.edges()[static_cast<std::size_t>(i)];
+  return (model.vertices()[static_cast<std::size_t>(e.v1)] - model.vertices()[static_cast<std::size_t>(e.v0)])
+      .norm();
+}
+
+/// A valid pose of these tests is on the truth: within 1 deg and 0.15 m.
+void expectOnTruth(const NavSolution& out, const Pose& truth, int frame) {
+  EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0) << "frame " << frame;
+  EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.15) << "frame " << frame;
+}
+
 }  // namespace missing_line
 
 TEST_F(PipelineTest, AFitMissingOnlyALineAfterAShortBreakContinuesTheBranchWhenAllowed) {
@@ -115,12 +127,7 @@ TEST_F(PipelineTest, AFitMissingOnlyALineAfterAShortBreakContinuesTheBranchWhenA
   ASSERT_TRUE(octagon_renderer.init(test::vgaCamera(), octagon, synthetic::RenderOptions{}).ok);
   // The two longest edges (the plate's sides, not its chamfers).
   int longest = -1, second = -1;
-  const auto edgeLength = [&](int i) {
-    const ModelEdge& e = octagon.edges()[static_cast<std::size_t>(i)];
-    return (octagon.vertices()[static_cast<std::size_t>(e.v1)] -
-            octagon.vertices()[static_cast<std::size_t>(e.v0)])
-        .norm();
-  };
+  const auto edgeLength = [&](int i) { return missing_line::edgeLengthM(octagon, i); };
   for (int i = 0; i < static_cast<int>(octagon.edges().size()); ++i) {
     if (longest < 0 || edgeLength(i) > edgeLength(longest)) {
       second = longest;
@@ -167,9 +174,7 @@ TEST_F(PipelineTest, AFitMissingOnlyALineAfterAShortBreakContinuesTheBranchWhenA
       }
       if (!out.pose_valid) continue;
       ++valid;
-      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-      EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0) << "frame " << i;
-      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.15) << "frame " << i;
+      missing_line::expectOnTruth(out, seq[static_cast<std::size_t>(i)].truth, i);
     }
     EXPECT_EQ(valid, v.valid);
   }
@@ -185,14 +190,8 @@ TEST_F(PipelineTest, ASpotlessFitAfterALongerBreakContinuesTheBranchWhenAllowed)
   synthetic::Renderer octagon_renderer;
   ASSERT_TRUE(octagon_renderer.init(test::vgaCamera(), octagon, synthetic::RenderOptions{}).ok);
   int longest = 0;
-  const auto edgeLength = [&](int i) {
-    const ModelEdge& e = octagon.edges()[static_cast<std::size_t>(i)];
-    return (octagon.vertices()[static_cast<std::size_t>(e.v1)] -
-            octagon.vertices()[static_cast<std::size_t>(e.v0)])
-        .norm();
-  };
   for (int i = 1; i < static_cast<int>(octagon.edges().size()); ++i)
-    if (edgeLength(i) > edgeLength(longest)) longest = i;
+    if (missing_line::edgeLengthM(octagon, i) > missing_line::edgeLengthM(octagon, longest)) longest = i;
   struct Variant {
     int spotless_frames;
     bool erased;
@@ -234,9 +233,7 @@ TEST_F(PipelineTest, ASpotlessFitAfterALongerBreakContinuesTheBranchWhenAllowed)
       }
       if (!out.pose_valid) continue;
       ++valid;
-      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-      EXPECT_LT(rotationAngleRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0) << "frame " << i;
-      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.15) << "frame " << i;
+      missing_line::expectOnTruth(out, seq[static_cast<std::size_t>(i)].truth, i);
     }
     EXPECT_EQ(valid, v.valid);
   }
