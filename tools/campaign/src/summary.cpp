@@ -44,8 +44,7 @@ LossCause lossCause(const FrameOutcome& f) {
   if ((f.withheld & nav::kWithheldUncertain) != 0U) return LossCause::kUncertain;
   if ((f.withheld & nav::kWithheldDoubted) != 0U) return LossCause::kDoubted;
   if ((f.withheld & nav::kWithheldFindDoubted) != 0U) return LossCause::kFindDoubted;
-  if ((f.withheld & nav::kWithheldBranchUnknown) != 0U && f.withheld == nav::kWithheldBranchUnknown)
-    return LossCause::kBranch;
+  if (f.withheld == nav::kWithheldBranchUnknown) return LossCause::kBranch;
   if (f.withheld != 0U) return LossCause::kWithheldOther;
   return LossCause::kRejected;
 }
