@@ -20,7 +20,8 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
   // frames), with a look tolerance nothing meets, with a sigma limit below the fit's (this plate at 26 m is
   // known to about 2 deg, so the test raises the doubted limit from its 1 deg default to 3), or when the
   // break is longer than the rule allows (two missing frames, 1 allowed). The covariance limit on validity
-  // itself is off: the plate is near it (APoseLessCertainThanTheLimit...).
+  // itself is off: the plate is near it (APoseLessCertainThanTheLimit...). The rule for longer breaks
+  // (branch_continuity_spotless_frames) is off here: ASpotlessFitAfterALongerBreak... tests it.
   struct Variant {
     int frames;
     double look_deg;
@@ -35,6 +36,7 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
                           Variant{1, 3.0, 1.0, 3.0, 2, 8 - waited}}) {
     PipelineParams p = params;
     p.navigation.branch_continuity_frames = v.frames;
+    p.navigation.branch_continuity_spotless_frames = 0;
     p.navigation.branch_continuity_look_deg = v.look_deg;
     p.navigation.reacquire_tolerance_growth_deg_per_frame = v.growth_deg;
     p.navigation.doubted_max_attitude_sigma_deg = v.sigma_limit_deg;
