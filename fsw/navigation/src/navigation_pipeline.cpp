@@ -57,6 +57,7 @@ void NavigationPipeline::startNearRange(const Pose& pose, std::uint64_t frame_nu
   m_fit_restarted_filter = false;
   m_have_valid_range = false;  // a new track: no valid pose's range to keep yet
   m_range_check_active = false;
+  m_valid_run = 0;
   m_find_confirms_branch = false;
   m_find_on_known_branch = false;
   m_track_twin_by_continuity = false;

@@ -9,6 +9,12 @@
 
 namespace visnav::nav {
 
+namespace {
+/// branch_range_after_jump's range tolerance holds the reference's range, carried on, to this many of its
+/// 1-sigma: a bound on what the filter knew, not a tuning.
+constexpr double kRangeSigmas = 3.0;
+}  // namespace
+
 void NavigationPipeline::flagTwins(NavSolution& out) const {
   // The "flag the ambiguity": the track keeps the twin continuous with it (acquisition, reacquisition
   // and the tracker all do), and the user is told how many others the image would have accepted.
@@ -225,22 +231,52 @@ bool NavigationPipeline::fitLeftTheValidRange(const Pose& pose) const {
   const double dt_s = static_cast<double>(m_last_exposure_ns - m_valid_exposure_ns) * 1e-9;
   const double expected_m = m_valid_range_m + m_valid_range_rate_mps * dt_s;
   if (expected_m <= 0.0) return false;
+  // The reference's range and rate are the filter's, known only as well as its covariance says.
+  const double expected_sigma_m = std::hypot(m_valid_range_sigma_m, m_valid_range_rate_sigma_mps * dt_s);
   const double tolerance =
-      nav.disputed_max_range_change_rel +
-      nav.branch_range_growth_rel_per_frame * static_cast<double>(m_frames_since_valid + 1);
+      rangeAfterJumpTolerance(nav, m_frames_since_valid + 1, expected_sigma_m, expected_m);
   return std::fabs(pose.t_c_m.norm() / expected_m - 1.0) > tolerance;
+}
+
+double NavigationPipeline::rangeAfterJumpTolerance(const NavigationParams& nav, std::uint64_t frames,
+                                                   double expected_sigma_m, double expected_range_m) {
+  return nav.disputed_max_range_change_rel +
+         nav.branch_range_growth_rel_per_frame * static_cast<double>(frames) +
+         kRangeSigmas * expected_sigma_m / expected_range_m;
 }
 
 void NavigationPipeline::noteRangeReference(const NavSolution& out) {
   if (!m_params.navigation.branch_range_after_jump) return;  // off: no per-frame work, the check never starts
+  if (!out.pose_valid) m_valid_run = 0;
   if (out.pose_valid) {
-    const double range_m = out.pose.t_c_m.norm();
-    m_valid_range_m = range_m;
-    m_valid_range_rate_mps =
-        m_filter.initialised() && range_m > 0.0 ? m_filter.velocity().dot(out.pose.t_c_m) / range_m : 0.0;
+    // The filter's range rate is the track's only after a run of valid poses; one or two after a start or a
+    // find carry the prior's rate (zero) with a confidence the motion has not earned (campaign smallsat/14:
+    // valid once at 42 m after an acquisition, closing at 3.7 m/s, the filter's range rate 0; the right
+    // track after a jump 3 frames later was withheld for the rest of the approach).
+    ++m_valid_run;
+    m_have_valid_range = m_valid_run >= m_params.navigation.branch_range_reference_min_frames;
     m_valid_exposure_ns = m_last_exposure_ns;
-    m_have_valid_range = true;
     m_range_check_active = false;
+    // The reference is the filter's estimate on this frame, not the fit alone: one valid fit 3.8 % off in
+    // range (4 of its own 1-sigma, accepted by the gate) made the right fits after it look broken
+    // (campaign octagon/2 frame 138). Both the range and its rate are known as well as the covariance says.
+    const bool filtered = m_filter.initialised() && m_filter.attitudeKnown();
+    const Vec3 t_c_m = filtered ? m_filter.pose().t_c_m : out.pose.t_c_m;
+    const double range_m = t_c_m.norm();
+    m_valid_range_m = range_m;
+    if (!filtered || !(range_m > 0.0)) {
+      m_valid_range_rate_mps = 0.0;
+      m_valid_range_sigma_m = 0.0;
+      m_valid_range_rate_sigma_mps = m_filter.params().initial_velocity_sigma_m_s;  // the prior's, at rest
+      return;
+    }
+    const Vec3 line_of_sight = t_c_m / range_m;
+    const Mat12& p = m_filter.covariance();
+    m_valid_range_rate_mps = m_filter.velocity().dot(line_of_sight);
+    m_valid_range_sigma_m = std::sqrt(std::max(
+        0.0, line_of_sight.dot(p.block<3, 3>(PoseFilter::kPosition, PoseFilter::kPosition) * line_of_sight)));
+    m_valid_range_rate_sigma_mps = std::sqrt(std::max(
+        0.0, line_of_sight.dot(p.block<3, 3>(PoseFilter::kVelocity, PoseFilter::kVelocity) * line_of_sight)));
     return;
   }
   if (m_reacquisition_step.found) m_range_check_active = false;  // a find has its own confirmation

@@ -326,14 +326,24 @@ TEST_F(PipelineTest, FitsTheFilterRejectsDoNotConfirmTheBranch) {
 TEST_F(PipelineTest, AfterAJumpAFitOffTheLastValidRangeDoesNotConfirmTheBranch) {
   // The plate still at 10 m for 3 frames, then 5 % farther and still again: the jump is withheld and breaks
   // the branch; the filter, restarted on the jumped fit (the image wins), accepts every fit after it. The
-  // last valid range (10 m, at rest) is 5 % away, beyond the tolerance (3 %, not widened here) for the rest
-  // of the run: with branch_range_after_jump no fit after the jump is valid (campaign smallsat/7023: a
-  // track 13 % off in range after a jump, confirmed 16-17 % off); without it the next fit confirms the
-  // branch at once by continuity (its look kept the last valid pose's).
+  // last valid range (10 m, at rest) is 5 % away, beyond the tolerance (3 %, not widened by frames here)
+  // for the rest of the run: with branch_range_after_jump no fit after the jump is valid (campaign
+  // smallsat/7023: a track 13 % off in range after a jump, confirmed 16-17 % off); without it the next fit
+  // confirms the branch at once by continuity (its look kept the last valid pose's). Nor when the last
+  // valid pose ended fewer valid poses in a row than branch_range_reference_min_frames (here 3 before the
+  // jump, the default 3 against 4): its range rate is the filter's prior, no reference.
+  struct Variant {
+    bool range_check;
+    int reference_min_frames;
+    bool checked;
+  };
   const std::vector<test::RenderedFrame> seq = rangeJump(renderer, 950U);
-  for (const bool range_check : {true, false}) {
+  for (const Variant v : {Variant{true, 3, true}, Variant{true, 4, false}, Variant{false, 3, false}}) {
+    SCOPED_TRACE(testing::Message() << "range check " << v.range_check << ", reference after "
+                                    << v.reference_min_frames);
     PipelineParams p = params;
-    p.navigation.branch_range_after_jump = range_check;
+    p.navigation.branch_range_after_jump = v.range_check;
+    p.navigation.branch_range_reference_min_frames = v.reference_min_frames;
     p.navigation.branch_range_growth_rel_per_frame = 0.0;
     int valid_after_jump = 0;
     int range_broken = 0;
@@ -344,7 +354,7 @@ TEST_F(PipelineTest, AfterAJumpAFitOffTheLastValidRangeDoesNotConfirmTheBranch) 
       }
       if (pipeline.lastFitBrokeRange()) ++range_broken;
     });
-    if (range_check) {
+    if (v.checked) {
       EXPECT_EQ(valid_after_jump, 0);
       EXPECT_EQ(range_broken, 8) << "every fit after the jump";
     } else {
@@ -352,6 +362,17 @@ TEST_F(PipelineTest, AfterAJumpAFitOffTheLastValidRangeDoesNotConfirmTheBranch) 
       EXPECT_EQ(range_broken, 0);
     }
   }
+}
+
+TEST(RangeAfterJump, TheToleranceWidensWithTheFramesAndTheReferencesUncertainty) {
+  // 3 % at once, + 0.5 % a frame, + three 1-sigma of the reference's range carried on, against the range.
+  NavigationParams nav;
+  nav.disputed_max_range_change_rel = 0.03;
+  nav.branch_range_growth_rel_per_frame = 0.005;
+  EXPECT_DOUBLE_EQ(NavigationPipeline::rangeAfterJumpTolerance(nav, 1, 0.0, 20.0), 0.035);
+  EXPECT_DOUBLE_EQ(NavigationPipeline::rangeAfterJumpTolerance(nav, 4, 0.0, 20.0), 0.05);
+  // Known to 0.5 m at 15 m: 3 * 0.5 / 15 = 10 % more.
+  EXPECT_DOUBLE_EQ(NavigationPipeline::rangeAfterJumpTolerance(nav, 5, 0.5, 15.0), 0.03 + 0.025 + 0.1);
 }
 
 }  // namespace

@@ -280,6 +280,15 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
   v.real({"navigation", "branch_range_growth_rel_per_frame", "-", 0.0, 1.0,
           "the widening of branch_range_after_jump's range tolerance per frame since the last valid pose"},
          p.branch_range_growth_rel_per_frame);
+  v.integer({"navigation", "branch_range_reference_min_frames", "count", 1, 1000,
+             "branch_range_after_jump's reference is the last valid pose only when it ends at least this "
+             "many valid poses in a row: the filter's range rate, which carries the reference on, is "
+             "measured by a run of fits (three give a rate, as [filter] restart_rate_chi2's restart from "
+             "three fits); after one or two following a start or a find it is the prior's zero with a "
+             "confidence the motion has not earned. Campaign smallsat/14: valid once at 42 m after an "
+             "acquisition, closing at 3.7 m/s; without it the right track after a jump three frames later "
+             "was withheld for the rest of the approach (38 -> 0 tracked frames). 1: every valid pose"},
+            p.branch_range_reference_min_frames);
   v.boolean(
       {"navigation", "acquisition_awaits_near_range", "-", 0, 1,
        "the pose an acquisition confirms is delivered tracked but not valid on its own frame, and the "

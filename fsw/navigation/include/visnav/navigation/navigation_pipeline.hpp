@@ -94,6 +94,12 @@ class NavigationPipeline {
   /// Whether this frame's fit left the range the last valid pose predicts after a jump
   /// (branch_range_after_jump).
   bool lastFitBrokeRange() const { return m_range_broken; }
+  /// branch_range_after_jump's tolerance on a fit's range relative to the reference carried on at its range
+  /// rate to `expected_range_m` with 1-sigma `expected_sigma_m` (the filter's range and rate on the
+  /// reference's frame, propagated), `frames` frames after it: disputed_max_range_change_rel, widened by
+  /// branch_range_growth_rel_per_frame per frame and by three of that 1-sigma.
+  static double rangeAfterJumpTolerance(const NavigationParams& nav, std::uint64_t frames,
+                                        double expected_sigma_m, double expected_range_m);
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
@@ -222,12 +228,15 @@ class NavigationPipeline {
   bool m_fit_restarted_filter = false;
   /// This frame's near-range fault bits (checkNearRange), 0 on a frame not processed in near range.
   std::uint32_t m_near_range_faults = 0U;
-  /// The last valid pose's range, range rate (the filter's) and exposure time; after a disputed jump
+  /// The last valid pose's range and range rate (the filter's) and exposure time; after a disputed jump
   /// (branch_range_after_jump) a fit's range is checked against them until a pose is valid again.
   double m_valid_range_m = 0.0;
   double m_valid_range_rate_mps = 0.0;
+  double m_valid_range_sigma_m = 0.0;         ///< the filter's 1-sigma of that range
+  double m_valid_range_rate_sigma_mps = 0.0;  ///< the filter's 1-sigma of that rate along the line of sight
   std::int64_t m_valid_exposure_ns = 0;
-  bool m_have_valid_range = false;
+  bool m_have_valid_range = false;  ///< the last valid pose closed a run of branch_range_reference_min_frames
+  int m_valid_run = 0;              ///< consecutive valid poses up to this frame
   bool m_range_check_active = false;
   bool m_range_broken = false;              ///< lastFitBrokeRange()
   int m_doubt_clear_run = 0;                ///< consecutive poses of a doubted track within the doubted limit
