@@ -364,15 +364,30 @@ TEST_F(PipelineTest, AfterAJumpAFitOffTheLastValidRangeDoesNotConfirmTheBranch) 
   }
 }
 
-TEST(RangeAfterJump, TheToleranceWidensWithTheFramesAndTheReferencesUncertainty) {
-  // 3 % at once, + 0.5 % a frame, + three 1-sigma of the reference's range carried on, against the range.
+TEST(RangeAfterJump, AFitLeavesTheReferenceOutsideItsSpanAndAToleranceThatWidens) {
+  // 3 % at once, + 0.5 % a frame, + three 1-sigma of the reference's range carried on, relative to the
+  // nearest end of the span from the reference's range (at rest) to that range carried on at its rate.
   NavigationParams nav;
   nav.disputed_max_range_change_rel = 0.03;
   nav.branch_range_growth_rel_per_frame = 0.005;
-  EXPECT_DOUBLE_EQ(NavigationPipeline::rangeAfterJumpTolerance(nav, 1, 0.0, 20.0), 0.035);
-  EXPECT_DOUBLE_EQ(NavigationPipeline::rangeAfterJumpTolerance(nav, 4, 0.0, 20.0), 0.05);
-  // Known to 0.5 m at 15 m: 3 * 0.5 / 15 = 10 % more.
-  EXPECT_DOUBLE_EQ(NavigationPipeline::rangeAfterJumpTolerance(nav, 5, 0.5, 15.0), 0.03 + 0.025 + 0.1);
+  const auto left = [&](std::uint64_t frames, double range_m, double carried_m, double sigma_m) {
+    return NavigationPipeline::rangeLeftTheReference(nav, frames, range_m, 20.0, carried_m, sigma_m);
+  };
+  EXPECT_FALSE(left(1, 20.0 * 1.034, 20.0, 0.0)) << "3.5 % one frame later";
+  EXPECT_TRUE(left(1, 20.0 * 1.036, 20.0, 0.0));
+  EXPECT_TRUE(left(1, 20.0 * 0.964, 20.0, 0.0)) << "either way";
+  EXPECT_FALSE(left(4, 20.0 * 1.049, 20.0, 0.0)) << "5 % four frames later";
+  EXPECT_TRUE(left(4, 20.0 * 1.051, 20.0, 0.0));
+  // Known to 0.5 m: 3 * 0.5 / 20 = 7.5 % more.
+  EXPECT_FALSE(left(1, 20.0 * 1.109, 20.0, 0.5));
+  EXPECT_TRUE(left(1, 20.0 * 1.111, 20.0, 0.5));
+  // Carried on to 18 m (closing): anything from 18 to 20 m is within, and the tolerance counts from the
+  // nearest end; a range rate that was noise does not withhold a target at rest.
+  for (const double range_m : {18.0, 19.0, 20.0}) EXPECT_FALSE(left(1, range_m, 18.0, 0.0)) << range_m;
+  EXPECT_FALSE(left(1, 18.0 * 0.966, 18.0, 0.0));
+  EXPECT_TRUE(left(1, 18.0 * 0.964, 18.0, 0.0));
+  EXPECT_TRUE(left(1, 20.0 * 1.036, 18.0, 0.0));
+  EXPECT_FALSE(left(1, 30.0, -5.0, 0.0)) << "a span through zero: no reference";
 }
 
 }  // namespace

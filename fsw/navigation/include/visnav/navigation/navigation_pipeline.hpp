@@ -94,12 +94,13 @@ class NavigationPipeline {
   /// Whether this frame's fit left the range the last valid pose predicts after a jump
   /// (branch_range_after_jump).
   bool lastFitBrokeRange() const { return m_range_broken; }
-  /// branch_range_after_jump's tolerance on a fit's range relative to the reference carried on at its range
-  /// rate to `expected_range_m` with 1-sigma `expected_sigma_m` (the filter's range and rate on the
-  /// reference's frame, propagated), `frames` frames after it: disputed_max_range_change_rel, widened by
-  /// branch_range_growth_rel_per_frame per frame and by three of that 1-sigma.
-  static double rangeAfterJumpTolerance(const NavigationParams& nav, std::uint64_t frames,
-                                        double expected_sigma_m, double expected_range_m);
+  /// branch_range_after_jump's test of a fit's range `range_m` against the last valid pose's, `frames` frames
+  /// later: true when it is outside the span from the reference's range `reference_m` (standing still) to
+  /// that range carried on at its rate (`carried_m`) by more than disputed_max_range_change_rel, widened
+  /// by branch_range_growth_rel_per_frame per frame and by three of the carried range's 1-sigma
+  /// `expected_sigma_m`, relative to the span's nearest end.
+  static bool rangeLeftTheReference(const NavigationParams& nav, std::uint64_t frames, double range_m,
+                                    double reference_m, double carried_m, double expected_sigma_m);
 
  private:
   void runFarRange(const MonoImage& image, NavSolution& out, ModeInputs& in);
