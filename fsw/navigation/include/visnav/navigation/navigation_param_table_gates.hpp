@@ -268,14 +268,18 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
   v.boolean({"navigation", "branch_range_after_jump", "-", 0, 1,
              "after a disputed jump breaks the branch, a near-range fit counts toward none of the "
              "branch_confirm_frames unless its range stays within disputed_max_range_change_rel (widened "
-             "by branch_range_growth_rel_per_frame per frame since) of the last valid pose's range carried "
-             "on at the filter's range rate then: the filter restarted on the jumped track has lost that "
-             "reference. Campaign smallsat/7023: the tracker jumped 13 % in range at frame 95, the filter "
-             "restarted there and accepted the frames after, and three of them were confirmed 16-17 % off. "
-             "Off (experimental): on seeds 7001-7040 it removed those 3 wrong frames but withheld the right "
-             "track after a jump for the rest of box/7036 (49 -> 24 tracked frames, a loss never "
-             "recovered): the last valid pose's range, carried on at its rate, is no reference over tens "
-             "of frames. Top-level README, stop 54; false: no range check"},
+             "by branch_range_growth_rel_per_frame per frame since and by three 1-sigma of the reference "
+             "carried on) of the span from the last valid pose's range, standing still, to that range "
+             "carried on at its rate: the filter restarted on the jumped track has lost that reference. "
+             "The reference is the filter's range, rate and their covariance on the last valid frame, "
+             "and only when that frame ended branch_range_reference_min_frames valid poses in a row. "
+             "Campaign smallsat/7023: the tracker jumped 13 % in range at frame 95, the filter restarted "
+             "there and accepted the frames after, and three of them were confirmed 16-17 % off. Stop 54 "
+             "built it with the fit's range carried on at the filter's rate after any valid pose and left "
+             "it off: box/7036's right track after a jump was withheld for the rest of the scene (a "
+             "reference one frame after a find, its rate the restart's zero). On since stop 67: on seeds "
+             "1-40 / 5001-5040 / 7001-7040 it removes smallsat/7023's 3 wrong frames and changes no other "
+             "delivered pose. Top-level README, stops 54 and 67; false: no range check"},
             p.branch_range_after_jump);
   v.real({"navigation", "branch_range_growth_rel_per_frame", "-", 0.0, 1.0,
           "the widening of branch_range_after_jump's range tolerance per frame since the last valid pose"},
@@ -286,8 +290,9 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "measured by a run of fits (three give a rate, as [filter] restart_rate_chi2's restart from "
              "three fits); after one or two following a start or a find it is the prior's zero with a "
              "confidence the motion has not earned. Campaign smallsat/14: valid once at 42 m after an "
-             "acquisition, closing at 3.7 m/s; without it the right track after a jump three frames later "
-             "was withheld for the rest of the approach (38 -> 0 tracked frames). 1: every valid pose"},
+             "acquisition, closing at 3.7 m/s; with stop 54's form of the rule (any valid pose a "
+             "reference) the right track after a jump three frames later was withheld for the rest of the "
+             "approach (38 -> 0 tracked expected frames). 1: every valid pose"},
             p.branch_range_reference_min_frames);
   v.boolean(
       {"navigation", "acquisition_awaits_near_range", "-", 0, 1,

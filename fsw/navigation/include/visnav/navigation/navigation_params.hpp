@@ -56,7 +56,7 @@ struct NavigationParams {
   int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
   bool branch_confirm_needs_filter = true;    ///< a fit the filter rejected counts toward none of them
   bool mirror_resolved_by_prediction = true;  ///< a mirrored rival the continued track rejects is no rival
-  bool branch_range_after_jump = false;  ///< after a disputed jump, nor one off the last valid pose's range
+  bool branch_range_after_jump = true;  ///< after a disputed jump, nor one off the last valid pose's range
   double branch_range_growth_rel_per_frame = 0.005;  ///< that range's tolerance growth (from 3 %, below)
   int branch_range_reference_min_frames =
       3;  ///< ... a valid pose is that range's reference after this many in a row
