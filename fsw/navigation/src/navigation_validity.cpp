@@ -13,6 +13,8 @@ namespace {
 /// branch_range_after_jump's range tolerance holds the reference's range, carried on, to this many of its
 /// 1-sigma: a bound on what the filter knew, not a tuning.
 constexpr double kRangeSigmas = 3.0;
+/// The run of valid poses is counted up to here (a track of years stays within int).
+constexpr int kValidRunCap = 1000000;
 }  // namespace
 
 void NavigationPipeline::flagTwins(NavSolution& out) const {
@@ -254,13 +256,14 @@ bool NavigationPipeline::rangeLeftTheReference(const NavigationParams& nav, std:
 
 void NavigationPipeline::noteRangeReference(const NavSolution& out) {
   if (!m_params.navigation.branch_range_after_jump) return;  // off: no per-frame work, the check never starts
-  if (!out.pose_valid) m_valid_run = 0;
-  if (out.pose_valid) {
+  if (!out.pose_valid) {
+    m_valid_run = 0;
+  } else {
     // The filter's range rate is the track's only after a run of valid poses; one or two after a start or a
     // find carry the prior's rate (zero) with a confidence the motion has not earned (campaign smallsat/14:
     // valid once at 42 m after an acquisition, closing at 3.7 m/s, the filter's range rate 0; the right
     // track after a jump 3 frames later was withheld for the rest of the approach).
-    ++m_valid_run;
+    m_valid_run = std::min(m_valid_run + 1, kValidRunCap);
     m_have_valid_range = m_valid_run >= m_params.navigation.branch_range_reference_min_frames;
     m_valid_exposure_ns = m_last_exposure_ns;
     m_range_check_active = false;

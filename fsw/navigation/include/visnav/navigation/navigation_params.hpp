@@ -58,8 +58,7 @@ struct NavigationParams {
   bool mirror_resolved_by_prediction = true;  ///< a mirrored rival the continued track rejects is no rival
   bool branch_range_after_jump = true;  ///< after a disputed jump, nor one off the last valid pose's range
   double branch_range_growth_rel_per_frame = 0.005;  ///< that range's tolerance growth (from 3 %, below)
-  int branch_range_reference_min_frames =
-      3;  ///< ... a valid pose is that range's reference after this many in a row
+  int branch_range_reference_min_frames = 3;  ///< that range a reference after this many valid in a row
   bool acquisition_awaits_near_range = true;  ///< an acquisition's pose is valid once near range agrees
   int branch_continuity_frames = 3;  ///< after a break this short, a clean fit that kept the look confirms
   double branch_continuity_look_deg = 3.0;     ///< that look's tolerance, widening per frame since (below)
