@@ -261,7 +261,7 @@ void NavigationPipeline::noteRangeReference(const NavSolution& out) {
   } else {
     // The filter's range rate is the track's only after a run of valid poses; one or two after a start or a
     // find carry the prior's rate (zero) with a confidence the motion has not earned (campaign smallsat/14:
-    // valid once at 42 m after an acquisition, closing at 3.7 m/s, the filter's range rate 0; the right
+    // valid once at 42 m after an acquisition, closing at 3.9 m/s, the filter's range rate 0; the right
     // track after a jump 3 frames later was withheld for the rest of the approach).
     m_valid_run = std::min(m_valid_run + 1, kValidRunCap);
     m_have_valid_range = m_valid_run >= m_params.navigation.branch_range_reference_min_frames;

@@ -290,7 +290,7 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "measured by a run of fits (three give a rate, as [filter] restart_rate_chi2's restart from "
              "three fits); after one or two following a start or a find it is the prior's zero with a "
              "confidence the motion has not earned. Campaign smallsat/14: valid once at 42 m after an "
-             "acquisition, closing at 3.7 m/s; with stop 54's form of the rule (any valid pose a "
+             "acquisition, closing at 3.9 m/s; with stop 54's form of the rule (any valid pose a "
              "reference) the right track after a jump three frames later was withheld for the rest of the "
              "approach (38 -> 0 tracked expected frames). 1: every valid pose"},
             p.branch_range_reference_min_frames);
