@@ -277,7 +277,8 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "there and accepted the frames after, and three of them were confirmed 16-17 % off. Stop 54 "
              "built it with the fit's range carried on at the filter's rate after any valid pose and left "
              "it off: box/7036's right track after a jump was withheld for the rest of the scene (a "
-             "reference one frame after a find, its rate the restart's zero). On since stop 67: on seeds "
+             "reference one frame after a find, its range rate 0.00 m/s at 0.05 m/s 1-sigma while the target "
+             "closed at 2 m/s). On since stop 67: on seeds "
              "1-40 / 5001-5040 / 7001-7040 it removes smallsat/7023's 3 wrong frames and changes no other "
              "delivered pose. Top-level README, stops 54 and 67; false: no range check"},
             p.branch_range_after_jump);
@@ -288,9 +289,10 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "branch_range_after_jump's reference is the last valid pose only when it ends at least this "
              "many valid poses in a row: the filter's range rate, which carries the reference on, is "
              "measured by a run of fits (three give a rate, as [filter] restart_rate_chi2's restart from "
-             "three fits); after one or two following a start or a find it is the prior's zero with a "
+             "three fits); after one or two following a start or a find it is about the prior's zero with a "
              "confidence the motion has not earned. Campaign smallsat/14: valid once at 42 m after an "
-             "acquisition, closing at 3.9 m/s; with stop 54's form of the rule (any valid pose a "
+             "acquisition, closing at 3.9 m/s, the filter's range rate -0.15 m/s at 0.47 m/s 1-sigma; "
+             "with stop 54's form of the rule (any valid pose a "
              "reference) the right track after a jump three frames later was withheld for the rest of the "
              "approach (38 -> 0 tracked expected frames). 1: every valid pose"},
             p.branch_range_reference_min_frames);
