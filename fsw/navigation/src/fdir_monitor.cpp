@@ -6,20 +6,42 @@ namespace visnav::nav {
 
 bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
                        bool continues_rival_free_fit) {
+  return imageEvidenceVerdict(r, params, continues_rival_free_fit) == EvidenceVerdict::kGood;
+}
+
+const char* toString(EvidenceVerdict verdict) {
+  switch (verdict) {
+    case EvidenceVerdict::kGood: return "good";
+    case EvidenceVerdict::kLost: return "lost";
+    case EvidenceVerdict::kNoCorners: return "no_corners";
+    case EvidenceVerdict::kMirrorRival: return "mirror_rival";
+    case EvidenceVerdict::kFewLines: return "few_lines";
+    case EvidenceVerdict::kFewInliers: return "few_inliers";
+    case EvidenceVerdict::kHighResidual: return "high_rms";
+    case EvidenceVerdict::kWeakSupport: return "weak_support";
+    case EvidenceVerdict::kUncertain: return "uncertain";
+  }
+  return "?";
+}
+
+EvidenceVerdict imageEvidenceVerdict(const NearRangeResult& r, const NavigationParams& params,
+                                     bool continues_rival_free_fit) {
   if (r.status == TrackStatus::kLost || r.lines_used <= 0 || r.edge_points <= 0 || r.scanlines <= 0)
-    return false;
+    return EvidenceVerdict::kLost;
   // Too few corners for eq. 7: a few outline lines of a small body fit a mirrored (Necker) pose as well as
   // the true one, with a residual just as low and a covariance just as tight (campaign box/1, 77 deg off).
   // Such a fit may continue a track the filter agrees with; it never overrules the filter.
-  if ((r.flags & kFlagResidualFallback) != 0U) return false;
+  if ((r.flags & kFlagResidualFallback) != 0U) return EvidenceVerdict::kNoCorners;
   // A depth-mirrored pose fits as well (near_range_pose.cpp): the image cannot overrule anything, unless
   // the fit continues one without such a rival.
-  if ((r.flags & kFlagAmbiguous) != 0U && !continues_rival_free_fit) return false;
-  const bool lines = r.lines_used >= params.min_usable_lines &&
-                     r.lines_used >= params.evidence_min_line_fraction * r.lines_total;
-  const bool inliers = r.inlier_points >= params.evidence_min_inlier_ratio * r.edge_points;
-  const bool residual = r.rms_px <= params.evidence_max_rms_px;
-  const bool support = r.inlier_points >= params.evidence_min_edge_support * r.scanlines;
+  if ((r.flags & kFlagAmbiguous) != 0U && !continues_rival_free_fit) return EvidenceVerdict::kMirrorRival;
+  if (r.lines_used < params.min_usable_lines ||
+      r.lines_used < params.evidence_min_line_fraction * r.lines_total)
+    return EvidenceVerdict::kFewLines;
+  if (r.inlier_points < params.evidence_min_inlier_ratio * r.edge_points) return EvidenceVerdict::kFewInliers;
+  if (!(r.rms_px <= params.evidence_max_rms_px)) return EvidenceVerdict::kHighResidual;  // NaN too
+  // The model's edges are where the image has them: inlier edge points per scanline cast.
+  if (r.inlier_points < params.evidence_min_edge_support * r.scanlines) return EvidenceVerdict::kWeakSupport;
   // A fit too uncertain to be delivered on its own cannot overrule the filter either: the track would
   // restart from a pose the image does not vouch for (case low_contrast_octagon frame 103: 2.9 deg 1-sigma,
   // 6.3 deg off, and the restarted filter then disputed the right fits that followed).
@@ -28,7 +50,7 @@ bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
                         sigma.attitude_deg <= params.max_valid_attitude_sigma_deg) &&
                        (params.max_valid_position_sigma_rel <= 0.0 ||
                         sigma.position_rel <= params.max_valid_position_sigma_rel);
-  return lines && inliers && residual && support && certain;
+  return certain ? EvidenceVerdict::kGood : EvidenceVerdict::kUncertain;
 }
 
 bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "visnav/geometry/polygon_model.hpp"
 #include "visnav/navigation/fdir_monitor.hpp"
@@ -165,6 +166,48 @@ TEST(Fdir, EvidenceNeedsLinesInliersResidualAndSupport) {
   r = goodNear();
   r.status = TrackStatus::kLost;
   EXPECT_FALSE(imageEvidenceGood(r, p));
+}
+
+// The campaign's oracle counts the frames the image does not support by the first test they fail: each
+// defect alone is named, in imageEvidenceGood's order, and kGood is exactly imageEvidenceGood.
+TEST(Fdir, EvidenceVerdictNamesTheFirstTestAFitFails) {
+  const NavigationParams p;
+  const auto verdict = [&](const NearRangeResult& r) {
+    const EvidenceVerdict v = imageEvidenceVerdict(r, p);
+    EXPECT_EQ(v == EvidenceVerdict::kGood, imageEvidenceGood(r, p));
+    return v;
+  };
+  NearRangeResult r = goodNear();
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kGood);
+  r.status = TrackStatus::kLost;
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kLost);
+  r = goodNear();
+  r.flags |= kFlagResidualFallback | kFlagAmbiguous;  // no corners comes first
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kNoCorners);
+  r = goodNear();
+  r.flags |= kFlagAmbiguous;
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kMirrorRival);
+  EXPECT_EQ(imageEvidenceVerdict(r, p, true), EvidenceVerdict::kGood);
+  r = goodNear();
+  r.lines_used = 2;
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kFewLines);
+  r = goodNear();
+  r.inlier_points = 60;
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kFewInliers);
+  r = goodNear();
+  r.rms_px = 0.9;
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kHighResidual);
+  r.rms_px = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kHighResidual);
+  r = goodNear();
+  r.scanlines = 400;
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kWeakSupport);
+  r = goodNear();
+  r.pose.t_c_m = Vec3(0, 0, 10.0);
+  r.covariance.topLeftCorner<3, 3>() = Mat3::Identity() * std::pow(5.0 * kRadPerDeg, 2);
+  EXPECT_EQ(verdict(r), EvidenceVerdict::kUncertain);
+  for (int v = 0; v < kEvidenceVerdictCount; ++v)
+    EXPECT_STRNE(toString(static_cast<EvidenceVerdict>(v)), "?") << v;
 }
 
 // A fit whose depth-mirrored rival fits as well overrules nothing on its own, but it may continue a fit

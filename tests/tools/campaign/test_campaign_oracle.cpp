@@ -1,11 +1,13 @@
 // visnav-campaign --oracle: a tracker started at the truth judges every visible frame without a valid pose
-// (FrameOutcome::oracle), and only those; asked for nothing, it judges nothing.
+// (FrameOutcome::oracle) and says which image-evidence test a fit it cannot use fails
+// (FrameOutcome::oracle_evidence), and only those frames; asked for nothing, it judges nothing.
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "visnav/campaign/runner.hpp"
 #include "visnav/campaign/scene.hpp"
+#include "visnav/navigation/fdir_monitor.hpp"
 
 namespace visnav::campaign {
 namespace {
@@ -22,6 +24,10 @@ TEST(CampaignOracle, JudgesEveryVisibleFrameWithoutAValidPoseAndSeesTheReappeare
     const bool due = f.visible && !f.pose_valid;
     EXPECT_EQ(f.oracle >= 0, due) << "frame " << f.frame;
     EXPECT_LE(f.oracle, 2);
+    // Why: the first image-evidence test its fit fails, none exactly where the verdict is a fit (1 or 2).
+    EXPECT_EQ(f.oracle_evidence >= 0, due) << "frame " << f.frame;
+    const bool evidence_good = f.oracle_evidence == static_cast<int>(nav::EvidenceVerdict::kGood);
+    EXPECT_EQ(evidence_good, f.oracle >= 1) << "frame " << f.frame;
     judged += f.oracle >= 0 ? 1 : 0;
     // The box is back in full view at 10 m while the pipeline is still finding it again: the truth's fit
     // is right and certain there.
@@ -34,6 +40,7 @@ TEST(CampaignOracle, JudgesEveryVisibleFrameWithoutAValidPoseAndSeesTheReappeare
   ASSERT_EQ(without.frames.size(), with.frames.size());
   for (std::size_t i = 0; i < without.frames.size(); ++i) {
     EXPECT_EQ(without.frames[i].oracle, -1);
+    EXPECT_EQ(without.frames[i].oracle_evidence, -1);
     // The oracle only looks: the pipeline's frames are the same with it.
     EXPECT_EQ(without.frames[i].pose_valid, with.frames[i].pose_valid) << i;
     EXPECT_EQ(without.frames[i].position_error_m, with.frames[i].position_error_m) << i;

@@ -310,6 +310,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       oracle->track(frame.image, truth, static_cast<std::uint64_t>(i), o);
       oracle_sigma = nav::poseSigmas(o.pose, o.covariance);
       f.oracle = oracleVerdict(o, oracle_sigma, truth, scene, params.navigation, th);
+      f.oracle_evidence = static_cast<int>(nav::imageEvidenceVerdict(o, params.navigation));
     }
     if (trace) {
       res.trace += traceLine(f, pipeline->lastNearRange(), u);

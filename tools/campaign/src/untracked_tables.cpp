@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "visnav/campaign/report.hpp"
+#include "visnav/navigation/fdir_monitor.hpp"
 
 namespace visnav::campaign {
 
@@ -14,6 +15,7 @@ std::string oracleTable(const std::vector<SceneRun>& runs) {
     long untracked = 0;
     long verdict[3] = {0, 0, 0};  // FrameOutcome::oracle 0, 1, 2
     long supported_in_near_range = 0;
+    long no_fit_by_evidence[nav::kEvidenceVerdictCount] = {};  // oracle 0, by its first failed test
   };
   std::vector<Counts> groups(1);
   groups[0].name = "all";
@@ -31,6 +33,8 @@ std::string oracleTable(const std::vector<SceneRun>& runs) {
         ++c->untracked;
         if (f.oracle >= 0 && f.oracle <= 2) ++c->verdict[f.oracle];
         if (f.oracle == 2 && f.mode == nav::NavMode::kNearRange) ++c->supported_in_near_range;
+        if (f.oracle == 0 && f.oracle_evidence >= 0 && f.oracle_evidence < nav::kEvidenceVerdictCount)
+          ++c->no_fit_by_evidence[f.oracle_evidence];
       }
     }
   }
@@ -45,6 +49,24 @@ std::string oracleTable(const std::vector<SceneRun>& runs) {
         "%-8s untracked %6ld  right+certain %6ld (near range %6ld)  wrong/uncertain %6ld  no fit %6ld\n",
         c.name.c_str(), c.untracked, c.verdict[2], c.supported_in_near_range, c.verdict[1], c.verdict[0]);
     o << buf;
+  }
+  // Why no fit: the first image-evidence test the truth-started fit fails (nav::imageEvidenceVerdict).
+  o << "no fit, by the first image-evidence test it fails (nav::EvidenceVerdict):\n";
+  std::snprintf(buf, sizeof(buf), "%-8s", "group");
+  o << buf;
+  for (int v = 1; v < nav::kEvidenceVerdictCount; ++v) {
+    std::snprintf(buf, sizeof(buf), " %12s", nav::toString(static_cast<nav::EvidenceVerdict>(v)));
+    o << buf;
+  }
+  o << "\n";
+  for (const Counts& c : groups) {
+    std::snprintf(buf, sizeof(buf), "%-8s", c.name.c_str());
+    o << buf;
+    for (int v = 1; v < nav::kEvidenceVerdictCount; ++v) {
+      std::snprintf(buf, sizeof(buf), " %12ld", c.no_fit_by_evidence[v]);
+      o << buf;
+    }
+    o << "\n";
   }
   return o.str();
 }

@@ -35,6 +35,24 @@ struct NearRangeCheck {
 bool imageEvidenceGood(const NearRangeResult& r, const NavigationParams& params,
                        bool continues_rival_free_fit = false);
 
+/// Which of imageEvidenceGood's tests a measurement fails first, in the order it applies them (kGood: none).
+/// The campaign's oracle counts the frames the image does not support by it (tools/campaign/README.md).
+enum class EvidenceVerdict : std::uint8_t {
+  kGood = 0,
+  kLost,          ///< no fit: the tracker lost the target
+  kNoCorners,     ///< point-to-line fallback (kFlagResidualFallback): too few corners for eq. 7
+  kMirrorRival,   ///< a depth-mirrored rival fits as well (kFlagAmbiguous)
+  kFewLines,      ///< min_usable_lines / evidence_min_line_fraction
+  kFewInliers,    ///< evidence_min_inlier_ratio
+  kHighResidual,  ///< evidence_max_rms_px
+  kWeakSupport,   ///< evidence_min_edge_support
+  kUncertain,     ///< its own 1-sigma above max_valid_attitude_sigma_deg / max_valid_position_sigma_rel
+};
+constexpr int kEvidenceVerdictCount = 9;
+const char* toString(EvidenceVerdict verdict);
+EvidenceVerdict imageEvidenceVerdict(const NearRangeResult& r, const NavigationParams& params,
+                                     bool continues_rival_free_fit = false);
+
 /// A near-range fit the navigation doubts (fsw/navigation/README.md, "Certain enough to deliver"): the
 /// filter's innovation gate rejected it (`faults` has kFaultInnovation), it used fewer than
 /// `doubt_min_line_fraction` of its selected lines or left out any of at most `doubt_every_line_up_to` (it

@@ -100,6 +100,9 @@ struct FrameOutcome {
   /// to be valid, 2 a right and certain fit: the image supports the pose, the frame was lost by the search
   /// or the gates. 0 and 1 are the image's (or the tracker's measurement's) limits.
   int oracle = -1;
+  /// With `oracle` >= 0: the first image-evidence test that fit fails (nav::EvidenceVerdict as int, 0: it
+  /// passes them all); -1 not asked. Says why the image does not support a frame with `oracle` 0.
+  int oracle_evidence = -1;
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
