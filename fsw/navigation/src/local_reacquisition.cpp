@@ -240,13 +240,14 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
   const bool continuity = m_params.reacquire_confirm_through_ambiguity;
   m_flight.track(image, start, frame_number, r);
   bool good = imageEvidenceGood(r, m_params, continuity);
-  if (!good) {
-    NearRangeResult wide;
-    good = trackFrom(m_wide, image, start, frame_number, kPassesPerStart, wide, continuity);
-    if (good) {
-      m_flight.track(image, wide.pose, frame_number, r);
-      good = imageEvidenceGood(r, m_params, continuity);
-    }
+  if (!good) good = refitFrom(image, start, frame_number, continuity, r);
+  // The first confirmation has no measured motion: a target crossing the image faster than the capture
+  // range left the candidate behind (campaign cao/5, 15-18 px a frame). Its outline's best match near it
+  // says where it went; the judgement below is unchanged (motion tolerance from the candidate itself).
+  Pose cue_start;
+  if (!good && m_params.reacquire_confirm_at_cue && cueNear(image, start, cue_start)) {
+    ++out.cue_starts;
+    good = refitFrom(image, cue_start, frame_number, continuity, r);
   }
   const bool consistent = good && tolerance(r).holds(r.pose, start) && consistentWithPrediction(r.pose);
   if (!good || !consistent) {
@@ -268,6 +269,29 @@ void LocalReacquisition::confirm(const MonoImage& image, std::uint64_t frame_num
   out.covariance = r.covariance;
   out.quality = r.quality;
   m_active = false;
+}
+
+bool LocalReacquisition::refitFrom(const MonoImage& image, const Pose& start, std::uint64_t frame_number,
+                                   bool continuity, NearRangeResult& r) {
+  // The wide tracker pulls the pose in, the flight tracker judges it as the hand-over will meet it.
+  NearRangeResult wide;
+  if (!trackFrom(m_wide, image, start, frame_number, kPassesPerStart, wide, continuity)) return false;
+  m_flight.track(image, wide.pose, frame_number, r);
+  return imageEvidenceGood(r, m_params, continuity);
+}
+
+bool LocalReacquisition::cueNear(const MonoImage& image, const Pose& around, Pose& cue_start) {
+  // Over the largest motion a confirmation accepts (reacquire_max_motion_rel of the range, f x it in px).
+  // The search's own cue of this frame (bestCueOffset, read by the acquisition) is left as it was.
+  const bool best_found = m_best_cue_found;
+  const Vec2 best_offset_px = m_best_cue_offset_px;
+  const double radius_px = m_camera.intrinsics().fx_px * m_params.reacquire_max_motion_rel;
+  const int cues = findCues(image, around, radius_px, 2);
+  m_best_cue_found = best_found;
+  m_best_cue_offset_px = best_offset_px;
+  if (cues <= 0) return false;
+  cue_start = movedAcrossImage(around, m_cue_peaks[0].shift);
+  return true;
 }
 
 void LocalReacquisition::step(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,

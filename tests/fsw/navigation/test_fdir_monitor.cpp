@@ -155,7 +155,7 @@ TEST(Fdir, EvidenceNeedsLinesInliersResidualAndSupport) {
   r.lines_used = 2;  // half the measured lines
   EXPECT_FALSE(imageEvidenceGood(r, p));
   r = goodNear();
-  r.inlier_points = 60;
+  r.inlier_points = 50;
   EXPECT_FALSE(imageEvidenceGood(r, p));
   r = goodNear();
   r.rms_px = 0.9;
@@ -192,7 +192,7 @@ TEST(Fdir, EvidenceVerdictNamesTheFirstTestAFitFails) {
   r.lines_used = 2;
   EXPECT_EQ(verdict(r), EvidenceVerdict::kFewLines);
   r = goodNear();
-  r.inlier_points = 60;
+  r.inlier_points = 50;
   EXPECT_EQ(verdict(r), EvidenceVerdict::kFewInliers);
   r = goodNear();
   r.rms_px = 0.9;

@@ -107,6 +107,42 @@ TEST_F(ReacquisitionTest, ATargetCrossingTheImageIsConfirmedAndItsMotionReported
   EXPECT_LE(found_at, 3) << "found on frame 0, confirmed on the next two";
 }
 
+/// First frame on which a target starting at `start` and moving `motion` a frame is delivered by a search
+/// whose prediction stays at `start` (-1: not within `frames`); its pose is checked against the truth.
+int framesToConfirmMoving(LocalReacquisition& reacquisition, synthetic::Renderer& renderer, const Pose& start,
+                          const Vec3& motion, int frames) {
+  reacquisition.start();
+  for (int i = 0; i < frames; ++i) {
+    Pose moved = start;
+    moved.t_c_m += motion * i;
+    const test::RenderedFrame frame = test::renderFrame(renderer, moved, 40U + i);
+    ReacquisitionStep step;
+    reacquisition.step(frame.image(), start, static_cast<std::uint64_t>(i), step);
+    if (!step.found) continue;
+    EXPECT_LT((step.pose.t_c_m - moved.t_c_m).norm(), 0.02) << "frame " << i;
+    EXPECT_LT(rotationAngleRad(step.pose.R_c_m, moved.R_c_m) * kDegPerRad, 1.0) << "frame " << i;
+    return i;
+  }
+  return -1;
+}
+
+TEST_F(ReacquisitionTest, AConfirmationFollowsATargetFasterThanTheWideCaptureToItsOutline) {
+  // 0.3 m a frame across the line of sight at 10 m, f = 1000 px: 30 px a frame, beyond the wide tracker's
+  // 24 px scanlines. The search finds a candidate every frame (its outline cue), but the first confirmation
+  // has no motion to carry it by: started at the candidate, both trackers miss the target. The outline's
+  // best match near the candidate (reacquire_max_motion_rel: 50 px) puts the wide tracker on it.
+  const Vec3 motion(0.3, 0.0, 0.0);
+  const int with_cue = framesToConfirmMoving(reacquisition, renderer, truth, motion, 8);
+  EXPECT_GE(with_cue, 0) << "a target moving 30 px a frame was never confirmed";
+  EXPECT_LE(with_cue, 3) << "a candidate on frame 0 or 1, confirmed on the next two";
+  NavigationParams off = params;
+  off.reacquire_confirm_at_cue = false;
+  LocalReacquisition control;
+  ASSERT_TRUE(control.init(test::vgaCamera(), model, off, NearRangeParams{}).ok);
+  EXPECT_EQ(framesToConfirmMoving(control, renderer, truth, motion, 8), -1)
+      << "without the cue the first confirmation loses the candidate on every frame";
+}
+
 /// First frame on which the target is delivered when the search starts from `predicted` (-1: not within
 /// `frames`); `cue_starts` counts the starts the outline cue placed.
 int framesToFind(LocalReacquisition& reacquisition, synthetic::Renderer& renderer, const Pose& truth,

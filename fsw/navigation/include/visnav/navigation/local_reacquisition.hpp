@@ -117,6 +117,12 @@ class LocalReacquisition {
   void search(const MonoImage& image, const Pose& predicted, std::uint64_t frame_number,
               ReacquisitionStep& out);
   void confirm(const MonoImage& image, std::uint64_t frame_number, ReacquisitionStep& out);
+  /// The wide tracker from `start`, then the flight tracker from its pose into `r`: good image evidence?
+  bool refitFrom(const MonoImage& image, const Pose& start, std::uint64_t frame_number, bool continuity,
+                 NearRangeResult& r);
+  /// `around` moved to where its outline best matches the frame within the confirmation's motion limit
+  /// (the match at `around` itself excluded): false without one.
+  bool cueNear(const MonoImage& image, const Pose& around, Pose& cue_start);
 
   PinholeCamera m_camera;
   NavigationParams m_params;

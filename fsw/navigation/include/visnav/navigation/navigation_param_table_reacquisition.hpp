@@ -44,6 +44,17 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
              "took tracked frames 75 407 -> 75 533 and confidently wrong 88 -> 89 (box/95: a find 5.5 deg "
              "off; fsw/navigation/README.md). false: an ambiguous fit ends the confirmation"},
             p.reacquire_confirm_through_ambiguity);
+  v.boolean({"navigation", "reacquire_confirm_at_cue", "-", 0, 1,
+             "close-range reacquisition: a confirming frame on which the trackers started at the candidate "
+             "(carried by its measured motion once known) find no good fit starts the wide tracker once "
+             "more where the candidate's outline, slid over a disc of f x reacquire_max_motion_rel "
+             "pixels about it, best matches the frame's edges: the first confirmation has no motion to "
+             "carry the candidate by, and a target crossing the image faster than the flight tracker's "
+             "capture range was found and lost again frame after frame (campaign cao/5: found on frames "
+             "1, 4 and 8, 15-18 px a frame, never confirmed). The fit must still be good image evidence, "
+             "within reacquire_max_motion_rel and reacquire_max_rotation_deg of the candidate and "
+             "consistent with the prediction. false: the confirmation ends"},
+            p.reacquire_confirm_at_cue);
   v.real({"navigation", "reacquire_range_tolerance_rel", "-", 0.001, 10.0,
           "close-range reacquisition: a candidate whose range differs from the predicted range by more than "
           "this share is not taken (a few outline lines of a small body also fit a mirrored pose at another "

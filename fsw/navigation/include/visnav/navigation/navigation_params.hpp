@@ -32,7 +32,7 @@ struct NavigationParams {
   double max_frame_latency_ms = 100.0;  ///< frame older than one camera period plus this: fault
   // Image evidence that makes a near-range measurement win over the filter's prediction.
   double evidence_min_line_fraction = 0.6;    ///< used lines / measured lines
-  double evidence_min_inlier_ratio = 0.7;     ///< inlier points / edge points of the used lines
+  double evidence_min_inlier_ratio = 0.6;     ///< inlier points / edge points of the used lines
   double evidence_max_rms_px = 0.8;           ///< pose-fit residual
   double evidence_min_edge_support = 0.5;     ///< inlier points / scanlines cast
   double max_valid_attitude_sigma_deg = 2.5;  ///< a pose less certain than this is not delivered as valid
@@ -73,6 +73,7 @@ struct NavigationParams {
   double reacquire_growth_px_per_frame = 40.0;  ///< the searched radius widens this much per frame
   int reacquire_confirm_frames = 2;
   bool reacquire_confirm_through_ambiguity = false;  ///< a confirming fit continues the rival-free candidate
+  bool reacquire_confirm_at_cue = true;              ///< a lost candidate is looked for at its outline
   double reacquire_range_tolerance_rel = 0.05;       ///< a candidate's range against the prediction's
   double reacquire_attitude_tolerance_deg = 15.0;    ///< its attitude in the line-of-sight frame
   double reacquire_tolerance_growth_deg_per_frame = 1.0;
