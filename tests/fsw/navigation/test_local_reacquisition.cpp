@@ -83,47 +83,38 @@ TEST_F(ReacquisitionTest, FindsASlewedTargetAndDeliversItOnlyAfterConfirmation) 
   EXPECT_FALSE(reacquisition.active());
 }
 
-TEST_F(ReacquisitionTest, ATargetCrossingTheImageIsConfirmedAndItsMotionReported) {
-  // 0.16 m a frame across the line of sight at 10 m and f = 1000 px: 16 px a frame, beyond the flight
-  // tracker's 10 px scanlines. The prediction stays where the track was lost (the filter had no velocity).
-  const Vec3 motion(0.16, 0.0, 0.0);
-  const Pose predicted = truth;
-  reacquisition.start();
-  int found_at = -1;
-  for (int i = 0; i < 8 && found_at < 0; ++i) {
-    Pose moved = truth;
-    moved.t_c_m += motion * i;
-    const test::RenderedFrame frame = test::renderFrame(renderer, moved, 20U + i);
-    ReacquisitionStep step;
-    reacquisition.step(frame.image(), predicted, static_cast<std::uint64_t>(i), step);
-    if (!step.found) continue;
-    found_at = i;
-    EXPECT_LT((step.pose.t_c_m - moved.t_c_m).norm(), 0.02) << "frame " << i;
-    // The frame before, from which the pipeline takes the target's motion for its filter.
-    EXPECT_LT((step.previous_pose.t_c_m - (moved.t_c_m - motion)).norm(), 0.02) << "frame " << i;
-    EXPECT_LT(rotationAngleRad(step.previous_pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0);
-  }
-  ASSERT_GE(found_at, 0) << "a target moving 16 px a frame was never confirmed";
-  EXPECT_LE(found_at, 3) << "found on frame 0, confirmed on the next two";
-}
-
 /// First frame on which a target starting at `start` and moving `motion` a frame is delivered by a search
-/// whose prediction stays at `start` (-1: not within `frames`); its pose is checked against the truth.
+/// whose prediction stays at `start` (-1: not within `frames`; frame i rendered with noise seed
+/// first_seed + i); its pose is checked against the truth and its step left in `found`.
 int framesToConfirmMoving(LocalReacquisition& reacquisition, synthetic::Renderer& renderer, const Pose& start,
-                          const Vec3& motion, int frames) {
+                          const Vec3& motion, int frames, unsigned first_seed, ReacquisitionStep& found) {
   reacquisition.start();
   for (int i = 0; i < frames; ++i) {
     Pose moved = start;
     moved.t_c_m += motion * i;
-    const test::RenderedFrame frame = test::renderFrame(renderer, moved, 40U + i);
-    ReacquisitionStep step;
-    reacquisition.step(frame.image(), start, static_cast<std::uint64_t>(i), step);
-    if (!step.found) continue;
-    EXPECT_LT((step.pose.t_c_m - moved.t_c_m).norm(), 0.02) << "frame " << i;
-    EXPECT_LT(rotationAngleRad(step.pose.R_c_m, moved.R_c_m) * kDegPerRad, 1.0) << "frame " << i;
+    const test::RenderedFrame frame =
+        test::renderFrame(renderer, moved, first_seed + static_cast<unsigned>(i));
+    reacquisition.step(frame.image(), start, static_cast<std::uint64_t>(i), found);
+    if (!found.found) continue;
+    EXPECT_LT((found.pose.t_c_m - moved.t_c_m).norm(), 0.02) << "frame " << i;
+    EXPECT_LT(rotationAngleRad(found.pose.R_c_m, moved.R_c_m) * kDegPerRad, 1.0) << "frame " << i;
     return i;
   }
   return -1;
+}
+
+TEST_F(ReacquisitionTest, ATargetCrossingTheImageIsConfirmedAndItsMotionReported) {
+  // 0.16 m a frame across the line of sight at 10 m and f = 1000 px: 16 px a frame, beyond the flight
+  // tracker's 10 px scanlines. The prediction stays where the track was lost (the filter had no velocity).
+  const Vec3 motion(0.16, 0.0, 0.0);
+  ReacquisitionStep step;
+  const int found_at = framesToConfirmMoving(reacquisition, renderer, truth, motion, 8, 20U, step);
+  ASSERT_GE(found_at, 0) << "a target moving 16 px a frame was never confirmed";
+  EXPECT_LE(found_at, 3) << "found on frame 0, confirmed on the next two";
+  // The frame before, from which the pipeline takes the target's motion for its filter.
+  const Vec3 before_m = truth.t_c_m + motion * (found_at - 1);
+  EXPECT_LT((step.previous_pose.t_c_m - before_m).norm(), 0.02);
+  EXPECT_LT(rotationAngleRad(step.previous_pose.R_c_m, truth.R_c_m) * kDegPerRad, 1.0);
 }
 
 TEST_F(ReacquisitionTest, AConfirmationFollowsATargetFasterThanTheWideCaptureToItsOutline) {
@@ -132,14 +123,15 @@ TEST_F(ReacquisitionTest, AConfirmationFollowsATargetFasterThanTheWideCaptureToI
   // has no motion to carry it by: started at the candidate, both trackers miss the target. The outline's
   // best match near the candidate (reacquire_max_motion_rel: 50 px) puts the wide tracker on it.
   const Vec3 motion(0.3, 0.0, 0.0);
-  const int with_cue = framesToConfirmMoving(reacquisition, renderer, truth, motion, 8);
+  ReacquisitionStep step;
+  const int with_cue = framesToConfirmMoving(reacquisition, renderer, truth, motion, 8, 40U, step);
   EXPECT_GE(with_cue, 0) << "a target moving 30 px a frame was never confirmed";
   EXPECT_LE(with_cue, 3) << "a candidate on frame 0 or 1, confirmed on the next two";
   NavigationParams off = params;
   off.reacquire_confirm_at_cue = false;
   LocalReacquisition control;
   ASSERT_TRUE(control.init(test::vgaCamera(), model, off, NearRangeParams{}).ok);
-  EXPECT_EQ(framesToConfirmMoving(control, renderer, truth, motion, 8), -1)
+  EXPECT_EQ(framesToConfirmMoving(control, renderer, truth, motion, 8, 40U, step), -1)
       << "without the cue the first confirmation loses the candidate on every frame";
 }
 
