@@ -45,12 +45,16 @@ EvidenceVerdict imageEvidenceVerdict(const NearRangeResult& r, const NavigationP
   // A fit too uncertain to be delivered on its own cannot overrule the filter either: the track would
   // restart from a pose the image does not vouch for (case low_contrast_octagon frame 103: 2.9 deg 1-sigma,
   // 6.3 deg off, and the restarted filter then disputed the right fits that followed).
-  const PoseSigmas sigma = poseSigmas(r.pose, r.covariance);
-  const bool certain = (params.max_valid_attitude_sigma_deg <= 0.0 ||
-                        sigma.attitude_deg <= params.max_valid_attitude_sigma_deg) &&
-                       (params.max_valid_position_sigma_rel <= 0.0 ||
-                        sigma.position_rel <= params.max_valid_position_sigma_rel);
-  return certain ? EvidenceVerdict::kGood : EvidenceVerdict::kUncertain;
+  return withinValidSigmas(r.pose, r.covariance, params) ? EvidenceVerdict::kGood
+                                                         : EvidenceVerdict::kUncertain;
+}
+
+bool withinValidSigmas(const Pose& pose, const Mat6& covariance, const NavigationParams& params) {
+  const PoseSigmas sigma = poseSigmas(pose, covariance);
+  return (params.max_valid_attitude_sigma_deg <= 0.0 ||
+          sigma.attitude_deg <= params.max_valid_attitude_sigma_deg) &&
+         (params.max_valid_position_sigma_rel <= 0.0 ||
+          sigma.position_rel <= params.max_valid_position_sigma_rel);
 }
 
 bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params) {
@@ -66,6 +70,11 @@ bool minimalFitMissesOutline(const NearRangeResult& r, const NavigationParams& p
   // at 0.6-0.9 deg 1-sigma, valid for 4 frames.
   return params.minimal_fit_max_missing_lines >= 0 && r.lines_used <= kMinimalFitLines &&
          r.lines_total - r.lines_used > params.minimal_fit_max_missing_lines;
+}
+
+bool fitIsComplete(const NearRangeResult& r) {
+  return r.status != TrackStatus::kLost && r.lines_total > 0 && r.lines_used == r.lines_total &&
+         (r.flags & kFlagNarrowFace) == 0U;
 }
 
 void FdirMonitor::init(const NavigationParams& params, const PolygonModel& model, double focal_px) {

@@ -276,8 +276,14 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     const bool far_beyond_gate = nav.disputed_max_nis > 0.0 && m_last_pose_update.dof == 6 &&
                                  m_last_pose_update.nis > nav.disputed_max_nis;
     const bool jumped = disputed && (turned || moved_in_range || far_beyond_gate);
-    deliver(r.pose, r.covariance, faults == 0U ? r.quality : 0.5 * r.quality, out, doubted || m_track_doubted,
-            r.systematic_gain);
+    // The filter's estimate after a complete fit it accepted, certain on its own, carries the frames before
+    // it; the error of a partial or uncertain fit repeats from frame to frame, and averaging it only hides
+    // it: such a fit is delivered as measured (deliver_filtered_pose).
+    m_pose_filtered = nav.deliver_filtered_pose && check.innovation_accepted && fitIsComplete(r) &&
+                      withinValidSigmas(r.pose, r.covariance * r.systematic_gain, nav);
+    deliver(m_pose_filtered ? m_filter.pose() : r.pose,
+            m_pose_filtered ? m_filter.poseCovariance() : r.covariance,
+            faults == 0U ? r.quality : 0.5 * r.quality, out, doubted || m_track_doubted, r.systematic_gain);
     m_pose_jumped = jumped;
     const bool misses_outline = minimalFitMissesOutline(r, nav);
     if (jumped || misses_outline) {
@@ -331,6 +337,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_mirror_nis = -1.0;
   m_pose_jumped = false;
   m_range_broken = false;
+  m_pose_filtered = false;
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;
   out.frame_number = m_last_frame_number;

@@ -210,6 +210,27 @@ TEST(Fdir, EvidenceVerdictNamesTheFirstTestAFitFails) {
     EXPECT_STRNE(toString(static_cast<EvidenceVerdict>(v)), "?") << v;
 }
 
+// deliver_filtered_pose: only a fit with every selected line and no face seen as a narrow strip is complete;
+// the other flags (a rival, the texture split) say nothing about how much of the outline it rests on.
+TEST(Fdir, AFitIsCompleteWithEverySelectedLineAndNoNarrowFace) {
+  NearRangeResult r = goodNear();
+  EXPECT_TRUE(fitIsComplete(r));
+  r.flags |= kFlagAmbiguous | kFlagTextureFallback;
+  EXPECT_TRUE(fitIsComplete(r));
+  r = goodNear();
+  r.lines_used = 3;
+  EXPECT_FALSE(fitIsComplete(r));
+  r = goodNear();
+  r.flags |= kFlagNarrowFace;
+  EXPECT_FALSE(fitIsComplete(r));
+  r = goodNear();
+  r.status = TrackStatus::kLost;
+  EXPECT_FALSE(fitIsComplete(r));
+  r = goodNear();
+  r.lines_used = r.lines_total = 0;
+  EXPECT_FALSE(fitIsComplete(r));
+}
+
 // A fit whose depth-mirrored rival fits as well overrules nothing on its own, but it may continue a fit
 // that had no such rival (a reacquisition's confirmation); everything else is asked of it still.
 TEST(Fdir, AnAmbiguousFitIsGoodEvidenceOnlyWhereItContinuesARivalFreeOne) {

@@ -282,6 +282,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.twin_by_continuity = sol.twin_by_continuity;
     f.kept_branch = pipeline->lastFitKeptTheBranch();
     f.mirror_resolved = pipeline->lastMirrorResolved();
+    f.pose_filtered = pipeline->lastPoseFiltered();
     f.near_twin_rival = pipeline->lastNearTwinRival();
     f.find_on_branch = !f.reacquired || pipeline->lastFindOnKnownBranch();
     f.jumped = pipeline->lastPoseJumped();

@@ -68,6 +68,16 @@ constexpr int kMinimalFitLines = 4;
 /// `minimal_fit_max_missing_lines` selected lines the image did not give: tracked, never valid.
 bool minimalFitMissesOutline(const NearRangeResult& r, const NavigationParams& params);
 
+/// A pose known to `max_valid_attitude_sigma_deg` and `max_valid_position_sigma_rel` by `covariance` (each
+/// limit 0: not checked): what validity asks of an undoubted pose, and image evidence of its fit.
+bool withinValidSigmas(const Pose& pose, const Mat6& covariance, const NavigationParams& params);
+
+/// A near-range fit whose error is mostly its own noise: every selected line found and no tracked face seen
+/// as a narrow strip beside its lines (kFlagNarrowFace). A partial fit leans on fewer lines the same way
+/// frame after frame, so its error repeats and a filter averaging it only hides it
+/// (`[navigation] deliver_filtered_pose`).
+bool fitIsComplete(const NearRangeResult& r);
+
 class FdirMonitor {
  public:
   /// The model and `focal_px` derive the plausibility limits the parameters leave 0: below, the camera

@@ -116,6 +116,16 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
           "14 698 and confidently wrong frames 7 -> 4, octagon/15 and octagon/29 at 5.1-6.8 % of the "
           "range with 1-sigma 1.8-2.3 %); 0 switches the check off"},
          p.max_valid_position_sigma_rel);
+  v.boolean({"navigation", "deliver_filtered_pose", "-", 0, 1,
+             "a near-range fit the filter accepted is delivered as the filter's estimate after it (pose and "
+             "covariance, times the fit's systematic gain): it carries the frames before, so its 1-sigma is "
+             "judged, by max_valid_* and the doubted limit, with what the track knows, not one frame alone. "
+             "Only for a complete fit (every selected line found, no face seen as a narrow strip: "
+             "nav::fitIsComplete), whose error is mostly its own noise; a partial fit's error repeats from "
+             "frame to frame and averaging it only hides it (campaign box/25, box/37: with every accepted "
+             "fit filtered, 5-12 deg off at 0.9-1.5 deg 1-sigma), so it is delivered, and judged, as "
+             "measured. Measured in the top-level README, stop 69; false: every pose is the fit's own"},
+            p.deliver_filtered_pose);
   v.real({"navigation", "doubted_max_attitude_sigma_deg", "deg", 0.0, 180.0,
           "a near-range pose that is doubted (the filter's innovation gate rejects it, fewer than "
           "doubt_min_line_fraction of its selected lines were used, or its track began with a "

@@ -84,6 +84,9 @@ class NavigationPipeline {
   /// Whether the last frame's depth-mirrored rival (kFlagAmbiguous) was resolved by the prediction and so
   /// no rival ([navigation] mirror_resolved_by_prediction): for the gate replay.
   bool lastMirrorResolved() const { return m_mirror_resolved; }
+  /// Whether the last frame's pose is the filter's estimate after its fit ([navigation]
+  /// deliver_filtered_pose), not the fit as measured.
+  bool lastPoseFiltered() const { return m_pose_filtered; }
   /// Whether the last find (lastReacquisition().found) continued a branch a valid pose kept and so confirmed
   /// it (find_confirms_only_from_reference): for the gate replay.
   bool lastFindOnKnownBranch() const { return m_find_on_known_branch; }
@@ -179,6 +182,7 @@ class NavigationPipeline {
   double m_max_view_cos = 1.0;         ///< cos of [navigation] max_valid_view_angle_deg; 1: the check is off
   bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
+  bool m_pose_filtered = false;        ///< lastPoseFiltered()
   bool m_near_twin_rival = false;      ///< lastNearTwinRival()
   bool m_mirror_resolved = false;      ///< lastMirrorResolved()
   bool m_pose_jumped = false;          ///< lastPoseJumped()

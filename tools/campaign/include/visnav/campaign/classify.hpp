@@ -103,6 +103,7 @@ struct FrameOutcome {
   /// With `oracle` >= 0: the first image-evidence test that fit fails (nav::EvidenceVerdict as int, 0: it
   /// passes them all); -1 not asked. Says why the image does not support a frame with `oracle` 0.
   int oracle_evidence = -1;
+  bool pose_filtered = false;  ///< NavigationPipeline::lastPoseFiltered ([navigation] deliver_filtered_pose)
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
