@@ -121,10 +121,12 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "covariance, times the fit's systematic gain): it carries the frames before, so its 1-sigma is "
              "judged, by max_valid_* and the doubted limit, with what the track knows, not one frame alone. "
              "Only for a complete fit (every selected line found, no face seen as a narrow strip: "
-             "nav::fitIsComplete), whose error is mostly its own noise; a partial fit's error repeats from "
-             "frame to frame and averaging it only hides it (campaign box/25, box/37: with every accepted "
-             "fit filtered, 5-12 deg off at 0.9-1.5 deg 1-sigma), so it is delivered, and judged, as "
-             "measured. Measured in the top-level README, stop 69; false: every pose is the fit's own"},
+             "nav::fitIsComplete) that is certain on its own (max_valid_*), whose error is mostly its own "
+             "noise; a partial or uncertain fit's error repeats from frame to frame and averaging it only "
+             "hides it (campaign box/25, box/37: with every accepted fit filtered, 5-14 deg off at 0.6-1.5 "
+             "deg 1-sigma; plate/5023: uncertain complete fits filtered to 1.8 deg 1-sigma, 5.3 deg off), "
+             "so it is delivered, and judged, as measured. Measured in the top-level README, stop 69; "
+             "false: every pose is the fit's own"},
             p.deliver_filtered_pose);
   v.real({"navigation", "doubted_max_attitude_sigma_deg", "deg", 0.0, 180.0,
           "a near-range pose that is doubted (the filter's innovation gate rejects it, fewer than "
