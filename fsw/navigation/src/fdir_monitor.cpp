@@ -77,6 +77,13 @@ bool fitIsComplete(const NearRangeResult& r) {
          (r.flags & kFlagNarrowFace) == 0U;
 }
 
+bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params) {
+  if (!params.deliver_filtered_pose) return false;
+  if (fitIsComplete(r)) return true;
+  return params.deliver_filtered_partial_fit && r.status != TrackStatus::kLost && r.lines_used > 0 &&
+         (r.flags & kFlagNarrowFace) == 0U;
+}
+
 void FdirMonitor::init(const NavigationParams& params, const PolygonModel& model, double focal_px) {
   m_params = params;
   // The camera cannot be inside the target; beyond the depth where the target spans 4 px no 6-DOF fit is

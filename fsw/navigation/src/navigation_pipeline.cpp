@@ -279,11 +279,16 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     // The filter's estimate after a complete fit it accepted, certain on its own, carries the frames before
     // it; the error of a partial or uncertain fit repeats from frame to frame, and averaging it only hides
     // it: such a fit is delivered as measured (deliver_filtered_pose).
-    m_pose_filtered = nav.deliver_filtered_pose && check.innovation_accepted && fitIsComplete(r) &&
+    m_pose_filtered = check.innovation_accepted && fitMayBeFiltered(r, nav) &&
                       withinValidSigmas(r.pose, r.covariance * r.systematic_gain, nav);
     deliver(m_pose_filtered ? m_filter.pose() : r.pose,
             m_pose_filtered ? m_filter.poseCovariance() : r.covariance,
             faults == 0U ? r.quality : 0.5 * r.quality, out, doubted || m_track_doubted, r.systematic_gain);
+    // A filter restart (restartFilter) starts from the fits as measured, not from the estimates that averaged
+    // them: those lag a change of motion the fits already show (campaign box/23: restarted from them, the
+    // filter took a motion no fit showed, NIS 14-85 after it).
+    if (m_pose_filtered)
+      m_delivered[m_delivered_newest] = DeliveredPose{r.pose, r.covariance, m_last_exposure_ns};
     m_pose_jumped = jumped;
     const bool misses_outline = minimalFitMissesOutline(r, nav);
     if (jumped || misses_outline) {

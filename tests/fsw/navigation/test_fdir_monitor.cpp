@@ -231,6 +231,27 @@ TEST(Fdir, AFitIsCompleteWithEverySelectedLineAndNoNarrowFace) {
   EXPECT_FALSE(fitIsComplete(r));
 }
 
+// deliver_filtered_pose: a complete fit may be delivered as the filter's estimate; a partial one only with
+// deliver_filtered_partial_fit, and never one beside a face seen as a narrow strip.
+TEST(Fdir, AFitMayBeFilteredWhenCompleteOrPartialWithoutANarrowFace) {
+  NavigationParams p;
+  p.deliver_filtered_partial_fit = false;
+  NearRangeResult r = goodNear();
+  EXPECT_TRUE(fitMayBeFiltered(r, p));
+  r.lines_used = r.lines_total - 1;
+  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  p.deliver_filtered_partial_fit = true;
+  EXPECT_TRUE(fitMayBeFiltered(r, p));
+  r.flags |= kFlagNarrowFace;
+  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  r = goodNear();
+  r.status = TrackStatus::kLost;
+  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  r = goodNear();
+  p.deliver_filtered_pose = false;
+  EXPECT_FALSE(fitMayBeFiltered(r, p)) << "nothing is filtered with deliver_filtered_pose off";
+}
+
 // A fit whose depth-mirrored rival fits as well overrules nothing on its own, but it may continue a fit
 // that had no such rival (a reacquisition's confirmation); everything else is asked of it still.
 TEST(Fdir, AnAmbiguousFitIsGoodEvidenceOnlyWhereItContinuesARivalFreeOne) {

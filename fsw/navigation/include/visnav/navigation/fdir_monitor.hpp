@@ -78,6 +78,12 @@ bool withinValidSigmas(const Pose& pose, const Mat6& covariance, const Navigatio
 /// (`[navigation] deliver_filtered_pose`).
 bool fitIsComplete(const NearRangeResult& r);
 
+/// A near-range fit whose pose may be delivered as the filter's estimate after it (`[navigation]
+/// deliver_filtered_pose`, when the filter accepted it and it is certain on its own): a complete fit, or with
+/// `deliver_filtered_partial_fit` any fit without a face seen as a narrow strip (kFlagNarrowFace), whose two
+/// steps the tracker cannot tell apart and whose error therefore repeats most.
+bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params);
+
 class FdirMonitor {
  public:
   /// The model and `focal_px` derive the plausibility limits the parameters leave 0: below, the camera

@@ -128,6 +128,11 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "so it is delivered, and judged, as measured. Measured in the top-level README, stop 69; "
              "false: every pose is the fit's own"},
             p.deliver_filtered_pose);
+  v.boolean({"navigation", "deliver_filtered_partial_fit", "-", 0, 1,
+             "deliver_filtered_pose also for a fit that misses some of its selected lines, without a face "
+             "seen as a narrow strip, certain on its own (max_valid_*). Off: measured in the top-level "
+             "README, stop 70"},
+            p.deliver_filtered_partial_fit);
   v.real({"navigation", "doubted_max_attitude_sigma_deg", "deg", 0.0, 180.0,
           "a near-range pose that is doubted (the filter's innovation gate rejects it, fewer than "
           "doubt_min_line_fraction of its selected lines were used, or its track began with a "

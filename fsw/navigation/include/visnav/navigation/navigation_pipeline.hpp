@@ -209,7 +209,7 @@ class NavigationPipeline {
   Pose m_last_pose;                 ///< last trusted 6-DOF pose
   bool m_have_pose = false;
   /// The last two poses delivered on a frame (restartFilter), the newest at m_delivered_newest: exposure 0
-  /// when none.
+  /// when none. As measured: where the filter's estimate was delivered (lastPoseFiltered), its fit.
   struct DeliveredPose {
     Pose pose;
     Mat6 covariance = Mat6::Identity();
