@@ -232,17 +232,26 @@ TEST(Fdir, AFitIsCompleteWithEverySelectedLineAndNoNarrowFace) {
 }
 
 // deliver_filtered_pose: a complete fit may be delivered as the filter's estimate; a partial one only with
-// deliver_filtered_partial_fit, and never one beside a face seen as a narrow strip.
+// deliver_filtered_partial_fit, and never one its lines doubt or one beside a face seen as a narrow strip.
 TEST(Fdir, AFitMayBeFilteredWhenCompleteOrPartialWithoutANarrowFace) {
   NavigationParams p;
   p.deliver_filtered_partial_fit = false;
   NearRangeResult r = goodNear();
   EXPECT_TRUE(fitMayBeFiltered(r, p));
-  r.lines_used = r.lines_total - 1;
+  r.lines_total = 8;
+  r.lines_used = 7;
   EXPECT_FALSE(fitMayBeFiltered(r, p));
   p.deliver_filtered_partial_fit = true;
   EXPECT_TRUE(fitMayBeFiltered(r, p));
   r.flags |= kFlagNarrowFace;
+  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  r.flags = 0U;
+  r.lines_used = 5;  // under doubt_min_line_fraction 0.75 of 8: the lines doubt it
+  EXPECT_TRUE(fitDoubtedByItsLines(r, p));
+  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  r.lines_total = 4;  // at most doubt_every_line_up_to: every line counts
+  r.lines_used = 3;
+  EXPECT_TRUE(fitDoubtedByItsLines(r, p));
   EXPECT_FALSE(fitMayBeFiltered(r, p));
   r = goodNear();
   r.status = TrackStatus::kLost;
