@@ -286,8 +286,8 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
             m_pose_filtered ? m_filter.poseCovariance() : r.covariance,
             faults == 0U ? r.quality : 0.5 * r.quality, out, doubted || m_track_doubted, r.systematic_gain);
     // A filter restart (restartFilter) starts from the fits as measured, not from the estimates that averaged
-    // them: those lag a change of motion the fits already show (campaign box/23: restarted from them, the
-    // filter took a motion no fit showed, NIS 14-85 after it).
+    // them: those lag a change of motion the fits already show (campaign box/23 with partial fits filtered:
+    // restarted from them, the filter took a motion no fit showed, NIS 14-85 after it).
     if (m_pose_filtered)
       m_delivered[m_delivered_newest] = DeliveredPose{r.pose, r.covariance, m_last_exposure_ns};
     m_pose_jumped = jumped;
