@@ -280,7 +280,7 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     // it; the error of a partial or uncertain fit repeats from frame to frame, and averaging it only hides
     // it: such a fit is delivered as measured (deliver_filtered_pose; deliver_filtered_partial_fit, off,
     // takes a partial fit its lines do not doubt too: fitMayBeFiltered).
-    m_pose_filtered = check.innovation_accepted && fitMayBeFiltered(r, nav) &&
+    m_pose_filtered = check.innovation_accepted && fitMayBeFiltered(r, nav, doubted || m_track_doubted) &&
                       withinValidSigmas(r.pose, r.covariance * r.systematic_gain, nav);
     deliver(m_pose_filtered ? m_filter.pose() : r.pose,
             m_pose_filtered ? m_filter.poseCovariance() : r.covariance,

@@ -232,33 +232,36 @@ TEST(Fdir, AFitIsCompleteWithEverySelectedLineAndNoNarrowFace) {
 }
 
 // deliver_filtered_pose: a complete fit may be delivered as the filter's estimate; a partial one only with
-// deliver_filtered_partial_fit, and never one its lines doubt or one beside a face seen as a narrow strip.
+// deliver_filtered_partial_fit, and never one doubted (by its lines or otherwise) or one beside a face seen
+// as a narrow strip.
 TEST(Fdir, AFitMayBeFilteredWhenCompleteOrPartialWithoutANarrowFace) {
   NavigationParams p;
   p.deliver_filtered_partial_fit = false;
   NearRangeResult r = goodNear();
-  EXPECT_TRUE(fitMayBeFiltered(r, p));
+  EXPECT_TRUE(fitMayBeFiltered(r, p, false));
   r.lines_total = 8;
   r.lines_used = 7;
-  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   p.deliver_filtered_partial_fit = true;
-  EXPECT_TRUE(fitMayBeFiltered(r, p));
+  EXPECT_TRUE(fitMayBeFiltered(r, p, false));
+  EXPECT_FALSE(fitMayBeFiltered(r, p, true)) << "a partial fit doubted for another reason";
   r.flags |= kFlagNarrowFace;
-  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   r.flags = 0U;
   r.lines_used = 5;  // under doubt_min_line_fraction 0.75 of 8: the lines doubt it
   EXPECT_TRUE(fitDoubtedByItsLines(r, p));
-  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   r.lines_total = 4;  // at most doubt_every_line_up_to: every line counts
   r.lines_used = 3;
   EXPECT_TRUE(fitDoubtedByItsLines(r, p));
-  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   r = goodNear();
   r.status = TrackStatus::kLost;
-  EXPECT_FALSE(fitMayBeFiltered(r, p));
+  EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   r = goodNear();
+  EXPECT_TRUE(fitMayBeFiltered(r, p, true)) << "a complete fit is filtered, doubted or not (stop 69)";
   p.deliver_filtered_pose = false;
-  EXPECT_FALSE(fitMayBeFiltered(r, p)) << "nothing is filtered with deliver_filtered_pose off";
+  EXPECT_FALSE(fitMayBeFiltered(r, p, false)) << "nothing is filtered with deliver_filtered_pose off";
 }
 
 // A fit whose depth-mirrored rival fits as well overrules nothing on its own, but it may continue a fit
