@@ -80,16 +80,18 @@ bool fitIsComplete(const NearRangeResult& r) {
          (r.flags & kFlagNarrowFace) == 0U;
 }
 
-bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params, bool doubted) {
+bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params, bool find_doubted) {
   if (!params.deliver_filtered_pose) return false;
   if (fitIsComplete(r)) return true;
   // Not one the lines doubt (nearFitDoubted): averaging such a fit's repeated error shrinks its covariance
   // under the doubted limit it was to meet (campaign box/5030: 5 of 8 lines, 22-25 deg off at 1.4-2.6 deg
-  // 1-sigma, withheld as measured; filtered to 0.7-0.9 deg and delivered for 12 frames). Nor one doubted
-  // otherwise, for the same reason (campaign octagon/172 without its near-twin checks: a find on the quarter
-  // turn, 6 of 8 lines at 1.2-2.2 deg, filtered to 0.8-1.2 deg, cleared its doubt and was delivered 88 deg
-  // off).
-  return params.deliver_filtered_partial_fit && !doubted && r.status != TrackStatus::kLost &&
+  // 1-sigma, withheld as measured; filtered to 0.7-0.9 deg and delivered for 12 frames). Nor one on a track
+  // whose find is still doubted: the estimate's covariance would clear a doubt only the fit's own may clear
+  // (campaign octagon/172 without its near-twin checks: a find on the quarter turn, 6 of 8 lines at 1.2-2.2
+  // deg, filtered to 0.8-1.2 deg, delivered 88 deg off for 5 frames). The filter's other doubts (its NIS, a
+  // restart) are what averaging with the frames before settles: excluding them too kept 4 of the 41 frames
+  // gained on campaign seeds 1-40.
+  return params.deliver_filtered_partial_fit && !find_doubted && r.status != TrackStatus::kLost &&
          r.lines_used > 0 && !fitDoubtedByItsLines(r, params) && (r.flags & kFlagNarrowFace) == 0U;
 }
 

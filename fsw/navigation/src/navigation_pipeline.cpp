@@ -278,9 +278,9 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
     const bool jumped = disputed && (turned || moved_in_range || far_beyond_gate);
     // The filter's estimate after a complete fit it accepted, certain on its own, carries the frames before
     // it; the error of a partial or uncertain fit repeats from frame to frame, and averaging it only hides
-    // it: such a fit is delivered as measured (deliver_filtered_pose; deliver_filtered_partial_fit, off,
-    // takes a partial fit its lines do not doubt too: fitMayBeFiltered).
-    m_pose_filtered = check.innovation_accepted && fitMayBeFiltered(r, nav, doubted || m_track_doubted) &&
+    // it: such a fit is delivered as measured (deliver_filtered_pose; deliver_filtered_partial_fit takes a
+    // partial fit its lines do not doubt too, unless its track's find is still doubted: fitMayBeFiltered).
+    m_pose_filtered = check.innovation_accepted && fitMayBeFiltered(r, nav, m_track_doubted) &&
                       withinValidSigmas(r.pose, r.covariance * r.systematic_gain, nav);
     deliver(m_pose_filtered ? m_filter.pose() : r.pose,
             m_pose_filtered ? m_filter.poseCovariance() : r.covariance,

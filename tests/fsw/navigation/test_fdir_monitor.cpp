@@ -232,8 +232,8 @@ TEST(Fdir, AFitIsCompleteWithEverySelectedLineAndNoNarrowFace) {
 }
 
 // deliver_filtered_pose: a complete fit may be delivered as the filter's estimate; a partial one only with
-// deliver_filtered_partial_fit, and never one doubted (by its lines or otherwise) or one beside a face seen
-// as a narrow strip.
+// deliver_filtered_partial_fit, and never one its lines doubt, one on a track whose find is still doubted, or
+// one beside a face seen as a narrow strip.
 TEST(Fdir, AFitMayBeFilteredWhenCompleteOrPartialWithoutANarrowFace) {
   NavigationParams p;
   p.deliver_filtered_partial_fit = false;
@@ -244,7 +244,7 @@ TEST(Fdir, AFitMayBeFilteredWhenCompleteOrPartialWithoutANarrowFace) {
   EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   p.deliver_filtered_partial_fit = true;
   EXPECT_TRUE(fitMayBeFiltered(r, p, false));
-  EXPECT_FALSE(fitMayBeFiltered(r, p, true)) << "a partial fit doubted for another reason";
+  EXPECT_FALSE(fitMayBeFiltered(r, p, true)) << "a partial fit on a track whose find is still doubted";
   r.flags |= kFlagNarrowFace;
   EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   r.flags = 0U;
@@ -259,7 +259,8 @@ TEST(Fdir, AFitMayBeFilteredWhenCompleteOrPartialWithoutANarrowFace) {
   r.status = TrackStatus::kLost;
   EXPECT_FALSE(fitMayBeFiltered(r, p, false));
   r = goodNear();
-  EXPECT_TRUE(fitMayBeFiltered(r, p, true)) << "a complete fit is filtered, doubted or not (stop 69)";
+  EXPECT_TRUE(fitMayBeFiltered(r, p, true))
+      << "a complete fit is filtered, its find doubted or not (stop 69)";
   p.deliver_filtered_pose = false;
   EXPECT_FALSE(fitMayBeFiltered(r, p, false)) << "nothing is filtered with deliver_filtered_pose off";
 }

@@ -81,9 +81,9 @@ bool fitIsComplete(const NearRangeResult& r);
 /// A near-range fit whose pose may be delivered as the filter's estimate after it (`[navigation]
 /// deliver_filtered_pose`, when the filter accepted it and it is certain on its own): a complete fit, or with
 /// `deliver_filtered_partial_fit` a partial fit its lines do not doubt (fitDoubtedByItsLines) without a face
-/// seen as a narrow strip (kFlagNarrowFace), whose two steps the tracker cannot tell apart, and not `doubted`
-/// for any other reason (the pipeline's doubt: the filter's, a find's not yet cleared).
-bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params, bool doubted);
+/// seen as a narrow strip (kFlagNarrowFace), whose two steps the tracker cannot tell apart, on a track not
+/// `find_doubted` (it began with a reacquisition's find whose doubt no pose has cleared yet).
+bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params, bool find_doubted);
 
 /// The part of nearFitDoubted that is the fit's lines: fewer used than `doubt_min_line_fraction` of those
 /// selected, or any unused of at most `doubt_every_line_up_to`.

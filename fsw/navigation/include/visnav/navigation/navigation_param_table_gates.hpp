@@ -128,16 +128,16 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "so it is delivered, and judged, as measured. Measured in the top-level README, stop 69; "
              "false: every pose is the fit's own"},
             p.deliver_filtered_pose);
-  v.boolean(
-      {"navigation", "deliver_filtered_partial_fit", "-", 0, 1,
-       "deliver_filtered_pose also for a partial fit: one that misses selected lines, but not so "
-       "many that they doubt it (doubt_min_line_fraction, doubt_every_line_up_to: "
-       "nav::fitDoubtedByItsLines), without a face seen as a narrow strip, certain on its own. Off: "
-       "without the line test it tracked +246 / +200 / +123 frames on campaign seeds 1 / 5001 / 7001 "
-       "(40 scenes a family) and delivered 19 confidently wrong frames more on seed 5001 (box/5030: "
-       "5 of 8 lines, 22-25 deg off at 1.4-2.6 deg 1-sigma, filtered to 0.7-0.9 deg); with it, top-level "
-       "README, stop 70"},
-      p.deliver_filtered_partial_fit);
+  v.boolean({"navigation", "deliver_filtered_partial_fit", "-", 0, 1,
+             "deliver_filtered_pose also for a partial fit: one that misses selected lines, but not so "
+             "many that they doubt it (doubt_min_line_fraction, doubt_every_line_up_to: "
+             "nav::fitDoubtedByItsLines), without a face seen as a narrow strip, certain on its own, on a "
+             "track whose reacquisition find is no longer doubted (nav::fitMayBeFiltered). On since stop 71: "
+             "+41 / +73 / +64 tracked frames on campaign seeds 1 / 5001 / 7001 (40 scenes a family), no "
+             "confidently wrong frame more (top-level README, stops 70-71). Without the line test +246 / "
+             "+200 / +123 frames, but 19 confidently wrong frames more on seed 5001 (box/5030: 5 of 8 lines, "
+             "22-25 deg off at 1.4-2.6 deg 1-sigma, filtered to 0.7-0.9 deg); false: only complete fits"},
+            p.deliver_filtered_partial_fit);
   v.real({"navigation", "doubted_max_attitude_sigma_deg", "deg", 0.0, 180.0,
           "a near-range pose that is doubted (the filter's innovation gate rejects it, fewer than "
           "doubt_min_line_fraction of its selected lines were used, or its track began with a "
