@@ -88,9 +88,10 @@ bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params, 
   // 1-sigma, withheld as measured; filtered to 0.7-0.9 deg and delivered for 12 frames). Nor one on a track
   // whose find is still doubted: the estimate's covariance would clear a doubt only the fit's own may clear
   // (campaign octagon/172 without its near-twin checks: a find on the quarter turn, 6 of 8 lines at 1.2-2.2
-  // deg, filtered to 0.8-1.2 deg, delivered 88 deg off for 5 frames). The filter's other doubts (its NIS, a
-  // restart) are what averaging with the frames before settles: excluding them too kept 4 of the 41 frames
-  // gained on campaign seeds 1-40.
+  // deg, filtered to 0.8-1.2 deg, delivered 88 deg off for 5 frames). Excluding the filter's doubts too (its
+  // NIS, a restart) kept only 4 of the 41 frames gained on campaign seeds 1-40, no wrong frame fewer; a
+  // complete fit on a find's track stays filtered (delivered as measured there, seeds 1-40 lost 90 frames of
+  // four-line plates whose own 1-sigma stays above the doubted limit, no wrong frame fewer).
   return params.deliver_filtered_partial_fit && !find_doubted && r.status != TrackStatus::kLost &&
          r.lines_used > 0 && !fitDoubtedByItsLines(r, params) && (r.flags & kFlagNarrowFace) == 0U;
 }

@@ -39,7 +39,7 @@ struct NavigationParams {
   double max_valid_position_sigma_rel = 0.0167;
   double doubted_max_attitude_sigma_deg = 1.0;  ///< the same for a near-range pose that is doubted (below)
   bool deliver_filtered_pose = true;  ///< a complete fit the filter accepted is delivered as its estimate
-  bool deliver_filtered_partial_fit = true;  ///< the same for a partial fit nothing doubts
+  bool deliver_filtered_partial_fit = true;  ///< the same for a partial fit its lines do not doubt
   double doubt_min_line_fraction = 0.75;     ///< fewer used lines / selected lines: the pose is doubted
   double doubt_nis_chi2 = 12.59;             ///< a filter NIS above this (gate passed): the pose is doubted
   int doubt_every_line_up_to = 6;            ///< with at most this many selected lines, any unused one
