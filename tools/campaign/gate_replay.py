@@ -45,7 +45,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               it, so exact only with the shipped gates; --no-branch-continuity ignores it)
   awaited     an acquisition's pose is not valid on its own frame; the next frame confirms the branch if it is
               a near-range frame with a certain, rival-free pose ([navigation] acquisition_awaits_near_range;
-              --no-acquisition-await: valid on its own frame and confirming, as before)
+              --no-acquisition-await: valid on its own frame and confirming, as before) that is not an
+              outline-only fit missing a line ([navigation] handover_needs_whole_outline, stop 72;
+              --no-handover-whole-outline: any such fit confirms)
   view        a candidate that showed no face of the model within [navigation] max_valid_view_angle_deg
               (frames.csv column shows_face, as the pipeline judged it; --no-view-gate ignores it)
   jump        a near-range candidate the pipeline withheld as a disputed jump (frames.csv column jumped:
@@ -84,6 +86,7 @@ AMBIGUOUS = 0x400          # kFlagAmbiguous
 RESIDUAL_FALLBACK = 0x100  # kFlagResidualFallback
 FAULT_INNOVATION = 0x10    # kFaultInnovation
 NARROW_FACE = 0x1000       # kFlagNarrowFace
+OUTLINE_PARTIAL = 0x204    # kFlagSilhouetteOnly | kFlagLineRejected
 
 
 def parse_args(argv):
@@ -113,6 +116,7 @@ def parse_args(argv):
     p.add_argument('--weak-evidence-invalid', action='store_true')
     p.add_argument('--no-view-gate', action='store_true')
     p.add_argument('--no-acquisition-await', action='store_true')
+    p.add_argument('--no-handover-whole-outline', action='store_true')
     p.add_argument('--no-branch-continuity', action='store_true')
     p.add_argument('--no-jump-gate', action='store_true')
     p.add_argument('--no-mirror-resolved', action='store_true')
@@ -149,6 +153,8 @@ def replay_scene(rows, a):
         if r['mode'] != 'near_range':
             start_fits_pending = 0
         awaited = awaiting and r['mode'] == 'near_range'
+        if awaited and not a.no_handover_whole_outline:
+            awaited = (int(r['near_flags']) & OUTLINE_PARTIAL) != OUTLINE_PARTIAL
         if r['mode'] != 'acquisition':
             awaiting = False
         if r['reacquired'] == '1':

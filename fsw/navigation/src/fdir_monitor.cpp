@@ -80,6 +80,14 @@ bool fitIsComplete(const NearRangeResult& r) {
          (r.flags & kFlagNarrowFace) == 0U;
 }
 
+bool fitConfirmsHandOver(const NearRangeResult& r, const NavigationParams& params) {
+  // Campaign octagon/62 (full run of seeds 1-200, stop 71) f197: an acquisition 120 deg off, its
+  // depth-reversed twin 3 deg from the truth, confirmed by an outline-only fit of 5 of 7 lines at 0.5 deg
+  // 1-sigma. The outline alone is what the two share; a missing line removes what might tell them apart.
+  constexpr std::uint32_t kOutlinePartial = kFlagSilhouetteOnly | kFlagLineRejected;
+  return !params.handover_needs_whole_outline || (r.flags & kOutlinePartial) != kOutlinePartial;
+}
+
 bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params, bool find_doubted) {
   if (!params.deliver_filtered_pose) return false;
   if (fitIsComplete(r)) return true;

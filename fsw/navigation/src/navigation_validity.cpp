@@ -126,7 +126,9 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
                                                                   !m_near_twin_rival && !find_off_branch);
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
-  const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free;
+  // Not by an outline-only fit that missed a line (fitConfirmsHandOver).
+  const bool awaited = m_acquisition_awaits_near && processed_in == NavMode::kNearRange && rival_free &&
+                       fitConfirmsHandOver(m_near_result, m_params.navigation);
   if (processed_in != NavMode::kAcquisition) m_acquisition_awaits_near = false;
   // Evaluated whatever the branch's state, for the campaign's gate replay (lastFitKeptTheBranch).
   // After a jump a fit must also keep the last valid pose's range to count toward the branch, by continuity

@@ -265,6 +265,23 @@ TEST(Fdir, AFitMayBeFilteredWhenCompleteOrPartialWithoutANarrowFace) {
   EXPECT_FALSE(fitMayBeFiltered(r, p, false)) << "nothing is filtered with deliver_filtered_pose off";
 }
 
+// An acquisition's hand-over is not confirmed by an outline-only fit that missed a line (campaign
+// octagon/62: 120 deg off, 5 of 7 outline lines); an outline-only fit of every line, or a partial fit with
+// interior edges, still confirms it.
+TEST(Fdir, AHandOverIsNotConfirmedByAPartialOutline) {
+  NavigationParams p;
+  NearRangeResult r = goodNear();
+  EXPECT_TRUE(fitConfirmsHandOver(r, p));
+  r.flags = kFlagSilhouetteOnly;
+  EXPECT_TRUE(fitConfirmsHandOver(r, p)) << "the whole outline";
+  r.flags = kFlagLineRejected;
+  EXPECT_TRUE(fitConfirmsHandOver(r, p)) << "a partial fit with interior edges";
+  r.flags = kFlagSilhouetteOnly | kFlagLineRejected | kFlagTextureFallback;
+  EXPECT_FALSE(fitConfirmsHandOver(r, p));
+  p.handover_needs_whole_outline = false;
+  EXPECT_TRUE(fitConfirmsHandOver(r, p)) << "off: any fit";
+}
+
 // A fit whose depth-mirrored rival fits as well overrules nothing on its own, but it may continue a fit
 // that had no such rival (a reacquisition's confirmation); everything else is asked of it still.
 TEST(Fdir, AnAmbiguousFitIsGoodEvidenceOnlyWhereItContinuesARivalFreeOne) {

@@ -85,6 +85,12 @@ bool fitIsComplete(const NearRangeResult& r);
 /// `find_doubted` (it began with a reacquisition's find whose doubt no pose has cleared yet).
 bool fitMayBeFiltered(const NearRangeResult& r, const NavigationParams& params, bool find_doubted);
 
+/// The first near-range fit after an acquisition may confirm the acquisition's branch (`[navigation]
+/// acquisition_awaits_near_range`): with `handover_needs_whole_outline`, not when it measured only the
+/// outline (kFlagSilhouetteOnly) and missed a selected line (kFlagLineRejected), what a turned pose whose
+/// outline matches leaves. Rival-freedom and the filter are judged by the caller.
+bool fitConfirmsHandOver(const NearRangeResult& r, const NavigationParams& params);
+
 /// The part of nearFitDoubted that is the fit's lines: fewer used than `doubt_min_line_fraction` of those
 /// selected, or any unused of at most `doubt_every_line_up_to`.
 bool fitDoubtedByItsLines(const NearRangeResult& r, const NavigationParams& params);

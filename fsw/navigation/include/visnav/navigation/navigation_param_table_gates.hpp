@@ -333,6 +333,16 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
        "/16) the near-range fits after it disagreed (NIS 38-146) and were withheld. Costs one frame per "
        "acquisition; false: valid on its own frame"},
       p.acquisition_awaits_near_range);
+  v.boolean(
+      {"navigation", "handover_needs_whole_outline", "-", 0, 1,
+       "the first near-range fit after an acquisition (acquisition_awaits_near_range) confirms its branch "
+       "only if it measured interior edges or every selected outline line: an outline-only fit that "
+       "missed a line (tracker flags 0x200 and 0x4) is what a wrong pose with a matching outline leaves "
+       "(campaign octagon/62 on the full run of seeds 1-200, stop 71: an acquisition 120 deg off whose "
+       "depth-reversed twin was 3 deg from the truth, confirmed by a 5-of-7-line outline fit at 0.5 deg "
+       "1-sigma). Such a fit counts as one of branch_confirm_frames instead. Measured in the top-level "
+       "README, stop 72; false: any valid rival-free fit confirms"},
+      p.handover_needs_whole_outline);
   v.integer({"navigation", "branch_continuity_frames", "count", 0, 1000,
              "after a break of at most this many frames without a valid pose, a near-range fit confirms "
              "the track's branch at once when it is as good as a fit gets: status tracking (every "

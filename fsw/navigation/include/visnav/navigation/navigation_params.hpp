@@ -62,6 +62,7 @@ struct NavigationParams {
   double branch_range_growth_rel_per_frame = 0.005;  ///< that range's tolerance growth (from 3 %, below)
   int branch_range_reference_min_frames = 3;  ///< that range a reference after this many valid in a row
   bool acquisition_awaits_near_range = true;  ///< an acquisition's pose is valid once near range agrees
+  bool handover_needs_whole_outline = true;   ///< that agreement is no outline-only fit that missed a line
   int branch_continuity_frames = 3;  ///< after a break this short, a clean fit that kept the look confirms
   double branch_continuity_look_deg = 3.0;     ///< that look's tolerance, widening per frame since (below)
   int branch_continuity_missing_lines = 1;     ///< selected lines such a fit may miss (its only degradation)
