@@ -42,7 +42,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               judged to have kept the branch by continuity (frames.csv column kept_branch: a clean fit,
               accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
               pose's after a break of at most [navigation] branch_continuity_frames; as the pipeline judged
-              it, so exact only with the shipped gates; --no-branch-continuity ignores it)
+              it, so exact only with the shipped gates; --no-branch-continuity ignores it;
+              --narrow-break-reconfirms, not shipped (stop 73): not across a break in which a near-range
+              candidate flagged as beside a narrow strip, near_flags 0x1000, was withheld)
   awaited     an acquisition's pose is not valid on its own frame; the next frame confirms the branch if it is
               a near-range frame with a certain, rival-free pose ([navigation] acquisition_awaits_near_range;
               --no-acquisition-await: valid on its own frame and confirming, as before) that is not an
@@ -118,6 +120,7 @@ def parse_args(argv):
     p.add_argument('--no-acquisition-await', action='store_true')
     p.add_argument('--no-handover-whole-outline', action='store_true')
     p.add_argument('--no-branch-continuity', action='store_true')
+    p.add_argument('--narrow-break-reconfirms', action='store_true')
     p.add_argument('--no-jump-gate', action='store_true')
     p.add_argument('--no-mirror-resolved', action='store_true')
     p.add_argument('--no-doubt-after-restart', action='store_true')
@@ -133,6 +136,7 @@ def replay_scene(rows, a):
     known, run, bad = True, 0, 0  # the near scenes start from a given pose: the branch is known
     track_doubted = False  # the track began with a find and none of its poses met the doubted limit yet
     awaiting = False  # an acquisition's pose waits for the next near-range frame
+    narrow_break = False  # since the last valid frame a candidate beside a narrow strip was withheld
     out = []
     # A near scene starts from the operator's pose (startNearRange) on its first frame.
     started_near = bool(rows) and rows[0]['mode'] == 'near_range'
@@ -224,7 +228,8 @@ def replay_scene(rows, a):
                 if not a.no_branch_range_after_jump and r.get('range_broken', '0') == '1':
                     motion_agrees = False
                 continuous = (not a.no_branch_continuity and r['mode'] == 'near_range'
-                              and r.get('kept_branch', '0') == '1')
+                              and r.get('kept_branch', '0') == '1'
+                              and not (a.narrow_break_reconfirms and narrow_break))
                 if not a.no_confirmed_sources and (acquisition_pose
                                                    or (r['reacquired'] == '1' and not find_off_branch)
                                                    or (awaited and rival_free) or continuous):
@@ -237,6 +242,10 @@ def replay_scene(rows, a):
                         known = True
                 valid = known
         range_m = float(r['range_m'])
+        if valid:
+            narrow_break = False
+        elif r['mode'] == 'near_range' and r['candidate'] == '1' and int(r['near_flags']) & NARROW_FACE:
+            narrow_break = True
         wrong = valid and (float(r['candidate_position_error_m']) > 0.05 * range_m
                            or float(r['candidate_attitude_error_deg']) > 5.0)
         out.append((valid, wrong))

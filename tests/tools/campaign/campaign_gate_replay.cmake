@@ -27,6 +27,9 @@ run_expecting("gate_replay.py --check" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv 
 # the gain it recomputes from the cov_* columns: the same verdicts, or the recomputation is not the tracker's.
 run_expecting("gate_replay.py --check, line-end bias given" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv
               --line-end-bias-px 0 --check ${OUT}/scenes.csv)
+# The replay's not-shipped branch rule (stop 73) runs on the same rows (its effect is measured on full runs).
+run_expecting("gate_replay.py --narrow-break-reconfirms" "^overall +tracked mean [01][.][0-9]+  confidently wrong 0 "
+              ${PYTHON} ${REPLAY} ${OUT}/frames.csv --narrow-break-reconfirms)
 # A size bin with at least one fix.
 run_expecting("far_distance.py" "\n +[0-9]+-[0-9inf]+ +[1-9][0-9]* " ${PYTHON} ${FAR_DISTANCE} ${OUT})
 run_expecting("wrong_origins.py --self-test" "" ${PYTHON} ${WRONG_ORIGINS} --self-test)
