@@ -407,6 +407,14 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   } else if (m_frames_since_valid != ~0ULL) {
     ++m_frames_since_valid;
   }
+  // A strip's lines may be biased (kFlagNarrowFace): a break it caused is no short gap
+  // (narrow_break_reconfirms).
+  if (out.pose_valid) {
+    m_narrow_break = false;
+  } else if (mode_before == NavMode::kNearRange && frame != nullptr && out.frame_received &&
+             m_near_result.status != TrackStatus::kLost && (m_near_result.flags & kFlagNarrowFace) != 0U) {
+    m_narrow_break = true;
+  }
   if (!out.pose_valid && m_frames_since_branch_reference != ~0ULL) ++m_frames_since_branch_reference;
   if (m_modes.step(in, out.frame_number)) enterMode(m_modes.mode());
   out.fault_bits = m_fdir.endFrame();

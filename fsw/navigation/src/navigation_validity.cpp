@@ -194,6 +194,9 @@ bool NavigationPipeline::keptTheBranch(const Pose& pose, const Mat6& covariance)
   const int longest = std::max(nav.branch_continuity_frames, nav.branch_continuity_spotless_frames);
   if (m_frames_since_valid > static_cast<std::uint64_t>(longest)) return false;
   if (!m_last_pose_update.accepted) return false;
+  // A fit withheld beside a narrow strip in the break may have been the biased one the track then kept
+  // (campaign box/129: 114-115 withheld, 116 kept the branch 6.3 deg off).
+  if (nav.narrow_break_reconfirms && m_narrow_break) return false;
   if (m_frames_since_valid > static_cast<std::uint64_t>(nav.branch_continuity_frames)) {
     // A longer break keeps the branch only on a spotless fit: every line, no flag of any doubt. Any clean fit
     // after 5 or 8 frames let campaign box/25 through on a narrow face's strip, 8.3 deg off (stops 60, 65).

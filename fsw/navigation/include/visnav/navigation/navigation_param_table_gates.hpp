@@ -379,6 +379,17 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "changed gained, confidently wrong frames 1 / 1 / 6 unchanged; at or below "
              "branch_continuity_frames: off"},
             p.branch_continuity_spotless_frames);
+  v.boolean({"navigation", "narrow_break_reconfirms", "-", 0, 1,
+             "experimental, off: no fit keeps the branch by continuity (branch_continuity_frames) across a "
+             "break in which a near-range fit beside a face seen as a narrow strip ([nearrange] "
+             "kFlagNarrowFace) was withheld; the branch then waits for branch_confirm_frames rival-free "
+             "frames. Campaign box/129 (stop 72's full run): fits withheld on frames 114-115 (a mirrored "
+             "rival, then the strip), and frame 116 kept the branch 6.3 deg off. Replayed on that run "
+             "(tools/campaign/gate_replay.py --narrow-break-reconfirms): confidently wrong frames 13 -> 10 "
+             "for 49 of 77 292 tracked frames; in the pipeline on seeds 1-40 (no wrong frame of its kind "
+             "there): 15 602 -> 15 591 tracked, wrong 2 -> 2, as the replay predicts frame for frame. Off "
+             "until measured on the held-out sets and a full run (top-level README, stop 73)"},
+            p.narrow_break_reconfirms);
   v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
              "a clean (tracking) measurement the filter rejects this many times in a row restarts the "
              "filter from it"},

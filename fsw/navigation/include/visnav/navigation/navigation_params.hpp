@@ -67,8 +67,9 @@ struct NavigationParams {
   double branch_continuity_look_deg = 3.0;     ///< that look's tolerance, widening per frame since (below)
   int branch_continuity_missing_lines = 1;     ///< selected lines such a fit may miss (its only degradation)
   int branch_continuity_spotless_frames = 10;  ///< a longer break: only a flawless fit keeps the branch
-  int filter_diverged_rejections = 2;   ///< consecutive rejections of a clean track: restart the filter
-  int far_filter_reset_rejections = 3;  ///< consecutive far-range rejections: restart the filter
+  bool narrow_break_reconfirms = false;  ///< experimental: no continuity across a break beside a narrow strip
+  int filter_diverged_rejections = 2;    ///< consecutive rejections of a clean track: restart the filter
+  int far_filter_reset_rejections = 3;   ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;

@@ -251,6 +251,7 @@ class NavigationPipeline {
   bool m_find_on_known_branch = false;  ///< the find continues a branch a valid pose kept (findOnKnownBranch)
   Pose m_last_valid_pose;               ///< the last pose delivered as valid
   std::uint64_t m_frames_since_valid = ~0ULL;  ///< frames since then (~0: none yet)
+  bool m_narrow_break = false;  ///< since then a near-range fit beside a narrow strip was withheld
   /// What continuity tells a near twin apart by (confirmBranch): the last valid pose, or the operator's start
   /// pose when none was valid since it, and the frames since (~0: neither).
   Pose m_branch_reference_pose;
