@@ -1,7 +1,8 @@
 // Which branch a track keeps across a break in its valid poses, end to end on rendered frames
 // (navigation_validity.cpp keptTheBranch): after a short break a clean fit that kept the last valid pose's
 // look, or one missing only a line (branch_continuity_missing_lines), continues the branch at once; after a
-// longer one only a spotless fit does (branch_continuity_spotless_frames). Otherwise the branch waits for
+// longer one only a spotless fit does (branch_continuity_spotless_frames), and none does across a break in
+// which a fit beside a narrow strip was withheld (narrow_break_reconfirms). Otherwise the branch waits for
 // branch_confirm_frames rival-free fits.
 #include <gtest/gtest.h>
 
@@ -20,7 +21,8 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
   // confirms it at once. Frames 5 and 6 wait for the third rival-free fit instead without the rule (0
   // frames), with a look tolerance nothing meets, with a sigma limit below the fit's (this plate at 26 m is
   // known to about 2 deg, so the test raises the doubted limit from its 1 deg default to 3), or when the
-  // break is longer than the rule allows (two missing frames, 1 allowed). The covariance limit on validity
+  // break is longer than the rule allows (two missing frames, 1 allowed). A break with no fit beside a narrow
+  // strip continues the branch with narrow_break_reconfirms too. The covariance limit on validity
   // itself is off: the plate is near it (APoseLessCertainThanTheLimit...). The rule for longer breaks
   // (branch_continuity_spotless_frames) is off here: ASpotlessFitAfterALongerBreak... tests it.
   struct Variant {
@@ -30,11 +32,13 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
     double sigma_limit_deg;
     int missing;
     int valid;
+    bool narrow_break_reconfirms;
   };
   const int waited = params.navigation.branch_confirm_frames - 1;
-  for (const Variant v : {Variant{3, 3.0, 1.0, 3.0, 1, 9}, Variant{0, 3.0, 1.0, 3.0, 1, 9 - waited},
-                          Variant{3, 0.0, 0.0, 3.0, 1, 9 - waited}, Variant{3, 3.0, 1.0, 1.0, 1, 9 - waited},
-                          Variant{1, 3.0, 1.0, 3.0, 2, 8 - waited}}) {
+  for (const Variant v :
+       {Variant{3, 3.0, 1.0, 3.0, 1, 9, false}, Variant{3, 3.0, 1.0, 3.0, 1, 9, true},
+        Variant{0, 3.0, 1.0, 3.0, 1, 9 - waited, false}, Variant{3, 0.0, 0.0, 3.0, 1, 9 - waited, false},
+        Variant{3, 3.0, 1.0, 1.0, 1, 9 - waited, false}, Variant{1, 3.0, 1.0, 3.0, 2, 8 - waited, false}}) {
     PipelineParams p = params;
     p.navigation.branch_continuity_frames = v.frames;
     p.navigation.branch_continuity_spotless_frames = 0;
@@ -42,6 +46,7 @@ TEST_F(PipelineTest, AFitThatKeptTheLastValidLookAfterAShortBreakContinuesTheBra
     p.navigation.reacquire_tolerance_growth_deg_per_frame = v.growth_deg;
     p.navigation.doubted_max_attitude_sigma_deg = v.sigma_limit_deg;
     p.navigation.max_valid_attitude_sigma_deg = 0.0;
+    p.navigation.narrow_break_reconfirms = v.narrow_break_reconfirms;
     NavigationPipeline pipeline;
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
     pipeline.startNearRange(test::plateAt(26.0, 0.1, 1.0, -1.0), 0);
@@ -239,6 +244,68 @@ TEST_F(PipelineTest, ASpotlessFitAfterALongerBreakContinuesTheBranchWhenAllowed)
       missing_line::expectOnTruth(out, seq[static_cast<std::size_t>(i)].truth, i);
     }
     EXPECT_EQ(valid, v.valid);
+  }
+}
+
+TEST_F(PipelineTest, ABreakBesideANarrowStripIsNoShortGapWhenAsked) {
+  // [navigation] narrow_break_reconfirms (campaign box/129: fits withheld beside a narrow strip on frames
+  // 114-115, frame 116 kept the branch by continuity 6.3 deg off). A box at 12 m pitches 26 -> 20 -> 24.5
+  // deg, 0.75 deg a frame: near 20 deg its pitched face, seen from the predicted pose, is a strip narrower
+  // than confusable_edge_separation_px (24 px here), kFlagNarrowFace; with narrow_face_edge_bias_px 3 such a
+  // fit's 1-sigma (about 1.9 deg) is above the doubted limit, so it is withheld. The first clean fit after
+  // that break (status tracking, no flag) continues the branch at once without the switch; with it, it waits
+  // for branch_confirm_frames rival-free fits. Every fit here is right: what changes is only when the track
+  // is valid again.
+  const PolygonModel box = makeBox(0.726, 0.555, 0.48);
+  synthetic::RenderOptions options;
+  options.noise_sigma = 0.03;
+  options.blur_sigma_px = 0.8;
+  options.shading.enabled = true;
+  synthetic::Renderer box_renderer;
+  ASSERT_TRUE(box_renderer.init(test::vgaCamera(), box, options).ok);
+  constexpr int kFrameCount = 15;
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < kFrameCount; ++i) {
+    const double pitch_deg = 26.0 - 0.75 * (i <= 8 ? i : 16 - i);
+    seq.push_back(test::renderFrame(box_renderer, test::plateAt(12.0, 0.1, 25.0, pitch_deg), 300U + i));
+  }
+  const int waited = params.navigation.branch_confirm_frames - 1;
+  ASSERT_GT(waited, 0);
+  for (const bool reconfirms : {false, true}) {
+    SCOPED_TRACE(testing::Message() << "narrow_break_reconfirms " << reconfirms);
+    PipelineParams p = params;
+    p.nearrange.confusable_edge_separation_px = 24.0;
+    p.nearrange.narrow_face_edge_bias_px = 3.0;
+    p.navigation.narrow_break_reconfirms = reconfirms;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), box, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int narrow_withheld = 0;
+    int break_end = -1;  // the first fit after the strip's withheld fits that is clean
+    int valid_after = -1;
+    for (int i = 0; i < kFrameCount; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      ASSERT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
+      const NearRangeResult& near = pipeline.lastNearRange();
+      ASSERT_NE(near.status, TrackStatus::kLost) << "frame " << i;
+      if (out.pose_valid) missing_line::expectOnTruth(out, seq[static_cast<std::size_t>(i)].truth, i);
+      if (break_end < 0 && (near.flags & kFlagNarrowFace) != 0U) {
+        EXPECT_FALSE(out.pose_valid) << "the case: frame " << i;
+        ++narrow_withheld;
+      } else if (break_end < 0 && narrow_withheld > 0) {
+        break_end = i;
+        EXPECT_EQ(near.status, TrackStatus::kTracking) << "the case: frame " << i;
+        EXPECT_EQ(near.flags, 0U) << "the case: frame " << i;
+        EXPECT_TRUE(reconfirms || out.pose_valid) << "continuity: frame " << i;
+        EXPECT_TRUE(!reconfirms || (out.withheld & kWithheldBranchUnknown) != 0U) << "frame " << i;
+      }
+      if (break_end >= 0 && valid_after < 0 && out.pose_valid) valid_after = i;
+    }
+    ASSERT_GT(narrow_withheld, 0) << "the case: fits beside the strip withheld";
+    ASSERT_GE(break_end, 0) << "the case: a clean fit after them";
+    EXPECT_EQ(valid_after, break_end + (reconfirms ? waited : 0));
   }
 }
 
