@@ -32,7 +32,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               doubt_min_line_fraction; 0 switches it off)
   branch      track_branch.hpp ([navigation] branch_confirm_frames): after --break-after frames in a row
               without a certain pose, nothing is valid until --branch-confirm-frames consecutive certain
-              frames whose tracker flags have none of --rival-flags (less kFlagAmbiguous where the pipeline
+              frames whose tracker flags have none of --rival-flags (plus kFlagNarrowFace for a fit on at
+              most --narrow-confirm-max-lines lines, 7, 0 off, whose attitude 1-sigma is above
+              --narrow-confirm-max-attitude-sigma-deg, 0.3; stop 74; less kFlagAmbiguous where the pipeline
               resolved the mirror by the prediction, column mirror_resolved, stop 61; --no-mirror-resolved
               ignores it), without a near-twin rival the
               pipeline counted (frames.csv column near_twin_rival) and not rejected by the filter (fault bit
@@ -43,8 +45,9 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
               pose's after a break of at most [navigation] branch_continuity_frames; as the pipeline judged
               it, so exact only with the shipped gates; --no-branch-continuity ignores it;
-              --narrow-break-reconfirms, not shipped (stop 73): not across a break in which a near-range
-              candidate flagged as beside a narrow strip, near_flags 0x1000, was withheld)
+              --narrow-break-reconfirms: not across a break in which a near-range candidate flagged as
+              beside a narrow strip, near_flags 0x1000, was withheld; shipped since stop 74, where
+              kept_branch already carries it: the option models it on runs made without it)
   awaited     an acquisition's pose is not valid on its own frame; the next frame confirms the branch if it is
               a near-range frame with a certain, rival-free pose ([navigation] acquisition_awaits_near_range;
               --no-acquisition-await: valid on its own frame and confirming, as before) that is not an
@@ -102,6 +105,8 @@ def parse_args(argv):
     p.add_argument('--no-narrow-face-doubt', action='store_true')
     p.add_argument('--branch-confirm-frames', type=int, default=3)
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
+    p.add_argument('--narrow-confirm-max-lines', type=int, default=7)
+    p.add_argument('--narrow-confirm-max-attitude-sigma-deg', type=float, default=0.3)
     p.add_argument('--no-confirmed-sources', action='store_true')
     p.add_argument('--break-after', type=int, default=1)
     p.add_argument('--max-nis', type=float, default=0.0)
@@ -217,6 +222,12 @@ def replay_scene(rows, a):
                 rivals = a.rival_flags
                 if not a.no_mirror_resolved and r.get('mirror_resolved', '0') == '1':
                     rivals &= ~AMBIGUOUS
+                # A strip fit on few lines is rival-free only when very certain ([navigation]
+                # narrow_confirm_max_lines / narrow_confirm_max_attitude_sigma_deg, stop 74).
+                if (r['mode'] == 'near_range' and int(r['near_flags']) & NARROW_FACE
+                        and int(r['lines_used'] or 0) <= a.narrow_confirm_max_lines
+                        and float(r['attitude_sigma_deg']) > a.narrow_confirm_max_attitude_sigma_deg):
+                    rivals |= NARROW_FACE
                 rival_free = r['mode'] != 'near_range' or ((int(r['near_flags']) & rivals) == 0
                                                            and r.get('near_twin_rival', '0') != '1'
                                                            and not find_off_branch)

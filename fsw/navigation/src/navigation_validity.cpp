@@ -122,8 +122,17 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
                       m_frames_since_branch_reference != ~0ULL &&
                       m_filter.trackEpoch() == m_reference_track_epoch;
   const std::uint32_t rival_flags = kFlagResidualFallback | (m_mirror_resolved ? 0U : kFlagAmbiguous);
-  const bool rival_free = processed_in != NavMode::kNearRange || ((m_near_result.flags & rival_flags) == 0U &&
-                                                                  !m_near_twin_rival && !find_off_branch);
+  // A strip's two lines are a large share of a fit on few lines, and their bias is not in its 1-sigma: such
+  // a fit confirms nothing unless it is very certain (campaign box/7035: three strip fits of 5 lines at 0.85
+  // deg confirmed a branch 5 deg off).
+  const NavigationParams& nav = m_params.navigation;
+  const bool narrow_unconfirming =
+      processed_in == NavMode::kNearRange && (m_near_result.flags & kFlagNarrowFace) != 0U &&
+      m_near_result.lines_used <= nav.narrow_confirm_max_lines &&
+      poseSigmas(out.pose, out.covariance).attitude_deg > nav.narrow_confirm_max_attitude_sigma_deg;
+  const bool rival_free =
+      processed_in != NavMode::kNearRange || ((m_near_result.flags & rival_flags) == 0U &&
+                                              !m_near_twin_rival && !find_off_branch && !narrow_unconfirming);
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   // Not by an outline-only fit that missed a line (fitConfirmsHandOver).

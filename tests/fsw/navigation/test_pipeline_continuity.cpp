@@ -309,5 +309,79 @@ TEST_F(PipelineTest, ABreakBesideANarrowStripIsNoShortGapWhenAsked) {
   }
 }
 
+TEST_F(PipelineTest, AStripFitOnFewLinesConfirmsABranchOnlyWhenVeryCertain) {
+  // [navigation] narrow_confirm_max_lines / narrow_confirm_max_attitude_sigma_deg (campaign box/7035: three
+  // strip fits of 5 lines at 0.85 deg 1-sigma confirmed a branch 5 deg off). The box of the test above,
+  // pitching down only, without the strip's bias term, so that its strip fits (7 lines, about 0.1 deg) pass
+  // the pose gates; frame 6 is dropped and continuity is off, so the branch needs branch_confirm_frames
+  // rival-free fits. The strip fits after the break count toward them unless the rule applies: with a
+  // 1-sigma limit below theirs they do not, and the branch stays unknown while the strip lasts. At the
+  // default limit (0.3 deg) they are certain enough; with a line limit below their 7 lines, or 0 lines
+  // (off), the rule does not apply.
+  const PolygonModel box = makeBox(0.726, 0.555, 0.48);
+  synthetic::RenderOptions options;
+  options.noise_sigma = 0.03;
+  options.blur_sigma_px = 0.8;
+  options.shading.enabled = true;
+  synthetic::Renderer box_renderer;
+  ASSERT_TRUE(box_renderer.init(test::vgaCamera(), box, options).ok);
+  constexpr int kFrameCount = 12;
+  constexpr int kDropped = 6;
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < kFrameCount; ++i) {
+    const double pitch_deg = 26.0 - 0.75 * i;
+    seq.push_back(test::renderFrame(box_renderer, test::plateAt(12.0, 0.1, 25.0, pitch_deg), 300U + i));
+  }
+  const int waited = params.navigation.branch_confirm_frames - 1;
+  ASSERT_GT(waited, 0);
+  struct Variant {
+    int max_lines;
+    double max_sigma_deg;
+    bool strip_counts;
+  };
+  for (const Variant v :
+       {Variant{7, 0.05, false}, Variant{7, 0.3, true}, Variant{6, 0.05, true}, Variant{0, 0.05, true}}) {
+    SCOPED_TRACE(testing::Message() << "max lines " << v.max_lines << ", max sigma " << v.max_sigma_deg);
+    PipelineParams p = params;
+    p.nearrange.confusable_edge_separation_px = 24.0;
+    p.navigation.branch_continuity_frames = 0;
+    p.navigation.branch_continuity_spotless_frames = 0;
+    p.navigation.narrow_confirm_max_lines = v.max_lines;
+    p.navigation.narrow_confirm_max_attitude_sigma_deg = v.max_sigma_deg;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), box, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    int first_strip = -1;  // the first strip fit after the break
+    int strip_fits = 0;
+    int valid_again = -1;
+    for (int i = 0; i < kFrameCount; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(i == kDropped ? nullptr : &f, f.exposure_time_ns, out), Status::kOk);
+      ASSERT_EQ(pipeline.mode(), NavMode::kNearRange) << "frame " << i;
+      if (i == kDropped) continue;
+      const NearRangeResult& near = pipeline.lastNearRange();
+      ASSERT_NE(near.status, TrackStatus::kLost) << "frame " << i;
+      if (out.pose_valid) missing_line::expectOnTruth(out, seq[static_cast<std::size_t>(i)].truth, i);
+      if (i < kDropped) {
+        EXPECT_TRUE(out.pose_valid) << "frame " << i;
+        EXPECT_EQ(near.flags & kFlagNarrowFace, 0U) << "the case: frame " << i;
+        continue;
+      }
+      EXPECT_EQ(near.status, TrackStatus::kTracking) << "the case: frame " << i;
+      EXPECT_EQ(near.flags, kFlagNarrowFace) << "the case: frame " << i;
+      EXPECT_EQ(near.lines_used, 7) << "the case: frame " << i;
+      EXPECT_LT(poseSigmas(out.pose, out.covariance).attitude_deg, 0.3) << "the case: frame " << i;
+      EXPECT_TRUE(out.pose_valid || out.withheld == kWithheldBranchUnknown) << "the case: frame " << i;
+      if (first_strip < 0) first_strip = i;
+      ++strip_fits;
+      if (valid_again < 0 && out.pose_valid) valid_again = i;
+    }
+    ASSERT_EQ(first_strip, kDropped + 1) << "the case: strip fits right after the break";
+    ASSERT_GT(strip_fits, waited + 1) << "the case: enough strip fits to confirm";
+    EXPECT_EQ(valid_again, v.strip_counts ? first_strip + waited : -1);
+  }
+}
+
 }  // namespace
 }  // namespace visnav::nav

@@ -27,7 +27,8 @@ run_expecting("gate_replay.py --check" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv 
 # the gain it recomputes from the cov_* columns: the same verdicts, or the recomputation is not the tracker's.
 run_expecting("gate_replay.py --check, line-end bias given" "" ${PYTHON} ${REPLAY} ${OUT}/frames.csv
               --line-end-bias-px 0 --check ${OUT}/scenes.csv)
-# The replay's not-shipped branch rule (stop 73) runs on the same rows (its effect is measured on full runs).
+# The replay's model of narrow_break_reconfirms (stop 73; shipped since stop 74, when the run's kept_branch
+# already carries it) runs on the same rows.
 run_expecting("gate_replay.py --narrow-break-reconfirms" "^overall +tracked mean [01][.][0-9]+  confidently wrong 0 "
               ${PYTHON} ${REPLAY} ${OUT}/frames.csv --narrow-break-reconfirms)
 # A size bin with at least one fix.

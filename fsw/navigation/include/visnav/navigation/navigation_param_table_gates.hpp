@@ -272,6 +272,25 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "octagon/174: 26 withheld frames, then 66 valid ones 34-140 deg off); 0 switches the check "
              "off"},
             p.branch_confirm_frames);
+  v.integer({"navigation", "narrow_confirm_max_lines", "count", 0, 1000,
+             "a near-range fit beside a face seen as a narrow strip ([nearrange] kFlagNarrowFace) that used "
+             "at most this many lines counts as rival-free toward branch_confirm_frames (and confirms an "
+             "acquisition's hand-over) only when its attitude 1-sigma is at most "
+             "narrow_confirm_max_attitude_sigma_deg: the strip's two lines are a large share of so few, and "
+             "their bias, up to the strip's width, is not in the 1-sigma. Campaign box/7035: a find, then "
+             "three strip fits of 5 lines at 0.85 deg 1-sigma confirmed the branch and four frames were "
+             "delivered 5.0-5.4 deg off. On against off (7 lines, 0.3 deg; stop 74): see "
+             "narrow_confirm_max_attitude_sigma_deg; 0 switches the rule off"},
+            p.narrow_confirm_max_lines);
+  v.real({"navigation", "narrow_confirm_max_attitude_sigma_deg", "deg", 0.0, 180.0,
+          "see narrow_confirm_max_lines. Replayed (tools/campaign/gate_replay.py) on campaign seeds "
+          "1 / 5001 / 7001 and on stop 72's full run: "
+          "confidently wrong frames 10 / 2 / 0 / 4 -> 5 / 1 / 0 / 0 (full run / seeds 1 / 5001 / 7001, with "
+          "narrow_break_reconfirms) for 349 / 72 / 59 / 187 of 77 243 / 15 591 / 15 564 / 15 800 tracked "
+          "frames (boxes and smallsats; box/7025 -101: a box whose strip lasts, its right track reconfirmed "
+          "later). At 0.5 deg one wrong frame more on the full run, at 0.0-0.4 the same 5; on at most 5 "
+          "lines the wrong frames stay. 0 deg: no strip fit on so few lines confirms"},
+         p.narrow_confirm_max_attitude_sigma_deg);
   v.boolean({"navigation", "branch_confirm_needs_filter", "-", 0, 1,
              "a near-range fit the filter's innovation gate rejected (fault bit 0x10) counts toward none of "
              "the branch_confirm_frames: a confirmation needs consistency with the predicted motion, as an "
@@ -380,15 +399,14 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "branch_continuity_frames: off"},
             p.branch_continuity_spotless_frames);
   v.boolean({"navigation", "narrow_break_reconfirms", "-", 0, 1,
-             "experimental, off: no fit keeps the branch by continuity (branch_continuity_frames) across a "
-             "break in which a near-range fit beside a face seen as a narrow strip ([nearrange] "
-             "kFlagNarrowFace) was withheld; the branch then waits for branch_confirm_frames rival-free "
-             "frames. Campaign box/129 (stop 72's full run): fits withheld on frames 114-115 (a mirrored "
-             "rival, then the strip), and frame 116 kept the branch 6.3 deg off. Replayed on that run "
-             "(tools/campaign/gate_replay.py --narrow-break-reconfirms): confidently wrong frames 13 -> 10 "
-             "for 49 of 77 292 tracked frames; in the pipeline on seeds 1-40 (no wrong frame of its kind "
-             "there): 15 602 -> 15 591 tracked, wrong 2 -> 2, as the replay predicts frame for frame. Off "
-             "until measured on the held-out sets and a full run (top-level README, stop 73)"},
+             "no fit keeps the branch by continuity (branch_continuity_frames) across a break in which a "
+             "near-range fit beside a face seen as a narrow strip ([nearrange] kFlagNarrowFace) was "
+             "withheld: such a strip's lines may be biased by its width, and a clean-looking fit after it "
+             "can carry the bias; the branch then waits for branch_confirm_frames rival-free frames. "
+             "Campaign box/129: fits withheld on frames 114-115 (a mirrored rival, then the strip), and "
+             "frame 116 kept the branch 6.3 deg off. On against off, campaign seeds 1 / 5001 / 7001 (stops "
+             "73-74): tracked frames 15 602 / 15 572 / 15 809 -> 15 591 / 15 564 / 15 800, confidently "
+             "wrong 2 / 0 / 4 unchanged; XXFULLXX (top-level README, stop 74)"},
             p.narrow_break_reconfirms);
   v.integer({"navigation", "filter_diverged_rejections", "count", 1, 1000,
              "a clean (tracking) measurement the filter rejects this many times in a row restarts the "

@@ -55,7 +55,9 @@ struct NavigationParams {
   double start_pose_sigma_rel = 0.025;  ///< and of its position, over the range
   double start_pose_doubt_nis_chi2 = 5.35;  ///< the first fit's NIS vs the start pose above this: doubted
   int start_pose_doubt_fits = 2;            ///< that many fits after the start pose are judged so
-  int branch_confirm_frames = 3;  ///< after a break, this many rival-free valid frames before any is valid
+  int branch_confirm_frames = 3;     ///< after a break, this many rival-free valid frames before any is valid
+  int narrow_confirm_max_lines = 7;  ///< a narrow-strip fit on at most this many lines confirms a branch only
+  double narrow_confirm_max_attitude_sigma_deg = 0.3;  ///< ... at this 1-sigma or less (stop 74)
   bool branch_confirm_needs_filter = true;    ///< a fit the filter rejected counts toward none of them
   bool mirror_resolved_by_prediction = true;  ///< a mirrored rival the continued track rejects is no rival
   bool branch_range_after_jump = true;  ///< after a disputed jump, nor one off the last valid pose's range
@@ -67,9 +69,9 @@ struct NavigationParams {
   double branch_continuity_look_deg = 3.0;     ///< that look's tolerance, widening per frame since (below)
   int branch_continuity_missing_lines = 1;     ///< selected lines such a fit may miss (its only degradation)
   int branch_continuity_spotless_frames = 10;  ///< a longer break: only a flawless fit keeps the branch
-  bool narrow_break_reconfirms = false;  ///< experimental: no continuity across a break beside a narrow strip
-  int filter_diverged_rejections = 2;    ///< consecutive rejections of a clean track: restart the filter
-  int far_filter_reset_rejections = 3;   ///< consecutive far-range rejections: restart the filter
+  bool narrow_break_reconfirms = true;  ///< no continuity across a break beside a narrow strip (stop 74)
+  int filter_diverged_rejections = 2;   ///< consecutive rejections of a clean track: restart the filter
+  int far_filter_reset_rejections = 3;  ///< consecutive far-range rejections: restart the filter
   // Close-range reacquisition (local_reacquisition.hpp).
   int reacquire_hypotheses_per_frame = 12;
   int reacquire_scanline_half_length_px = 24;
