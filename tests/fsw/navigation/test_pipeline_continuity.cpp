@@ -247,6 +247,27 @@ TEST_F(PipelineTest, ASpotlessFitAfterALongerBreakContinuesTheBranchWhenAllowed)
   }
 }
 
+namespace strip {
+
+/// The box of campaign box/17's size, whose pitched face the strip tests turn into a narrow strip.
+PolygonModel pitchingBox() { return makeBox(0.726, 0.555, 0.48); }
+
+/// `frames` frames of `box` at 12 m, yaw 25 deg, pitched `pitch_deg(i)` deg on frame i: noise 0.03, blur 0.8
+/// px, shaded.
+template <typename Pitch>
+void render(const PolygonModel& box, int frames, Pitch pitch_deg, std::vector<test::RenderedFrame>& seq) {
+  synthetic::RenderOptions options;
+  options.noise_sigma = 0.03;
+  options.blur_sigma_px = 0.8;
+  options.shading.enabled = true;
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::vgaCamera(), box, options).ok);
+  for (int i = 0; i < frames; ++i)
+    seq.push_back(test::renderFrame(renderer, test::plateAt(12.0, 0.1, 25.0, pitch_deg(i)), 300U + i));
+}
+
+}  // namespace strip
+
 TEST_F(PipelineTest, ABreakBesideANarrowStripIsNoShortGapWhenAsked) {
   // [navigation] narrow_break_reconfirms (campaign box/129: fits withheld beside a narrow strip on frames
   // 114-115, frame 116 kept the branch by continuity 6.3 deg off). A box at 12 m pitches 26 -> 20 -> 24.5
@@ -256,19 +277,11 @@ TEST_F(PipelineTest, ABreakBesideANarrowStripIsNoShortGapWhenAsked) {
   // that break (status tracking, no flag) continues the branch at once without the switch; with it, it waits
   // for branch_confirm_frames rival-free fits. Every fit here is right: what changes is only when the track
   // is valid again.
-  const PolygonModel box = makeBox(0.726, 0.555, 0.48);
-  synthetic::RenderOptions options;
-  options.noise_sigma = 0.03;
-  options.blur_sigma_px = 0.8;
-  options.shading.enabled = true;
-  synthetic::Renderer box_renderer;
-  ASSERT_TRUE(box_renderer.init(test::vgaCamera(), box, options).ok);
+  const PolygonModel box = strip::pitchingBox();
   constexpr int kFrameCount = 15;
   std::vector<test::RenderedFrame> seq;
-  for (int i = 0; i < kFrameCount; ++i) {
-    const double pitch_deg = 26.0 - 0.75 * (i <= 8 ? i : 16 - i);
-    seq.push_back(test::renderFrame(box_renderer, test::plateAt(12.0, 0.1, 25.0, pitch_deg), 300U + i));
-  }
+  ASSERT_NO_FATAL_FAILURE(strip::render(
+      box, kFrameCount, [](int i) { return 26.0 - 0.75 * (i <= 8 ? i : 16 - i); }, seq));
   const int waited = params.navigation.branch_confirm_frames - 1;
   ASSERT_GT(waited, 0);
   for (const bool reconfirms : {false, true}) {
@@ -318,20 +331,12 @@ TEST_F(PipelineTest, AStripFitOnFewLinesConfirmsABranchOnlyWhenVeryCertain) {
   // 1-sigma limit below theirs they do not, and the branch stays unknown while the strip lasts. At the
   // default limit (0.3 deg) they are certain enough; with a line limit below their 7 lines, or 0 lines
   // (off), the rule does not apply.
-  const PolygonModel box = makeBox(0.726, 0.555, 0.48);
-  synthetic::RenderOptions options;
-  options.noise_sigma = 0.03;
-  options.blur_sigma_px = 0.8;
-  options.shading.enabled = true;
-  synthetic::Renderer box_renderer;
-  ASSERT_TRUE(box_renderer.init(test::vgaCamera(), box, options).ok);
+  const PolygonModel box = strip::pitchingBox();
   constexpr int kFrameCount = 12;
   constexpr int kDropped = 6;
   std::vector<test::RenderedFrame> seq;
-  for (int i = 0; i < kFrameCount; ++i) {
-    const double pitch_deg = 26.0 - 0.75 * i;
-    seq.push_back(test::renderFrame(box_renderer, test::plateAt(12.0, 0.1, 25.0, pitch_deg), 300U + i));
-  }
+  ASSERT_NO_FATAL_FAILURE(strip::render(
+      box, kFrameCount, [](int i) { return 26.0 - 0.75 * i; }, seq));
   const int waited = params.navigation.branch_confirm_frames - 1;
   ASSERT_GT(waited, 0);
   struct Variant {
