@@ -39,7 +39,12 @@ whole 1000-scene run in seconds instead of a 30-minute rerun. The gates replayed
               ignores it), without a near-twin rival the
               pipeline counted (frames.csv column near_twin_rival) and not rejected by the filter (fault bit
               0x10; [navigation] branch_confirm_needs_filter, stop 54; --no-branch-confirm-needs-filter
-              counts them), or an acquisition / reacquisition
+              counts them), after a break in which a candidate beside a narrow strip (near_flags 0x1000)
+              was withheld only with its own fit's attitude 1-sigma, before the filter, at most
+              --narrow-break-max-fit-attitude-sigma-deg (1.0, 0 off; [navigation]
+              narrow_break_max_fit_attitude_sigma_deg, stop 75; column fit_attitude_sigma_deg, written since
+              stop 75: a run without it replays a filtered frame at the filter's sigma), or an acquisition /
+              reacquisition
               confirmation (unless --no-confirmed-sources), or a certain near-range frame the pipeline
               judged to have kept the branch by continuity (frames.csv column kept_branch: a clean fit,
               accepted by the filter, within the doubted sigma limit, whose look stayed with the last valid
@@ -107,6 +112,7 @@ def parse_args(argv):
     p.add_argument('--rival-flags', type=lambda s: int(s, 0), default=AMBIGUOUS | RESIDUAL_FALLBACK)
     p.add_argument('--narrow-confirm-max-lines', type=int, default=7)
     p.add_argument('--narrow-confirm-max-attitude-sigma-deg', type=float, default=0.3)
+    p.add_argument('--narrow-break-max-fit-attitude-sigma-deg', type=float, default=1.0)
     p.add_argument('--no-confirmed-sources', action='store_true')
     p.add_argument('--break-after', type=int, default=1)
     p.add_argument('--max-nis', type=float, default=0.0)
@@ -245,7 +251,15 @@ def replay_scene(rows, a):
                                                    or (r['reacquired'] == '1' and not find_off_branch)
                                                    or (awaited and rival_free) or continuous):
                     known = True
-                if not (rival_free and motion_agrees):
+                # Nor, after a break a strip caused, one whose own fit, before the filter, is uncertain
+                # ([navigation] narrow_break_max_fit_attitude_sigma_deg, stop 75; column
+                # fit_attitude_sigma_deg, written since stop 75: a run without it replays a filtered frame at
+                # the filter's sigma).
+                fit_sigma = r.get('fit_attitude_sigma_deg') or r['attitude_sigma_deg']
+                fit_uncertain = (r['mode'] == 'near_range' and narrow_break
+                                 and a.narrow_break_max_fit_attitude_sigma_deg > 0
+                                 and float(fit_sigma) > a.narrow_break_max_fit_attitude_sigma_deg)
+                if not (rival_free and motion_agrees) or fit_uncertain:
                     run = 0
                 elif run < a.branch_confirm_frames:
                     run += 1

@@ -133,6 +133,19 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
   const bool rival_free =
       processed_in != NavMode::kNearRange || ((m_near_result.flags & rival_flags) == 0U &&
                                               !m_near_twin_rival && !find_off_branch && !narrow_unconfirming);
+  // After a break a strip caused, the run of branch_confirm_frames asks whether the track is biased, and
+  // the filter's estimate cannot say: it averages the frames as if their errors were independent, and a
+  // biased fit repeats its error (campaign box/25: strip fits withheld, then fits at 1.04-1.24 deg 1-sigma,
+  // filtered to 0.72-0.84, confirmed 5.5 deg off). Each fit of that run must be known on its own. A
+  // delivered pose that is not filtered is the fit's own.
+  if (processed_in == NavMode::kNearRange && out.quality > 0.0)
+    m_fit_attitude_sigma_deg =
+        (m_pose_filtered
+             ? poseSigmas(m_near_result.pose, m_near_result.covariance * m_near_result.systematic_gain)
+             : poseSigmas(out.pose, out.covariance))
+            .attitude_deg;
+  const bool fit_uncertain = nav.narrow_break_max_fit_attitude_sigma_deg > 0.0 && m_narrow_break &&
+                             m_fit_attitude_sigma_deg > nav.narrow_break_max_fit_attitude_sigma_deg;
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free
   // fit, which the filter started from it did not reject as a jump; anything else leaves the branch unknown.
   // Not by an outline-only fit that missed a line (fitConfirmsHandOver).
@@ -160,7 +173,8 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
                              processed_in != NavMode::kNearRange ||
                              (m_near_range_faults & kFaultInnovation) == 0U;
   const bool passed_the_pose_gates = out.pose_valid;
-  out.pose_valid = m_branch.step(out.pose_valid, rival_free && motion_agrees && !m_range_broken, confirmed);
+  out.pose_valid =
+      m_branch.step(out.pose_valid, rival_free && motion_agrees && !m_range_broken && !fit_uncertain, confirmed);
   if (passed_the_pose_gates && !out.pose_valid) out.withheld |= kWithheldBranchUnknown;
 }
 

@@ -291,6 +291,18 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
           "later). At 0.5 deg one wrong frame more on the full run, at 0.0-0.4 the same 5; on at most 5 "
           "lines the wrong frames stay. 0 deg: no strip fit on so few lines confirms"},
          p.narrow_confirm_max_attitude_sigma_deg);
+  v.real({"navigation", "narrow_break_max_fit_attitude_sigma_deg", "deg", 0.0, 180.0,
+          "after a break in which a near-range fit beside a narrow strip (kFlagNarrowFace) was withheld, "
+          "a fit counts toward branch_confirm_frames only when its own attitude 1-sigma (the fit's "
+          "covariance with its systematic gain, before the filter of deliver_filtered_pose) is at most "
+          "this: the strip's bias outlasts the flag (a pose turned by it hides the face), and the "
+          "filter's estimate averages the fits as if their errors were independent while a biased fit "
+          "repeats its error (campaign box/25: strip fits withheld on frames 0-4, then fits at 1.04-1.24 "
+          "deg 1-sigma, filtered to 0.72-0.84, confirmed 5.5 deg off). After any break (the rule for "
+          "every confirmation, replayed at 1 deg on seeds 1-40): tracked mean 0.686 -> 0.673, the far "
+          "plates' right fits at 2 deg never confirmed. Measured in the top-level README (stop 75); 0 "
+          "switches it off"},
+         p.narrow_break_max_fit_attitude_sigma_deg);
   v.boolean({"navigation", "branch_confirm_needs_filter", "-", 0, 1,
              "a near-range fit the filter's innovation gate rejected (fault bit 0x10) counts toward none of "
              "the branch_confirm_frames: a confirmation needs consistency with the predicted motion, as an "

@@ -87,6 +87,10 @@ class NavigationPipeline {
   /// Whether the last frame's pose is the filter's estimate after its fit ([navigation]
   /// deliver_filtered_pose), not the fit as measured.
   bool lastPoseFiltered() const { return m_pose_filtered; }
+  /// The last frame's near-range fit's own attitude 1-sigma [deg] (its covariance with its systematic gain,
+  /// before the filter; 0 when no near-range pose was delivered or withheld): what
+  /// narrow_break_max_fit_attitude_sigma_deg judged, for the gate replay.
+  double lastFitAttitudeSigmaDeg() const { return m_fit_attitude_sigma_deg; }
   /// Whether the last find (lastReacquisition().found) continued a branch a valid pose kept and so confirmed
   /// it (find_confirms_only_from_reference): for the gate replay.
   bool lastFindOnKnownBranch() const { return m_find_on_known_branch; }
@@ -183,6 +187,7 @@ class NavigationPipeline {
   bool m_pose_showed_face = true;      ///< lastPoseShowedAFace()
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
   bool m_pose_filtered = false;        ///< lastPoseFiltered()
+  double m_fit_attitude_sigma_deg = 0.0;  ///< lastFitAttitudeSigmaDeg()
   bool m_near_twin_rival = false;      ///< lastNearTwinRival()
   bool m_mirror_resolved = false;      ///< lastMirrorResolved()
   bool m_pose_jumped = false;          ///< lastPoseJumped()
