@@ -256,7 +256,11 @@ def replay_scene(rows, a):
                 # fit_attitude_sigma_deg, written since stop 75: a run without it replays a filtered frame at
                 # the filter's sigma).
                 fit_sigma = r.get('fit_attitude_sigma_deg') or r['attitude_sigma_deg']
-                fit_uncertain = (r['mode'] == 'near_range' and narrow_break
+                # The break as the pipeline judged it where the run wrote it (column narrow_break, since
+                # stop 75; it also counts a strip fit the tracker made but the pipeline did not deliver or
+                # withhold), else as replayed.
+                after_strip = r['narrow_break'] == '1' if 'narrow_break' in r else narrow_break
+                fit_uncertain = (r['mode'] == 'near_range' and after_strip
                                  and a.narrow_break_max_fit_attitude_sigma_deg > 0
                                  and float(fit_sigma) > a.narrow_break_max_fit_attitude_sigma_deg)
                 if not (rival_free and motion_agrees) or fit_uncertain:

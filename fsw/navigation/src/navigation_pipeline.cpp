@@ -345,6 +345,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   m_range_broken = false;
   m_pose_filtered = false;
   m_fit_attitude_sigma_deg = 0.0;
+  m_followed_narrow_break = false;
   const std::int64_t start = m_clock != nullptr ? m_clock() : 0;
   out.cycle_number = ++m_cycles;
   out.frame_number = m_last_frame_number;

@@ -144,6 +144,7 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
              ? poseSigmas(m_near_result.pose, m_near_result.covariance * m_near_result.systematic_gain)
              : poseSigmas(out.pose, out.covariance))
             .attitude_deg;
+  m_followed_narrow_break = m_narrow_break;
   const bool fit_uncertain = nav.narrow_break_max_fit_attitude_sigma_deg > 0.0 && m_narrow_break &&
                              m_fit_attitude_sigma_deg > nav.narrow_break_max_fit_attitude_sigma_deg;
   // An acquisition awaiting near range (runAcquisition) is confirmed by the next frame's valid, rival-free

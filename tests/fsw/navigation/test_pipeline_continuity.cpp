@@ -363,6 +363,7 @@ TEST_F(PipelineTest, AfterAStripBreakOnlyFitsCertainOnTheirOwnConfirmTheBranch) 
         narrow_seen = narrow_seen || (near.flags & kFlagNarrowFace) != 0U;
         if (narrow_seen && (near.flags & kFlagNarrowFace) == 0U) break_end = i;
         if (break_end < 0) continue;
+        EXPECT_TRUE(pipeline.lastFollowedNarrowBreak()) << "the case: frame " << i;
       }
       // The clean fits after the break: known to a fraction of a degree, above kBelowTheFits.
       const double fit_sigma_deg = pipeline.lastFitAttitudeSigmaDeg();

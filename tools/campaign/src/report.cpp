@@ -378,7 +378,7 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
        "oracle,near_twin_rival,scanlines,inlier_points,evidence_good,find_on_branch,candidate_range_m,range_"
        "broken,in_view,far_direction_error_deg,far_off_target,withheld,systematic_gain,cov_residual_factor,"
        "cov_vertex_factor,cov_bias_factor_per_px2,mirror_resolved,cov_interior_factor_per_px2,"
-       "cov_narrow_factor_per_px2,oracle_evidence,pose_filtered,fit_attitude_sigma_deg\n";
+       "cov_narrow_factor_per_px2,oracle_evidence,pose_filtered,fit_attitude_sigma_deg,narrow_break\n";
   for (const SceneRun& run : runs) {
     for (const FrameOutcome& f : run.result.frames) {
       o << csvField(run.scene.name) << "," << toString(run.scene.family) << "," << seedText(run.scene.seed)
@@ -405,7 +405,8 @@ void writeFramesCsv(std::ostream& o, const std::vector<SceneRun>& runs) {
         << "," << num(f.cov_interior_factor_per_px2) << "," << num(f.cov_narrow_factor_per_px2) << ","
         << (f.oracle_evidence >= 0 ? nav::toString(static_cast<nav::EvidenceVerdict>(f.oracle_evidence)) : "")
         << "," << f.pose_filtered << ","
-        << (f.has_candidate && f.mode == nav::NavMode::kNearRange ? num(f.fit_attitude_sigma_deg) : "") << "\n";
+        << (f.has_candidate && f.mode == nav::NavMode::kNearRange ? num(f.fit_attitude_sigma_deg) : "") << ","
+        << f.narrow_break << "\n";
     }
   }
 }

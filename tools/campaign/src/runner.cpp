@@ -284,6 +284,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
     f.mirror_resolved = pipeline->lastMirrorResolved();
     f.pose_filtered = pipeline->lastPoseFiltered();
     f.fit_attitude_sigma_deg = pipeline->lastFitAttitudeSigmaDeg();
+    f.narrow_break = pipeline->lastFollowedNarrowBreak();
     f.near_twin_rival = pipeline->lastNearTwinRival();
     f.find_on_branch = !f.reacquired || pipeline->lastFindOnKnownBranch();
     f.jumped = pipeline->lastPoseJumped();

@@ -91,6 +91,10 @@ class NavigationPipeline {
   /// before the filter; 0 when no near-range pose was delivered or withheld): what
   /// narrow_break_max_fit_attitude_sigma_deg judged, for the gate replay.
   double lastFitAttitudeSigmaDeg() const { return m_fit_attitude_sigma_deg; }
+  /// Whether the last frame followed a break in which a near-range fit beside a narrow strip was withheld
+  /// (narrow_break_reconfirms, narrow_break_max_fit_attitude_sigma_deg), as the pipeline judged it: for the
+  /// gate replay.
+  bool lastFollowedNarrowBreak() const { return m_followed_narrow_break; }
   /// Whether the last find (lastReacquisition().found) continued a branch a valid pose kept and so confirmed
   /// it (find_confirms_only_from_reference): for the gate replay.
   bool lastFindOnKnownBranch() const { return m_find_on_known_branch; }
@@ -188,6 +192,7 @@ class NavigationPipeline {
   bool m_fit_kept_the_branch = false;  ///< lastFitKeptTheBranch()
   bool m_pose_filtered = false;        ///< lastPoseFiltered()
   double m_fit_attitude_sigma_deg = 0.0;  ///< lastFitAttitudeSigmaDeg()
+  bool m_followed_narrow_break = false;   ///< lastFollowedNarrowBreak()
   bool m_near_twin_rival = false;      ///< lastNearTwinRival()
   bool m_mirror_resolved = false;      ///< lastMirrorResolved()
   bool m_pose_jumped = false;          ///< lastPoseJumped()

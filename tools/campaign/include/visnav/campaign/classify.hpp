@@ -106,6 +106,7 @@ struct FrameOutcome {
   bool pose_filtered = false;  ///< NavigationPipeline::lastPoseFiltered ([navigation] deliver_filtered_pose)
   /// NavigationPipeline::lastFitAttitudeSigmaDeg: the near-range fit's own attitude 1-sigma, before the filter
   double fit_attitude_sigma_deg = 0.0;
+  bool narrow_break = false;  ///< NavigationPipeline::lastFollowedNarrowBreak
   // Verdicts (classifyFrame).
   bool wrong = false;
   bool tracked = false;
