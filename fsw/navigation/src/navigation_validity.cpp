@@ -174,8 +174,8 @@ void NavigationPipeline::confirmBranch(NavMode processed_in, NavSolution& out) {
                              processed_in != NavMode::kNearRange ||
                              (m_near_range_faults & kFaultInnovation) == 0U;
   const bool passed_the_pose_gates = out.pose_valid;
-  out.pose_valid =
-      m_branch.step(out.pose_valid, rival_free && motion_agrees && !m_range_broken && !fit_uncertain, confirmed);
+  out.pose_valid = m_branch.step(out.pose_valid,
+                                 rival_free && motion_agrees && !m_range_broken && !fit_uncertain, confirmed);
   if (passed_the_pose_gates && !out.pose_valid) out.withheld |= kWithheldBranchUnknown;
 }
 

@@ -57,7 +57,7 @@ struct NavigationParams {
   int start_pose_doubt_fits = 2;            ///< that many fits after the start pose are judged so
   int branch_confirm_frames = 3;     ///< after a break, this many rival-free valid frames before any is valid
   int narrow_confirm_max_lines = 7;  ///< a narrow-strip fit on at most this many lines confirms a branch only
-  double narrow_confirm_max_attitude_sigma_deg = 0.3;  ///< ... at this 1-sigma or less (stop 74)
+  double narrow_confirm_max_attitude_sigma_deg = 0.3;    ///< ... at this 1-sigma or less (stop 74)
   double narrow_break_max_fit_attitude_sigma_deg = 1.0;  ///< after a strip break, a fit counts at its own
   bool branch_confirm_needs_filter = true;    ///< a fit the filter rejected counts toward none of them
   bool mirror_resolved_by_prediction = true;  ///< a mirrored rival the continued track rejects is no rival

@@ -193,9 +193,9 @@ class NavigationPipeline {
   bool m_pose_filtered = false;        ///< lastPoseFiltered()
   double m_fit_attitude_sigma_deg = 0.0;  ///< lastFitAttitudeSigmaDeg()
   bool m_followed_narrow_break = false;   ///< lastFollowedNarrowBreak()
-  bool m_near_twin_rival = false;      ///< lastNearTwinRival()
-  bool m_mirror_resolved = false;      ///< lastMirrorResolved()
-  bool m_pose_jumped = false;          ///< lastPoseJumped()
+  bool m_near_twin_rival = false;         ///< lastNearTwinRival()
+  bool m_mirror_resolved = false;         ///< lastMirrorResolved()
+  bool m_pose_jumped = false;             ///< lastPoseJumped()
   /// The track began with a find that chose between unresolvable near twins by continuity (flagTwins).
   bool m_track_twin_by_continuity = false;
   bool m_acquisition_awaits_near = false;  ///< acquisition_awaits_near_range: the next frame may confirm it

@@ -104,7 +104,7 @@ struct FrameOutcome {
   /// passes them all); -1 not asked. Says why the image does not support a frame with `oracle` 0.
   int oracle_evidence = -1;
   bool pose_filtered = false;  ///< NavigationPipeline::lastPoseFiltered ([navigation] deliver_filtered_pose)
-  /// NavigationPipeline::lastFitAttitudeSigmaDeg: the near-range fit's own attitude 1-sigma, before the filter
+  /// NavigationPipeline::lastFitAttitudeSigmaDeg: the near-range fit's own 1-sigma, before the filter
   double fit_attitude_sigma_deg = 0.0;
   bool narrow_break = false;  ///< NavigationPipeline::lastFollowedNarrowBreak
   // Verdicts (classifyFrame).
