@@ -266,6 +266,20 @@ void render(const PolygonModel& box, int frames, Pitch pitch_deg, std::vector<te
     seq.push_back(test::renderFrame(renderer, test::plateAt(12.0, 0.1, 25.0, pitch_deg(i)), 300U + i));
 }
 
+/// The strip break of the two tests below: 15 frames pitching 26 -> 20 -> 24.5 deg, 0.75 deg a frame.
+constexpr int kBreakFrames = 15;
+void renderBreak(const PolygonModel& box, std::vector<test::RenderedFrame>& seq) {
+  render(
+      box, kBreakFrames, [](int i) { return 26.0 - 0.75 * (i <= 8 ? i : 16 - i); }, seq);
+}
+
+/// Their parameters: near 20 deg the pitched face is a strip (kFlagNarrowFace), and a strip fit is withheld.
+PipelineParams breakParams(PipelineParams p) {
+  p.nearrange.confusable_edge_separation_px = 24.0;
+  p.nearrange.narrow_face_edge_bias_px = 3.0;
+  return p;
+}
+
 }  // namespace strip
 
 TEST_F(PipelineTest, ABreakBesideANarrowStripIsNoShortGapWhenAsked) {
@@ -278,17 +292,13 @@ TEST_F(PipelineTest, ABreakBesideANarrowStripIsNoShortGapWhenAsked) {
   // for branch_confirm_frames rival-free fits. Every fit here is right: what changes is only when the track
   // is valid again.
   const PolygonModel box = strip::pitchingBox();
-  constexpr int kFrameCount = 15;
   std::vector<test::RenderedFrame> seq;
-  ASSERT_NO_FATAL_FAILURE(strip::render(
-      box, kFrameCount, [](int i) { return 26.0 - 0.75 * (i <= 8 ? i : 16 - i); }, seq));
+  ASSERT_NO_FATAL_FAILURE(strip::renderBreak(box, seq));
   const int waited = params.navigation.branch_confirm_frames - 1;
   ASSERT_GT(waited, 0);
   for (const bool reconfirms : {false, true}) {
     SCOPED_TRACE(testing::Message() << "narrow_break_reconfirms " << reconfirms);
-    PipelineParams p = params;
-    p.nearrange.confusable_edge_separation_px = 24.0;
-    p.nearrange.narrow_face_edge_bias_px = 3.0;
+    PipelineParams p = strip::breakParams(params);
     p.navigation.narrow_break_reconfirms = reconfirms;
     NavigationPipeline pipeline;
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), box, p).ok);
@@ -296,7 +306,7 @@ TEST_F(PipelineTest, ABreakBesideANarrowStripIsNoShortGapWhenAsked) {
     int narrow_withheld = 0;
     int break_end = -1;  // the first fit after the strip's withheld fits that is clean
     int valid_after = -1;
-    for (int i = 0; i < kFrameCount; ++i) {
+    for (int i = 0; i < strip::kBreakFrames; ++i) {
       const Frame f = frameOf(seq, i);
       NavSolution out;
       ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
@@ -331,18 +341,14 @@ TEST_F(PipelineTest, AfterAStripBreakOnlyFitsCertainOnTheirOwnConfirmTheBranch) 
   // at the default 1 deg, or off, the third confirms; at a limit below their 1-sigma none does, and the
   // track stays withheld while the filter's estimate, known better than any one fit, is what it delivers.
   const PolygonModel box = strip::pitchingBox();
-  constexpr int kFrameCount = 15;
   std::vector<test::RenderedFrame> seq;
-  ASSERT_NO_FATAL_FAILURE(strip::render(
-      box, kFrameCount, [](int i) { return 26.0 - 0.75 * (i <= 8 ? i : 16 - i); }, seq));
+  ASSERT_NO_FATAL_FAILURE(strip::renderBreak(box, seq));
   const int waited = params.navigation.branch_confirm_frames - 1;
   ASSERT_GT(waited, 0);
   constexpr double kBelowTheFits = 0.01;
   for (const double limit : {params.navigation.narrow_break_max_fit_attitude_sigma_deg, 0.0, kBelowTheFits}) {
     SCOPED_TRACE(testing::Message() << "narrow_break_max_fit_attitude_sigma_deg " << limit);
-    PipelineParams p = params;
-    p.nearrange.confusable_edge_separation_px = 24.0;
-    p.nearrange.narrow_face_edge_bias_px = 3.0;
+    PipelineParams p = strip::breakParams(params);
     p.navigation.narrow_break_reconfirms = true;
     p.navigation.narrow_break_max_fit_attitude_sigma_deg = limit;
     NavigationPipeline pipeline;
@@ -352,7 +358,7 @@ TEST_F(PipelineTest, AfterAStripBreakOnlyFitsCertainOnTheirOwnConfirmTheBranch) 
     int break_end = -1;
     int valid_after = -1;
     int filtered = 0;
-    for (int i = 0; i < kFrameCount; ++i) {
+    for (int i = 0; i < strip::kBreakFrames; ++i) {
       const Frame f = frameOf(seq, i);
       NavSolution out;
       ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
