@@ -12,8 +12,18 @@ namespace visnav::nav {
 void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_t frame_number,
                                             NavSolution& out, ModeInputs& in) {
   m_near_result.status = TrackStatus::kLost;
-  // The search is predicted from the filter: only with the motion it knows (pose_filter.hpp).
-  if (m_params.navigation.reacquire_drop_insignificant_rates) m_filter.dropInsignificantRates();
+  // The search is predicted from the filter: only with the motion it knows (pose_filter.hpp). A range rate
+  // the prediction drops although it stands out on its own (below the start-at-rest prior) is kept for the
+  // rate rung (rateRungRange).
+  const double range_rate_m_s = m_params.navigation.reacquire_range_rate_rung && m_filter.initialised()
+                                    ? m_filter.significantRangeRate()
+                                    : 0.0;
+  const std::uint32_t dropped =
+      m_params.navigation.reacquire_drop_insignificant_rates ? m_filter.dropInsignificantRates() : 0U;
+  m_search_range_rate_m_s = (dropped & PoseFilter::kDroppedVelocity) != 0U ? range_rate_m_s : 0.0;
+  m_search_start_exposure_ns = m_last_exposure_ns;
+  m_search_rate_turn = false;
+  m_acquisition_rate_turn = false;
   m_reacquisition.start();
   m_acquisition.reset();
   m_far.reset();  // its light track starts with the search (reacquire_far_cue)
@@ -29,7 +39,14 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
 void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t frame_number,
                                           NavSolution& out, ModeInputs& in) {
   ReacquisitionStep& step = m_reacquisition_step;
-  m_reacquisition.step(image, predictedPose(), frame_number, step);
+  // Every other searching frame starts at the range the track's rate reached; a candidate is confirmed
+  // against the prediction it was found at (the rung moves on with the rate meanwhile).
+  Pose predicted = predictedPose();
+  if (!m_reacquisition.confirming()) m_search_rate_turn = !m_search_rate_turn;
+  const double rung_m = m_search_rate_turn ? rateRungRange(predicted.t_c_m.norm()) : 0.0;
+  if (rung_m > 0.0) predicted.t_c_m *= rung_m / predicted.t_c_m.norm();
+  m_reacquisition.step(image, predicted, frame_number, step);
+  step.rate_rung_range_m = rung_m;
   if (!step.found) runCloseRangeAcquisition(image, frame_number, step);
   if (step.found) {
     m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
@@ -163,7 +180,30 @@ Vec3 NavigationPipeline::nextAcquisitionTile(const Vec3& predicted_direction, do
   return predicted_direction;
 }
 
+double NavigationPipeline::rateRungRange(double predicted_range_m) const {
+  if (m_search_range_rate_m_s == 0.0 || !(predicted_range_m > 0.0)) return 0.0;
+  // The rate carried in a straight line: an approach goes on at the speed it was measured at (a slew or an
+  // eclipse does not stop it); a wrong rung costs every other frame's starts, never a pose (each find is
+  // judged against the range it started at, and by the image).
+  const double elapsed_s = static_cast<double>(m_last_exposure_ns - m_search_start_exposure_ns) * 1e-9;
+  const double nearest_m = m_near.model().boundingRadius();
+  const double farthest_m = std::max(nearest_m, m_params.navigation.far_range_above_m);
+  const double rung_m =
+      std::clamp(predicted_range_m + m_search_range_rate_m_s * elapsed_s, nearest_m, farthest_m);
+  return std::abs(rung_m - predicted_range_m) >
+                 m_params.navigation.reacquire_range_tolerance_rel * predicted_range_m
+             ? rung_m
+             : 0.0;
+}
+
 double NavigationPipeline::nextAcquisitionRangeFactor(double range_m) {
+  // The track's range rate first (reacquire_range_rate_rung): every other attempt at the range it reached,
+  // where it reached one off the prediction's.
+  const double rung_m = rateRungRange(range_m);
+  if (rung_m > 0.0) {
+    m_acquisition_rate_turn = !m_acquisition_rate_turn;
+    return m_acquisition_rate_turn ? rung_m / range_m : 1.0;
+  }
   // Every other attempt stays at the prediction's range: where it is right (most searches) the ladder must
   // not take its attempts (campaign seeds 1-40 with every attempt on the ladder: smallsat/22 43 -> 0 and
   // box/9 31 -> 1 tracked frames). The others take rung k of -1, +1, -2, +2, ... (negative: nearer); a rung
@@ -262,8 +302,9 @@ void NavigationPipeline::runCloseRangeAcquisition(const MonoImage& image, std::u
       } else if (m_params.navigation.reacquire_acquisition_tiles) {
         direction = nextAcquisitionTile(predicted_direction, spacing_px, step.search_radius_px);
       }
-      // At the prediction its own depth (as with tiles off), on a tile the range along it; on the range
-      // ladder's rung (reacquire_range_ladder) that times its factor.
+      // At the prediction its own depth (as with tiles off), on a tile the range along it; on the rate's
+      // rung (reacquire_range_rate_rung) or the range ladder's (reacquire_range_ladder) that times its
+      // factor.
       const double factor = nextAcquisitionRangeFactor(range_m);
       m_acquisition.start(
           direction,

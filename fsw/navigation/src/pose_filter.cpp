@@ -195,6 +195,15 @@ std::uint32_t PoseFilter::dropInsignificantRates() {
   return dropped;
 }
 
+double PoseFilter::significantRangeRate() const {
+  const double range_m = m_pose.t_c_m.norm();
+  if (!m_initialised || !(range_m > 0.0)) return 0.0;
+  const Vec3 line_of_sight = m_pose.t_c_m / range_m;
+  const double rate_m_s = line_of_sight.dot(m_velocity);
+  const double variance = line_of_sight.dot(m_covariance.block<3, 3>(kVelocity, kVelocity) * line_of_sight);
+  return variance > 0.0 && rate_m_s * rate_m_s > m_params.restart_rate_chi2 * variance ? rate_m_s : 0.0;
+}
+
 Status PoseFilter::carryAngularVelocity(const Vec3& angular_velocity, const Mat3& covariance) {
   const Mat3 p = symmetricPart<3>(covariance);
   Eigen::LDLT<Mat3> ldlt;

@@ -240,6 +240,76 @@ TEST_F(PipelineTest, ATargetThatReappearsAtHalfItsRangeIsFoundOnTheRangeLadder) 
   }
 }
 
+TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
+  // The plate approaches at 1.5 m/s (0.3 m a frame) from 25 m: tracked on frames 0-11, hidden on 12-49 (a
+  // 7.6 s eclipse), visible again from 10 m on. The search's prediction drops the velocity (below what the
+  // start-at-rest prior covers, 1.68 m/s) and stays at the 21.4 m it was lost at, more than twice the
+  // range when the plate reappears: the acquisition at the prediction does not reach it, nor does the
+  // local search (5 %). With reacquire_range_rate_rung every other search frame and prediction-cued
+  // attempt starts where the measured rate took the range (campaign octagon/19: an approach at 1.0 m/s
+  // lost by a slew at 24.8 m). At 1.63 times the range (an eclipse of 4 s) the acquisition at the
+  // prediction still found the plate, a frame after the rung did.
+  constexpr double kStartM = 25.0;
+  constexpr double kStepM = 0.3;
+  constexpr int kHiddenFrom = 12;
+  constexpr int kVisibleFrom = 50;
+  constexpr int kApproachFrames = 60;
+  std::vector<test::RenderedFrame> seq;
+  synthetic::Renderer empty;
+  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  for (int i = 0; i < kApproachFrames; ++i)
+    pushFrame(seq, empty, test::plateAt(kStartM - kStepM * i, 0.2, 10.0, -5.0),
+              i >= kHiddenFrom && i < kVisibleFrom, 700U + i);
+  for (const bool on : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.reacquire_range_rate_rung = on;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    const std::uint64_t allocations_before = test::allocationCount();
+    int found_at = -1;
+    int valid_after = 0;
+    int rung_frames = 0;
+    for (int i = 0; i < kApproachFrames; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      const ReacquisitionStep& step = pipeline.lastReacquisition();
+      if (step.rate_rung_range_m > 0.0) {
+        ++rung_frames;
+        // The rung is where the rate took the range: the truth within the rate's error over the search.
+        EXPECT_NEAR(step.rate_rung_range_m, seq[static_cast<std::size_t>(i)].truth.t_c_m.norm(), 0.5) << i;
+      }
+      if (i == kHiddenFrom + 3) {
+        ASSERT_TRUE(pipeline.reacquisition().active()) << "the plate is hidden: the search must be on";
+        ASSERT_TRUE(pipeline.filter().velocity().isZero(0.0))
+            << "the prediction kept the velocity: the rung is not what finds it";
+      }
+      if (found_at < 0 && i >= kVisibleFrom && step.found) found_at = i;
+      if (i >= kVisibleFrom && out.pose_valid) {
+        ++valid_after;
+        const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * truth.t_c_m.norm()) << "frame " << i;
+        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
+                      kDegPerRad,
+                  2.0)
+            << "frame " << i;
+      }
+    }
+    EXPECT_EQ(test::allocationCount() - allocations_before, 0U) << "rung " << on;
+    if (on) {
+      EXPECT_GT(rung_frames, 5);
+      ASSERT_GE(found_at, kVisibleFrom) << "never found again";
+      EXPECT_LE(found_at, kVisibleFrom + 8);
+      EXPECT_GE(valid_after, kApproachFrames - found_at - 2);
+    } else {
+      EXPECT_EQ(rung_frames, 0);
+      EXPECT_LT(found_at, 0) << "found without the rung: the test tests nothing";
+      EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
 TEST_F(PipelineTest, AFallBackToFarRangeAtCloseRangeIsHandedBackByTheTargetsExtent) {
   // The plate at 12 m, 106 px in radius: a ground command forces far range (as a persistent fault or a
   // timed-out reacquisition would). eq. 16 counts the response pixels of the plate's outline, far fewer than

@@ -267,6 +267,40 @@ TEST(PoseFilterSearch, ASlowDriftThePriorCoversIsDropped) {
   EXPECT_TRUE(f.velocity().isZero(0.0));
 }
 
+// What the prediction drops, a search may still keep apart (NavigationParams::reacquire_range_rate_rung):
+// the range rate, when that component alone stands out of its variance. An approach at 1.0 m/s (campaign
+// octagon/19), below what the prior covers, is read to a few cm/s; sideways motion adds nothing to it; the
+// fits' noise of a still target is no rate; nor is anything read from an empty filter.
+TEST(PoseFilterSearch, TheRangeRateIsKeptApartWhereItStandsOutOnItsOwn) {
+  Vec6 sigma;
+  sigma << 0.05 * kRadPerDeg, 0.05 * kRadPerDeg, 0.05 * kRadPerDeg, 0.002, 0.002, 0.005;
+  const Mat6 cov = sigma.cwiseAbs2().asDiagonal();
+  Pcg32 rng(41);
+  const Vec3 closing(0.0, 0.0, -1.0);
+  PoseFilter approach = trackedFilter(closing, Vec3::Zero(), cov, 30, rng);
+  const double rate_m_s = approach.significantRangeRate();
+  EXPECT_NEAR(rate_m_s, approach.pose().t_c_m.normalized().dot(closing), 0.05);
+  EXPECT_LT(rate_m_s, -0.9);
+  EXPECT_NE(approach.dropInsignificantRates() & PoseFilter::kDroppedVelocity, 0U)
+      << "the prior covers 1.68 m/s: the prediction drops it, the search keeps it apart";
+  EXPECT_EQ(approach.significantRangeRate(), 0.0) << "read before the drop, not after";
+
+  // 1 m/s across, 6 m off the axis after the track: a range rate of about 0.26 m/s, not the speed.
+  const Vec3 across(1.0, 0.0, 0.0);
+  PoseFilter sideways = trackedFilter(across, Vec3::Zero(), cov, 30, rng);
+  EXPECT_NEAR(sideways.significantRangeRate(), sideways.pose().t_c_m.normalized().dot(across), 0.05);
+  EXPECT_LT(sideways.significantRangeRate(), 0.5);
+
+  const Mat6 near_cov = nearCovariance();
+  int noise_read_as_rate = 0;
+  constexpr int kDraws = 50;
+  for (int i = 0; i < kDraws; ++i)
+    noise_read_as_rate +=
+        trackedFilter(Vec3::Zero(), Vec3::Zero(), near_cov, 4, rng).significantRangeRate() != 0.0;
+  EXPECT_LE(noise_read_as_rate, 1) << "of " << kDraws << " still targets (1 % by the chi-square test)";
+  EXPECT_EQ(makeFilter().significantRangeRate(), 0.0);
+}
+
 // A tumble is another matter: the prior of a start at rest covers 5 deg/s, but a rate the track measured
 // is kept whatever its size (campaign cao/52: a 4.5 deg/s tumble dropped left the search 20 deg behind
 // the target when it turned back into view).

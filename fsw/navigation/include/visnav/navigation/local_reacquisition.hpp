@@ -47,6 +47,9 @@ struct ReacquisitionStep {
   double acquisition_edge_snr = 0.0;  ///< and its window's edge SNR (0: no window prepared)
   bool far_cue = false;      ///< that acquisition was cued by far range this frame (reacquire_far_cue)
   bool outline_cue = false;  ///< or by the outline cue's best match (reacquire_acquisition_outline_cue)
+  /// The search's prediction was moved to this range this frame: the range the track's rate reached since
+  /// the search began (reacquire_range_rate_rung; 0: the prediction's own range).
+  double rate_rung_range_m = 0.0;
   /// found by that acquisition with a near twin the image cannot resolve, told apart by the look of the
   /// last valid pose (acq::AcquisitionResult::twin_resolved_by_continuity)
   bool twin_by_continuity = false;
@@ -70,6 +73,8 @@ class LocalReacquisition {
   void stop() { m_active = false; }
   bool active() const { return m_active; }
   int framesSearching() const { return m_frames; }
+  /// A candidate is being confirmed: the next step() judges it against the prediction it is given.
+  bool confirming() const { return m_active && m_confirming; }
   const ModelSymmetries& symmetries() const { return m_symmetries; }
   /// The candidate keeps the last step's predicted range and look (attitude seen along its own line of
   /// sight, modulo symmetries) within tolerances that widen with the frames searched: a slew or a missed

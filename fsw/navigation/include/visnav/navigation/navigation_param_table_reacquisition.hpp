@@ -143,6 +143,20 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
              "would have found a target that stayed there (smallsat/22 43 -> 0, plate/26 113 -> 79); "
              "measured in the top-level README, stop 60. true: used"},
             p.reacquire_range_ladder);
+  v.boolean({"navigation", "reacquire_range_rate_rung", "-", 0, 1,
+             "close-range reacquisition: where the track left with a range rate significant on its own "
+             "(PoseFilter::significantRangeRate) that the search's prediction drops "
+             "(reacquire_drop_insignificant_rates: the start-at-rest prior covers it), every other frame of "
+             "the local search (kept while its candidate is confirmed) and every other attempt of the "
+             "close-range acquisition cued by the prediction start at the range that rate reached since "
+             "the search began, within the target's bounding radius and far_range_above_m, once it is "
+             "more than reacquire_range_tolerance_rel off the prediction's. The other frames and attempts "
+             "stay at the prediction's range. An approach lost by a slew or an eclipse keeps closing "
+             "while the prediction stays where it was lost (campaign octagon/19: lost at 24.8 m closing "
+             "at 1.0 m/s, the prediction 56 % too far 42 frames later, 0 of 108 tracked); a target the "
+             "track saw still has no rate, and its search is as without this. Measured in the top-level "
+             "README, stop 76. true: used"},
+            p.reacquire_range_rate_rung);
   v.boolean({"navigation", "find_confirms_only_from_reference", "-", 0, 1,
              "a close-range reacquisition's find confirms the track's branch only when the branch was "
              "known before the loss: a last valid pose (or the operator's start pose) exists and the "

@@ -166,6 +166,10 @@ class NavigationPipeline {
   /// far_range_above_m. At most kMaxRangeRungs each way.
   static constexpr int kMaxRangeRungs = 16;
   double nextAcquisitionRangeFactor(double range_m);
+  /// The range the track's range rate (kept by startReacquisition) reached since the search began, from the
+  /// prediction's `predicted_range_m`, within the target's bounding radius and far_range_above_m; 0 when
+  /// there is no rate or that range is within reacquire_range_tolerance_rel of the prediction's.
+  double rateRungRange(double predicted_range_m) const;
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
@@ -233,6 +237,10 @@ class NavigationPipeline {
   bool m_acquisition_tile_turn = false;  ///< they alternate between the prediction and the next tile
   int m_acquisition_rung = 0;            ///< the next rung of the range ladder (reacquire_range_ladder)
   bool m_acquisition_rung_turn = false;  ///< its attempts alternate between the prediction and the next rung
+  double m_search_range_rate_m_s = 0.0;  ///< the track's range rate the search's prediction dropped (0: none)
+  std::int64_t m_search_start_exposure_ns = 0;  ///< the search's first frame
+  bool m_search_rate_turn = false;       ///< this frame's local search starts at rateRungRange (alternates)
+  bool m_acquisition_rate_turn = false;  ///< the next prediction-cued acquisition attempt does (alternates)
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
   bool m_track_doubted = false;

@@ -76,6 +76,11 @@ class PoseFilter {
   /// what the last fits could not tell from noise is not carried through it. Returns what was dropped
   /// (kDropped* bits; 0 when uninitialised or nothing was).
   std::uint32_t dropInsignificantRates();
+  /// The rate of the range, t_c_m.normalized() . velocity [m/s] (negative: closing), when that component is
+  /// significant on its own: its square over its variance above restart_rate_chi2. 0 otherwise, or when
+  /// uninitialised or at zero range. Read before dropInsignificantRates() by a search that carries the range
+  /// the track was closing or opening at (NavigationParams::reacquire_range_rate_rung).
+  double significantRangeRate() const;
   /// Multiplies the velocity and the angular velocity by factor in [0, 1] (the covariance is kept): a
   /// search coasting for many frames carries a motion that fades instead of a straight line
   /// (NavigationParams::reacquire_motion_decay_s). kInvalidArgument (state untouched) for a factor outside
