@@ -183,8 +183,8 @@ Vec3 NavigationPipeline::nextAcquisitionTile(const Vec3& predicted_direction, do
 double NavigationPipeline::rateRungRange(double predicted_range_m) const {
   if (m_search_range_rate_m_s == 0.0 || !(predicted_range_m > 0.0)) return 0.0;
   // The rate carried in a straight line: an approach goes on at the speed it was measured at (a slew or an
-  // eclipse does not stop it); a wrong rung costs every other frame's starts, never a pose (each find is
-  // judged against the range it started at, and by the image).
+  // eclipse does not stop it); a wrong rung costs every other frame's starts and attempts. A local-search
+  // find there is judged at 5 % of the rung's range, an acquisition's as at any range (its own checks).
   const double elapsed_s = static_cast<double>(m_last_exposure_ns - m_search_start_exposure_ns) * 1e-9;
   const double nearest_m = m_near.model().boundingRadius();
   const double farthest_m = std::max(nearest_m, m_params.navigation.far_range_above_m);
