@@ -14,10 +14,11 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
   m_near_result.status = TrackStatus::kLost;
   // The search is predicted from the filter: only with the motion it knows (pose_filter.hpp). A range rate
   // the prediction drops although it stands out on its own (below the start-at-rest prior) is kept for the
-  // rate rung (rateRungRange).
-  const double range_rate_m_s = m_params.navigation.reacquire_range_rate_rung && m_filter.initialised()
-                                    ? m_filter.significantRangeRate()
-                                    : 0.0;
+  // rate rung (rateRungRange), where it is a validated track's (rateFromValidTrack).
+  const double range_rate_m_s =
+      m_params.navigation.reacquire_range_rate_rung && m_filter.initialised() && rateFromValidTrack()
+          ? m_filter.significantRangeRate()
+          : 0.0;
   const std::uint32_t dropped =
       m_params.navigation.reacquire_drop_insignificant_rates ? m_filter.dropInsignificantRates() : 0U;
   m_search_range_rate_m_s = (dropped & PoseFilter::kDroppedVelocity) != 0U ? range_rate_m_s : 0.0;
@@ -178,6 +179,15 @@ Vec3 NavigationPipeline::nextAcquisitionTile(const Vec3& predicted_direction, do
     if (offset.norm() <= radius_px && m_camera.inImage(tile_px)) return m_camera.bearing(tile_px);
   }
   return predicted_direction;
+}
+
+bool NavigationPipeline::rateFromValidTrack() const {
+  // A rate measured by fits that were never delivered, or by a filter restarted since the last valid pose,
+  // carries their errors into every other frame of the search: campaign box/5030 (never valid before the
+  // loss, 24.7 deg off, its rate read closing while the prediction was already 17 % short: 53 -> 16
+  // tracked) and box/25 (restarted at 3.2 m/s from three biased strip fits).
+  if (!m_params.navigation.reacquire_rate_rung_valid_track_only) return true;
+  return m_have_valid_range && m_filter.trackEpoch() == m_reference_track_epoch;
 }
 
 double NavigationPipeline::rateRungRange(double predicted_range_m) const {

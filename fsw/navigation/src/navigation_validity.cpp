@@ -284,17 +284,20 @@ bool NavigationPipeline::rangeLeftTheReference(const NavigationParams& nav, std:
 }
 
 void NavigationPipeline::noteRangeReference(const NavSolution& out) {
-  if (!m_params.navigation.branch_range_after_jump) return;  // off: no per-frame work, the check never starts
+  // The filter's range rate is the track's only after a run of valid poses; one or two after a start or a
+  // find carry about the prior's rate (zero) with a confidence the motion has not earned (campaign
+  // smallsat/14: valid once at 42 m after an acquisition, closing at 3.9 m/s, the filter's range rate
+  // -0.15 m/s at 0.47 m/s 1-sigma; box/7036 after a find: 0.00 at 0.05. With either as the reference the
+  // right track after a jump was withheld for the rest of the scene). Counted with the check off too: the
+  // rate rung reads it (rateFromValidTrack).
   if (!out.pose_valid) {
     m_valid_run = 0;
   } else {
-    // The filter's range rate is the track's only after a run of valid poses; one or two after a start or a
-    // find carry about the prior's rate (zero) with a confidence the motion has not earned (campaign
-    // smallsat/14: valid once at 42 m after an acquisition, closing at 3.9 m/s, the filter's range rate
-    // -0.15 m/s at 0.47 m/s 1-sigma; box/7036 after a find: 0.00 at 0.05. With either as the reference the
-    // right track after a jump was withheld for the rest of the scene).
     m_valid_run = std::min(m_valid_run + 1, kValidRunCap);
     m_have_valid_range = m_valid_run >= m_params.navigation.branch_range_reference_min_frames;
+  }
+  if (!m_params.navigation.branch_range_after_jump) return;  // off: the check never starts
+  if (out.pose_valid) {
     m_valid_exposure_ns = m_last_exposure_ns;
     m_range_check_active = false;
     // The reference is the filter's estimate on this frame, not the fit alone: one valid fit 3.8 % off in

@@ -248,7 +248,9 @@ TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
   // local search (5 %). With reacquire_range_rate_rung every other search frame and prediction-cued
   // attempt starts where the measured rate took the range (campaign octagon/19: an approach at 1.0 m/s
   // lost by a slew at 24.8 m). At 1.63 times the range (an eclipse of 4 s) the acquisition at the
-  // prediction still found the plate, a frame after the rung did.
+  // prediction still found the plate, a frame after the rung did. The rate is taken only from a track
+  // delivered valid (reacquire_rate_rung_valid_track_only): with every pose withheld (a delivery limit no
+  // fit meets) the same rate is not taken, and is without that rule.
   constexpr double kStartM = 25.0;
   constexpr double kStepM = 0.3;
   constexpr int kHiddenFrom = 12;
@@ -260,9 +262,21 @@ TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
   for (int i = 0; i < kApproachFrames; ++i)
     pushFrame(seq, empty, test::plateAt(kStartM - kStepM * i, 0.2, 10.0, -5.0),
               i >= kHiddenFrom && i < kVisibleFrom, 700U + i);
-  for (const bool on : {true, false}) {
+  struct Case {
+    bool rung;
+    bool never_valid;  // the track before the loss is tracked but never delivered valid
+    bool valid_track_only;
+  };
+  for (const Case c : {Case{true, false, true}, Case{false, false, true}, Case{true, true, true},
+                       Case{true, true, false}}) {
+    const bool on = c.rung;
+    const bool rung_expected = c.rung && (!c.never_valid || !c.valid_track_only);
     PipelineParams p = params;
     p.navigation.reacquire_range_rate_rung = on;
+    p.navigation.reacquire_rate_rung_valid_track_only = c.valid_track_only;
+    if (c.never_valid) p.navigation.max_valid_attitude_sigma_deg = 1e-9;
+    SCOPED_TRACE(::testing::Message() << "rung " << c.rung << ", never valid " << c.never_valid
+                                      << ", valid track only " << c.valid_track_only);
     NavigationPipeline pipeline;
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
     pipeline.startNearRange(seq[0].truth, 0);
@@ -296,8 +310,15 @@ TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
             << "frame " << i;
       }
     }
-    EXPECT_EQ(test::allocationCount() - allocations_before, 0U) << "rung " << on;
-    if (on) {
+    EXPECT_EQ(test::allocationCount() - allocations_before, 0U);
+    if (c.never_valid) {
+      EXPECT_EQ(valid_after, 0);  // nothing meets the delivery limit; the rung is what is counted
+      if (rung_expected) {
+        EXPECT_GT(rung_frames, 5);
+      } else {
+        EXPECT_EQ(rung_frames, 0) << "a rate no valid pose vouched for moved the search";
+      }
+    } else if (on) {
       EXPECT_GT(rung_frames, 5);
       ASSERT_GE(found_at, kVisibleFrom) << "never found again";
       EXPECT_LE(found_at, kVisibleFrom + 8);

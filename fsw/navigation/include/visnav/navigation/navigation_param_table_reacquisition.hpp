@@ -157,6 +157,15 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
              "track saw still has no rate, and its search is as without this. Measured in the top-level "
              "README, stop 76. true: used"},
             p.reacquire_range_rate_rung);
+  v.boolean({"navigation", "reacquire_rate_rung_valid_track_only", "-", 0, 1,
+             "the rate rung (reacquire_range_rate_rung) takes the track's range rate only where the track "
+             "was delivered valid: its last valid pose closed a run of branch_range_reference_min_frames "
+             "valid poses and the filter was not restarted after it. A rate measured by fits never "
+             "delivered, or restarted from fits that were not, carries their error into every other "
+             "search frame (campaign box/5030: never valid before its loss, the track 24.7 deg off and its "
+             "rate closing while the prediction was already short; box/25: restarted at 3.2 m/s from "
+             "biased strip fits). Measured in the top-level README, stop 77. true: used"},
+            p.reacquire_rate_rung_valid_track_only);
   v.boolean({"navigation", "find_confirms_only_from_reference", "-", 0, 1,
              "a close-range reacquisition's find confirms the track's branch only when the branch was "
              "known before the loss: a last valid pose (or the operator's start pose) exists and the "

@@ -93,6 +93,7 @@ struct NavigationParams {
   bool reacquire_acquisition_outline_cue = false;  ///< or look where the outline cue matched best
   bool reacquire_range_ladder = false;    ///< its prediction-cued attempts step through ranges about it
   bool reacquire_range_rate_rung = true;  ///< every other search frame at the range the track's rate reached
+  bool reacquire_rate_rung_valid_track_only = true;  ///< that rate only from a track delivered valid
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
   double reacquire_motion_decay_s = 0.0;  ///< a search's rates fade with this time constant (0: kept)

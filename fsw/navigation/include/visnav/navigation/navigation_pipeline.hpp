@@ -170,6 +170,9 @@ class NavigationPipeline {
   /// prediction's `predicted_range_m`, within the target's bounding radius and far_range_above_m; 0 when
   /// there is no rate or that range is within reacquire_range_tolerance_rel of the prediction's.
   double rateRungRange(double predicted_range_m) const;
+  /// The filter's rate is a validated track's (reacquire_rate_rung_valid_track_only): the last valid pose
+  /// closed a run of branch_range_reference_min_frames valid poses and the filter was not restarted since.
+  bool rateFromValidTrack() const;
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
