@@ -267,8 +267,8 @@ TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
     bool never_valid;  // the track before the loss is tracked but never delivered valid
     bool valid_track_only;
   };
-  for (const Case c : {Case{true, false, true}, Case{false, false, true}, Case{true, true, true},
-                       Case{true, true, false}}) {
+  for (const Case c :
+       {Case{true, false, true}, Case{false, false, true}, Case{true, true, true}, Case{true, true, false}}) {
     const bool on = c.rung;
     const bool rung_expected = c.rung && (!c.never_valid || !c.valid_track_only);
     PipelineParams p = params;
