@@ -1,0 +1,139 @@
+// The close-range search at a range other than the prediction's, end to end on rendered frames: the range
+// ladder of the acquisition's attempts (reacquire_range_ladder) and the rate rung (reacquire_range_rate_rung,
+// only from a track delivered valid: reacquire_rate_rung_valid_track_only). Split from
+// test_pipeline_reacquisition.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pipeline_fixture.hpp"
+
+namespace visnav::nav {
+namespace {
+
+using test_support::PipelineTest;
+
+TEST_F(PipelineTest, ATargetThatReappearsAtHalfItsRangeIsFoundOnTheRangeLadder) {
+  // Tracked at 15 m, hidden for ten frames while it comes to 7.5 m: the search keeps the range the track was
+  // lost at, and the acquisition cued by the prediction covers 15 m / 1.35 .. x 1.35 (range_span_rel), not
+  // 7.5 m. On the range ladder (reacquire_range_ladder, off by default) every other attempt steps through
+  // 8.2 m, 27 m, 4.5 m, ... (the others stay at 15 m): the first rung holds the plate, found 14 frames after
+  // it reappears (the attempts during the eclipse fail on their first frame, and those at 15 m take a few).
+  // Far range's cue, tiles and the outline cue are off (the first would not help: its distance is not
+  // taken). Campaign octagon/19: lost at 24.8 m by a slew, the target at 10 m when the prediction was still
+  // at 24 m.
+  const std::vector<test::RenderedFrame> seq =
+      hiddenApproach(test::plateAt(7.5, 0.2, 10.0, -5.0), test::plateAt(15.0, 0.3, 1.0, -1.0));
+  for (const bool on : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.reacquire_far_cue = false;
+    p.navigation.reacquire_acquisition_tiles = false;
+    p.navigation.reacquire_acquisition_outline_cue = false;
+    p.navigation.reacquire_range_ladder = on;
+    NavigationPipeline pipeline;
+    HiddenRun run;
+    runHidden(seq, p, pipeline, run);
+    EXPECT_EQ(run.allocations, 0U) << "ladder " << on << ", malloc counted: " << test::countsMalloc();
+    const int valid_after = checkValidAfterHidden(seq, pipeline, run);
+    if (on) {
+      expectFoundByAcquisitionSoon(run, valid_after, 15);
+    } else {
+      EXPECT_LT(run.found_at, 0) << "found without the ladder: the test tests nothing";
+      EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
+TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
+  // The plate approaches at 1.5 m/s (0.3 m a frame) from 25 m: tracked on frames 0-11, hidden on 12-49 (a
+  // 7.6 s eclipse), visible again from 10 m on. The search's prediction drops the velocity (below what the
+  // start-at-rest prior covers, 1.68 m/s) and stays at the 21.4 m it was lost at, more than twice the
+  // range when the plate reappears: the acquisition at the prediction does not reach it, nor does the
+  // local search (5 %). With reacquire_range_rate_rung every other search frame and prediction-cued
+  // attempt starts where the measured rate took the range (campaign octagon/19: an approach at 1.0 m/s
+  // lost by a slew at 24.8 m). At 1.63 times the range (an eclipse of 4 s) the acquisition at the
+  // prediction still found the plate, a frame after the rung did. The rate is taken only from a track
+  // delivered valid (reacquire_rate_rung_valid_track_only): with every pose withheld (a delivery limit no
+  // fit meets) the same rate is not taken, and is without that rule.
+  constexpr double kStartM = 25.0;
+  constexpr double kStepM = 0.3;
+  constexpr int kHiddenFrom = 12;
+  constexpr int kVisibleFrom = 50;
+  constexpr int kApproachFrames = 60;
+  std::vector<test::RenderedFrame> seq;
+  synthetic::Renderer empty;
+  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  for (int i = 0; i < kApproachFrames; ++i)
+    pushFrame(seq, empty, test::plateAt(kStartM - kStepM * i, 0.2, 10.0, -5.0),
+              i >= kHiddenFrom && i < kVisibleFrom, 700U + i);
+  struct Case {
+    bool rung;
+    bool never_valid;  // the track before the loss is tracked but never delivered valid
+    bool valid_track_only;
+  };
+  for (const Case c :
+       {Case{true, false, true}, Case{false, false, true}, Case{true, true, true}, Case{true, true, false}}) {
+    const bool on = c.rung;
+    const bool rung_expected = c.rung && (!c.never_valid || !c.valid_track_only);
+    PipelineParams p = params;
+    p.navigation.reacquire_range_rate_rung = on;
+    p.navigation.reacquire_rate_rung_valid_track_only = c.valid_track_only;
+    if (c.never_valid) p.navigation.max_valid_attitude_sigma_deg = 1e-9;
+    SCOPED_TRACE(::testing::Message() << "rung " << c.rung << ", never valid " << c.never_valid
+                                      << ", valid track only " << c.valid_track_only);
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    const std::uint64_t allocations_before = test::allocationCount();
+    int found_at = -1;
+    int valid_after = 0;
+    int rung_frames = 0;
+    for (int i = 0; i < kApproachFrames; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      const ReacquisitionStep& step = pipeline.lastReacquisition();
+      if (step.rate_rung_range_m > 0.0) {
+        ++rung_frames;
+        // The rung is where the rate took the range: the truth within the rate's error over the search.
+        EXPECT_NEAR(step.rate_rung_range_m, seq[static_cast<std::size_t>(i)].truth.t_c_m.norm(), 0.5) << i;
+      }
+      if (i == kHiddenFrom + 3) {
+        ASSERT_TRUE(pipeline.reacquisition().active()) << "the plate is hidden: the search must be on";
+        ASSERT_TRUE(pipeline.filter().velocity().isZero(0.0))
+            << "the prediction kept the velocity: the rung is not what finds it";
+      }
+      if (found_at < 0 && i >= kVisibleFrom && step.found) found_at = i;
+      if (i >= kVisibleFrom && out.pose_valid) {
+        ++valid_after;
+        const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * truth.t_c_m.norm()) << "frame " << i;
+        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
+                      kDegPerRad,
+                  2.0)
+            << "frame " << i;
+      }
+    }
+    EXPECT_EQ(test::allocationCount() - allocations_before, 0U);
+    if (c.never_valid) {
+      EXPECT_EQ(valid_after, 0);  // nothing meets the delivery limit; the rung is what is counted
+      if (rung_expected) {
+        EXPECT_GT(rung_frames, 5);
+      } else {
+        EXPECT_EQ(rung_frames, 0) << "a rate no valid pose vouched for moved the search";
+      }
+    } else if (on) {
+      EXPECT_GT(rung_frames, 5);
+      ASSERT_GE(found_at, kVisibleFrom) << "never found again";
+      EXPECT_LE(found_at, kVisibleFrom + 8);
+      EXPECT_GE(valid_after, kApproachFrames - found_at - 2);
+    } else {
+      EXPECT_EQ(rung_frames, 0);
+      EXPECT_LT(found_at, 0) << "found without the rung: the test tests nothing";
+      EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace visnav::nav
