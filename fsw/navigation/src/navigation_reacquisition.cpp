@@ -23,6 +23,7 @@ void NavigationPipeline::startReacquisition(const MonoImage& image, std::uint64_
       m_params.navigation.reacquire_drop_insignificant_rates ? m_filter.dropInsignificantRates() : 0U;
   m_search_range_rate_m_s = (dropped & PoseFilter::kDroppedVelocity) != 0U ? range_rate_m_s : 0.0;
   m_search_start_exposure_ns = m_last_exposure_ns;
+  m_search_start_t_c_m = m_filter.initialised() ? m_filter.pose().t_c_m : Vec3::Zero();
   m_search_rate_turn = false;
   m_acquisition_rate_turn = false;
   m_reacquisition.start();
@@ -46,8 +47,12 @@ void NavigationPipeline::runReacquisition(const MonoImage& image, std::uint64_t 
   if (!m_reacquisition.confirming()) m_search_rate_turn = !m_search_rate_turn;
   const double rung_m = m_search_rate_turn ? rateRungRange(predicted.t_c_m.norm()) : 0.0;
   if (rung_m > 0.0) predicted.t_c_m *= rung_m / predicted.t_c_m.norm();
+  const bool hedge = m_search_rate_turn && rung_m == 0.0 && motionHedge(predicted);
+  if (hedge) predicted.t_c_m = m_search_start_t_c_m;
   m_reacquisition.step(image, predicted, frame_number, step);
   step.rate_rung_range_m = rung_m;
+  step.motion_hedge = hedge;
+  step.searched_t_c_m = predicted.t_c_m;
   if (!step.found) runCloseRangeAcquisition(image, frame_number, step);
   if (step.found) {
     m_near_result.status = step.status;  // the confirming tracker's verdict on the delivered pose
@@ -188,6 +193,19 @@ bool NavigationPipeline::rateFromValidTrack() const {
   // tracked) and box/25 (restarted at 3.2 m/s from three biased strip fits).
   if (!m_params.navigation.reacquire_rate_rung_valid_track_only) return true;
   return m_have_valid_range && m_filter.trackEpoch() == m_reference_track_epoch;
+}
+
+bool NavigationPipeline::motionHedge(const Pose& predicted) const {
+  // The filter carries the velocity the track left with in a straight line; a target swinging sideways
+  // turns back meanwhile (campaign plate/5004: 2.0 m/s when a 6.2 s eclipse began, the prediction 13 m and
+  // 34 deg of line of sight off when the plate reappeared, the position the search began at 3.4 m off).
+  // The held start keeps the prediction's attitude (the rates the filter kept turn it) and is taken only
+  // once the prediction has left it by more than a find's range tolerance: nearer, the frame would repeat
+  // the prediction's starts.
+  if (!m_params.navigation.reacquire_motion_hedge || !(m_search_start_t_c_m.z() > 0.0)) return false;
+  const double range_m = predicted.t_c_m.norm();
+  return range_m > 0.0 && (predicted.t_c_m - m_search_start_t_c_m).norm() >
+                              m_params.navigation.reacquire_range_tolerance_rel * range_m;
 }
 
 double NavigationPipeline::rateRungRange(double predicted_range_m) const {

@@ -1,7 +1,7 @@
 // The close-range search at a range other than the prediction's, end to end on rendered frames: the range
 // ladder of the acquisition's attempts (reacquire_range_ladder) and the rate rung (reacquire_range_rate_rung,
-// only from a track delivered valid: reacquire_rate_rung_valid_track_only). Split from
-// test_pipeline_reacquisition.cpp.
+// only from a track delivered valid: reacquire_rate_rung_valid_track_only), and the search at the position it
+// began at (reacquire_motion_hedge). Split from test_pipeline_reacquisition.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -130,6 +130,81 @@ TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
     } else {
       EXPECT_EQ(rung_frames, 0);
       EXPECT_LT(found_at, 0) << "found without the rung: the test tests nothing";
+      EXPECT_EQ(valid_after, 0);
+    }
+  }
+}
+
+TEST_F(PipelineTest, ATargetThatTurnsBackDuringAnEclipseIsFoundWhereTheSearchBegan) {
+  // The plate crosses the image at 18 m, speeding up to 0.4 m a frame (2 m/s, 22 px a frame), tracked up to
+  // frame 11 (valid on 9-11); hidden on 12-29 while it swings back; visible again from frame 30 where it was
+  // lost. The filter keeps the velocity (above what the start-at-rest prior covers) and carries it in a
+  // straight line: 7.6 m off (24 deg, off the image) when the plate reappears, and the search's starts there
+  // keep that line of sight's range and look. With reacquire_motion_hedge every other search frame starts at
+  // the filter's position when the search began, with the prediction's attitude (campaign plate/5004: a 5 m
+  // swing, 2.0 m/s at a 6.2 s eclipse, the prediction 13 m off at reappearance). Far range's cue is off: its
+  // acquisition would find the plate anywhere on the image, and the test is about the local search.
+  constexpr int kHiddenFrom = 12;
+  constexpr int kVisibleFrom = 30;
+  constexpr int kSwingFrames = 45;
+  std::vector<test::RenderedFrame> seq;
+  synthetic::Renderer empty;
+  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+  double x_m = -3.0;
+  double lost_x_m = 0.0;
+  for (int i = 0; i < kSwingFrames; ++i) {
+    if (i > 0 && i < kHiddenFrom) x_m += 0.05 * std::min(i, 8);
+    if (i == kHiddenFrom - 1) lost_x_m = x_m;
+    const double at_m = i >= kVisibleFrom ? lost_x_m : x_m;
+    pushFrame(seq, empty, test::plateAt(18.0, at_m, 10.0, -5.0), i >= kHiddenFrom && i < kVisibleFrom,
+              900U + i);
+  }
+  for (const bool on : {true, false}) {
+    PipelineParams p = params;
+    p.navigation.reacquire_far_cue = false;
+    p.navigation.reacquire_motion_hedge = on;
+    SCOPED_TRACE(::testing::Message() << "hedge " << on);
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    const std::uint64_t allocations_before = test::allocationCount();
+    int found_at = -1;
+    int valid_after = 0;
+    int hedge_frames = 0;
+    int valid_before = 0;
+    for (int i = 0; i < kSwingFrames; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      const ReacquisitionStep& step = pipeline.lastReacquisition();
+      if (pipeline.reacquisition().active() || step.found) hedge_frames += step.motion_hedge ? 1 : 0;
+      if (i == kVisibleFrom) {
+        ASSERT_TRUE(pipeline.reacquisition().active()) << "the plate was hidden: the search must be on";
+        EXPECT_GT((pipeline.predictedPose().t_c_m - seq[static_cast<std::size_t>(i)].truth.t_c_m).norm(), 5.0)
+            << "the prediction did not carry the velocity: the hedge is not what finds it";
+      }
+      if (i >= kHiddenFrom - 3 && i < kHiddenFrom && out.pose_valid) ++valid_before;
+      if (found_at < 0 && i >= kVisibleFrom && step.found) found_at = i;
+      if (i >= kVisibleFrom && out.pose_valid) {
+        ++valid_after;
+        const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * truth.t_c_m.norm()) << "frame " << i;
+        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
+                      kDegPerRad,
+                  2.0)
+            << "frame " << i;
+      }
+    }
+    EXPECT_EQ(test::allocationCount() - allocations_before, 0U);
+    EXPECT_EQ(valid_before, 3) << "the crossing was not tracked up to the eclipse";
+    if (on) {
+      EXPECT_GT(hedge_frames, 5);
+      ASSERT_GE(found_at, kVisibleFrom) << "never found again";
+      EXPECT_LE(found_at, kVisibleFrom + 6);
+      EXPECT_GE(valid_after, kSwingFrames - found_at - 3);
+    } else {
+      EXPECT_EQ(hedge_frames, 0);
+      EXPECT_LT(found_at, 0) << "found without the hedge: the test tests nothing";
       EXPECT_EQ(valid_after, 0);
     }
   }

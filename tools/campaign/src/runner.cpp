@@ -406,11 +406,15 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
         // Where the search looked against where the target is, in image pixels: the prediction's centre and
         // the outline cue's best match (-1: not projected, no cue this frame).
         Vec2 truth_px, predicted_px, cue_offset_px;
+        // The cue slid the outline from where this frame's search started (the prediction, its rate rung's
+        // range, or the motion hedge's held position).
+        Vec2 searched_px;
         const bool centres =
             camera.project(truth.t_c_m, truth_px) && camera.project(predicted.t_c_m, predicted_px);
         const double predicted_off_px = centres ? (predicted_px - truth_px).norm() : -1.0;
-        const double cue_off_px = centres && pipeline->reacquisition().bestCueOffset(cue_offset_px)
-                                      ? (predicted_px + cue_offset_px - truth_px).norm()
+        const bool searched = centres && camera.project(rs.searched_t_c_m, searched_px);
+        const double cue_off_px = searched && pipeline->reacquisition().bestCueOffset(cue_offset_px)
+                                      ? (searched_px + cue_offset_px - truth_px).norm()
                                       : -1.0;
         char buf[440];
         std::snprintf(
@@ -418,7 +422,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             "       reacq: starts=%d cue=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
             "candidate=%d found=%d best_q=%.2f pred_dp=%.3f pred_da=%.2f pred_lat=%.1fdeg pred_rng=%.3f "
             "last_dp=%.3f "
-            "last_da=%.2f acq=%d/%d snr=%.1f fcue=%d ocue=%d pred_off=%.0fpx cue_off=%.0fpx rung=%.2fm%s%s\n",
+            "last_da=%.2f acq=%d/%d snr=%.1f fcue=%d ocue=%d pred_off=%.0fpx cue_off=%.0fpx rung=%.2fm "
+            "hold=%d rcue=%d%s%s\n",
             rs.hypotheses, rs.cue_starts, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
             rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
             rs.best_quality, (predicted.t_c_m - truth.t_c_m).norm(),
@@ -430,6 +435,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             attitudeErrorModuloDeg(pipeline->lastTrustedPose().R_c_m, truth.R_c_m, scene.symmetries),
             rs.acquisition_state, rs.acquisition_failure, rs.acquisition_edge_snr, rs.far_cue ? 1 : 0,
             rs.outline_cue ? 1 : 0, predicted_off_px, cue_off_px, rs.rate_rung_range_m,
+            rs.motion_hedge ? 1 : 0, rs.refined_cue_start ? 1 : 0,
             rs.by_acquisition ? " (found by acquisition)" : "",
             rs.twin_by_continuity ? " (near twin told apart by continuity)" : "");
         res.trace += buf;

@@ -166,6 +166,19 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
              "rate closing while the prediction was already short; box/25: restarted at 3.2 m/s from "
              "biased strip fits). Measured in the top-level README, stop 77. true: used"},
             p.reacquire_rate_rung_valid_track_only);
+  v.boolean(
+      {"navigation", "reacquire_motion_hedge", "-", 0, 1,
+       "close-range reacquisition: on the local search's frames the rate rung leaves to the "
+       "prediction (no rung, or none this frame), start at the filter's position when the search "
+       "began instead, with the prediction's attitude, once the prediction has moved more than "
+       "reacquire_range_tolerance_rel of the range from it. The filter carries the velocity it "
+       "left with in a straight line, and a target swinging sideways turns back (campaign "
+       "plate/5004: 2 m/s when a 6.2 s eclipse began, the prediction 13 m off at reappearance, "
+       "the held position 3.4 m). A find there is judged against the held start. Off: on "
+       "campaign seeds 1-40 / 5001-5040 / 7001-7040 tracked frames 15 586 / 15 511 / 15 585 -> 15 578 / "
+       "15 508 / 15 580, no scene gained, none wrong either way (half the searching frames leave the "
+       "prediction, where a target that kept its motion is); top-level README, stop 78. true: used"},
+      p.reacquire_motion_hedge);
   v.boolean({"navigation", "find_confirms_only_from_reference", "-", 0, 1,
              "a close-range reacquisition's find confirms the track's branch only when the branch was "
              "known before the loss: a last valid pose (or the operator's start pose) exists and the "
@@ -291,6 +304,14 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
           "angle at once (3-10 deg in the campaign, 30-250 px), which the grown disc reaches only on "
           "frame 1-6; 0: the cue's disc is the grid's"},
          p.reacquire_cue_min_radius_deg);
+  v.boolean({"navigation", "reacquire_cue_refine_look", "-", 0, 1,
+             "close-range reacquisition: one start more per frame (within reacquire_hypotheses_per_frame) "
+             "at the outline cue's best match, with its attitude and lateral position refined there on the "
+             "cue's window ([acquisition] refine_levels, rotation steps from 0.1 rad, the range kept the "
+             "prediction's): the cue's other starts keep the prediction's look, which was 10 deg or more "
+             "off on 353 of 584 search frames of campaign seeds 1-40 (stop 66), and the wide tracker loses "
+             "such starts. Measured in the top-level README, stop 78. true: used"},
+            p.reacquire_cue_refine_look);
 }
 
 }  // namespace detail

@@ -94,6 +94,7 @@ struct NavigationParams {
   bool reacquire_range_ladder = false;    ///< its prediction-cued attempts step through ranges about it
   bool reacquire_range_rate_rung = true;  ///< every other search frame at the range the track's rate reached
   bool reacquire_rate_rung_valid_track_only = true;  ///< that rate only from a track delivered valid
+  bool reacquire_motion_hedge = false;    ///< without a rung, every other search frame where the search began
   bool reacquire_twin_continuity = true;  ///< the last valid pose tells an unresolvable near twin apart
   bool reacquire_drop_insignificant_rates = true;  ///< a search carries only the motion the filter knows
   double reacquire_motion_decay_s = 0.0;  ///< a search's rates fade with this time constant (0: kept)
@@ -103,6 +104,8 @@ struct NavigationParams {
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
   double reacquire_cue_min_radius_deg =
       10.0;  ///< the cue slides over at least this cone from the first frame
+  bool reacquire_cue_refine_look =
+      false;  ///< one more start at the cue's best match, its look measured there
   bool find_confirms_only_from_reference = true;  ///< a find confirms the branch only if a valid pose kept it
   double branch_reference_max_look_deg = 45.0;    ///< ... while its look tolerance is within this
   double find_prediction_look_deg = 8.0;     ///< or within this of that pose carried by the filter (0: off)

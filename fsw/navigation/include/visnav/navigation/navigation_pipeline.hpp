@@ -173,6 +173,9 @@ class NavigationPipeline {
   /// The filter's rate is a validated track's (reacquire_rate_rung_valid_track_only): the last valid pose
   /// closed a run of branch_range_reference_min_frames valid poses and the filter was not restarted since.
   bool rateFromValidTrack() const;
+  /// This search frame starts at the filter's position when the search began, with the prediction's
+  /// attitude (reacquire_motion_hedge): the prediction has moved more than a find's range tolerance from it.
+  bool motionHedge(const Pose& predicted) const;
   void enterMode(NavMode mode);
   bool centreInImage(const Pose& pose) const;
   /// After a break of at most branch_continuity_frames: this near-range fit is clean, certain and kept the
@@ -242,7 +245,8 @@ class NavigationPipeline {
   bool m_acquisition_rung_turn = false;  ///< its attempts alternate between the prediction and the next rung
   double m_search_range_rate_m_s = 0.0;  ///< the track's range rate the search's prediction dropped (0: none)
   std::int64_t m_search_start_exposure_ns = 0;  ///< the search's first frame
-  bool m_search_rate_turn = false;       ///< this frame's local search starts at rateRungRange (alternates)
+  bool m_search_rate_turn = false;  ///< this frame's local search starts at rateRungRange (alternates)
+  Vec3 m_search_start_t_c_m = Vec3::Zero();  ///< the filter's position when the search began (motion hedge)
   bool m_acquisition_rate_turn = false;  ///< the next prediction-cued acquisition attempt does (alternates)
   /// The track began with a reacquisition's find and none of its poses has yet met
   /// doubted_max_attitude_sigma_deg: its near-range poses are doubted.
