@@ -19,9 +19,6 @@ constexpr int kCueWindowSidePx = 160;
 constexpr double kCueTargetRadiusPx = 32.0;
 /// Shifts tried 4 working px apart (half the default coarse spread, 8: a peak is not missed between two).
 constexpr double kCueShiftStepPx = 4.0;
-/// The first rotation step of the look refined at the cue (reacquire_cue_refine_look): halved per level,
-/// two sweeps a level, it reaches about 20 deg over the default six levels.
-constexpr double kCueRefineRotationRad = 0.1;
 
 }  // namespace
 
@@ -120,23 +117,6 @@ int LocalReacquisition::findCues(const MonoImage& image, const Pose& predicted, 
   return count;
 }
 
-bool LocalReacquisition::refineLookAtCue(const Pose& predicted, const Vec2& offset_px, Pose& start) {
-  // The cue's starts keep the prediction's look, and the wide tracker loses a start turned 10 deg or more
-  // from the target's (campaign seeds 1-40, stop 66: the cue within 0.3 target radii of the target on 232
-  // of 584 search frames, the look 10 deg or more off on 353; a fixed look grid at the cue, stop 67, +29
-  // frames). The look is measured there instead, as the acquisition refines its candidates: a pattern
-  // search over the rotation and the lateral shift on this frame's cue window. The range stays the
-  // prediction's: a find is judged against it (reacquire_range_tolerance_rel).
-  acq::RefineSettings settings;
-  settings.levels = m_evidence.refine_levels;
-  settings.rotation_step_rad = kCueRefineRotationRad;
-  settings.lateral_step_working_px = 0.5 * m_evidence.coarse_spread_px;
-  settings.range_step_rel = 0.0;
-  start = movedAcrossImage(predicted, offset_px);
-  int evaluations = 0;
-  return m_cue_scorer.refine(m_cue_window, settings, start, evaluations) > 0.0;
-}
-
 bool LocalReacquisition::agrees(const Pose& reference, const Pose& candidate, std::uint64_t frames,
                                 bool check_range) const {
   const double range = reference.t_c_m.norm();
@@ -193,26 +173,15 @@ void LocalReacquisition::search(const MonoImage& image, const Pose& predicted, s
   // its starts may also take the part of the budget a grid of one ring cannot fill.
   const double cue_radius_px = std::max<double>(out.search_radius_px, m_cue_min_radius_px);
   const int room = per_frame - inner;
-  int cues =
+  const int cues =
       room > 0 ? findCues(image, predicted, cue_radius_px, std::min(m_params.reacquire_cue_starts, room)) : 0;
-  // One more start at the best match with its look measured there (reacquire_cue_refine_look), first of
-  // the cue's.
-  const int refined = m_params.reacquire_cue_refine_look && room > cues && m_best_cue_found &&
-                              refineLookAtCue(predicted, m_best_cue_offset_px, m_cue_refined_start)
-                          ? 1
-                          : 0;
-  out.refined_cue_start = refined == 1;
-  cues += refined;
   const int budget = std::min(per_frame, total + cues);
   for (int n = 0; n < budget; ++n) {
     Pose start;
     if (n < inner) {
       start = hypothesis(predicted, n);
-    } else if (n < inner + refined) {
-      start = m_cue_refined_start;
-      ++out.cue_starts;
     } else if (n < inner + cues) {
-      start = movedAcrossImage(predicted, m_cue_peaks[static_cast<std::size_t>(n - inner - refined)].shift);
+      start = movedAcrossImage(predicted, m_cue_peaks[static_cast<std::size_t>(n - inner)].shift);
       ++out.cue_starts;
     } else {
       if (m_cursor < inner || m_cursor >= total) m_cursor = inner;  // re-centred on each frame's prediction

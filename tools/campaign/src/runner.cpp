@@ -423,7 +423,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             "candidate=%d found=%d best_q=%.2f pred_dp=%.3f pred_da=%.2f pred_lat=%.1fdeg pred_rng=%.3f "
             "last_dp=%.3f "
             "last_da=%.2f acq=%d/%d snr=%.1f fcue=%d ocue=%d pred_off=%.0fpx cue_off=%.0fpx rung=%.2fm "
-            "hold=%d rcue=%d%s%s\n",
+            "hold=%d%s%s\n",
             rs.hypotheses, rs.cue_starts, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
             rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
             rs.best_quality, (predicted.t_c_m - truth.t_c_m).norm(),
@@ -435,8 +435,7 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             attitudeErrorModuloDeg(pipeline->lastTrustedPose().R_c_m, truth.R_c_m, scene.symmetries),
             rs.acquisition_state, rs.acquisition_failure, rs.acquisition_edge_snr, rs.far_cue ? 1 : 0,
             rs.outline_cue ? 1 : 0, predicted_off_px, cue_off_px, rs.rate_rung_range_m,
-            rs.motion_hedge ? 1 : 0, rs.refined_cue_start ? 1 : 0,
-            rs.by_acquisition ? " (found by acquisition)" : "",
+            rs.motion_hedge ? 1 : 0, rs.by_acquisition ? " (found by acquisition)" : "",
             rs.twin_by_continuity ? " (near twin told apart by continuity)" : "");
         res.trace += buf;
       }

@@ -56,9 +56,8 @@ struct ReacquisitionStep {
   /// found by that acquisition with a near twin the image cannot resolve, told apart by the look of the
   /// last valid pose (acq::AcquisitionResult::twin_resolved_by_continuity)
   bool twin_by_continuity = false;
-  int hypotheses = 0;              ///< tracker starts tried this frame
-  int cue_starts = 0;              ///< of them, at the outline's best shifts (reacquire_cue_starts)
-  bool refined_cue_start = false;  ///< one of them at the best shift with its look refined there
+  int hypotheses = 0;  ///< tracker starts tried this frame
+  int cue_starts = 0;  ///< of them, at the outline's best shifts (reacquire_cue_starts)
   int search_radius_px = 0;
   // Why the starts of this frame were not taken (diagnostics: the campaign's --trace).
   int starts_lost = 0;          ///< the wide tracker lost the target from the start
@@ -114,9 +113,6 @@ class LocalReacquisition {
   /// The predicted outline slid over the disc of radius_px around it: the image offsets (full px) of its
   /// best matches into m_cue_peaks' shifts, at most `capacity`; returns their count.
   int findCues(const MonoImage& image, const Pose& predicted, double radius_px, int capacity);
-  /// `predicted` moved by `offset_px` (the cue's best match), its attitude and lateral position refined on
-  /// this frame's cue window (reacquire_cue_refine_look): false where nothing of it scores.
-  bool refineLookAtCue(const Pose& predicted, const Vec2& offset_px, Pose& start);
   /// One hypothesis: within one frame's motion plus what the tracker cannot resolve around `r`.
   PoseTolerance tolerance(const NearRangeResult& r) const;
 
@@ -161,7 +157,6 @@ class LocalReacquisition {
   std::array<acq::ShiftPeak, LocalSearchLimits::kMaxCueStarts> m_cue_peaks{};
   bool m_best_cue_found = false;             ///< this frame's findCues had a peak
   Vec2 m_best_cue_offset_px = Vec2::Zero();  ///< its best, from the prediction's centre (full px)
-  Pose m_cue_refined_start;                  ///< refineLookAtCue's start of this frame
 };
 
 }  // namespace visnav::nav

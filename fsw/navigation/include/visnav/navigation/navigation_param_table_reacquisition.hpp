@@ -304,14 +304,6 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
           "angle at once (3-10 deg in the campaign, 30-250 px), which the grown disc reaches only on "
           "frame 1-6; 0: the cue's disc is the grid's"},
          p.reacquire_cue_min_radius_deg);
-  v.boolean({"navigation", "reacquire_cue_refine_look", "-", 0, 1,
-             "close-range reacquisition: one start more per frame (within reacquire_hypotheses_per_frame) "
-             "at the outline cue's best match, with its attitude and lateral position refined there on the "
-             "cue's window ([acquisition] refine_levels, rotation steps from 0.1 rad, the range kept the "
-             "prediction's): the cue's other starts keep the prediction's look, which was 10 deg or more "
-             "off on 353 of 584 search frames of campaign seeds 1-40 (stop 66), and the wide tracker loses "
-             "such starts. Measured in the top-level README, stop 78. true: used"},
-            p.reacquire_cue_refine_look);
 }
 
 }  // namespace detail

@@ -104,8 +104,6 @@ struct NavigationParams {
   int reacquire_cue_starts = 3;  ///< starts per frame at the best shifts of the predicted outline (0: none)
   double reacquire_cue_min_radius_deg =
       10.0;  ///< the cue slides over at least this cone from the first frame
-  bool reacquire_cue_refine_look =
-      false;  ///< one more start at the cue's best match, its look measured there
   bool find_confirms_only_from_reference = true;  ///< a find confirms the branch only if a valid pose kept it
   double branch_reference_max_look_deg = 45.0;    ///< ... while its look tolerance is within this
   double find_prediction_look_deg = 8.0;     ///< or within this of that pose carried by the filter (0: off)
