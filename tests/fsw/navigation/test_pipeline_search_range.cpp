@@ -13,6 +13,63 @@ namespace {
 
 using test_support::PipelineTest;
 
+/// What runFromTruth saw: the first find on or after the frame it was given (-1: none) and the valid frames
+/// from that frame on.
+struct FoundRun {
+  int found_at = -1;
+  int valid_after = 0;
+};
+
+/// `seq` run from its true start pose under `p`: every valid pose from `visible_from` on within 2 % of the
+/// range and 2 deg of the truth, nothing allocated after init; `each(pipeline, step, out, i)` checks the
+/// case on every frame.
+template <typename EachFrame>
+void runFromTruth(const PolygonModel& model, const std::vector<test::RenderedFrame>& seq,
+                  const PipelineParams& p, int visible_from, FoundRun& run, EachFrame each) {
+  NavigationPipeline pipeline;
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
+  pipeline.startNearRange(seq[0].truth, 0);
+  const std::uint64_t allocations_before = test::allocationCount();
+  for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
+    Frame f;  // as PipelineTest::frameOf (protected): 5 Hz, sequence number i
+    f.image = seq[static_cast<std::size_t>(i)].image();
+    f.exposure_time_ns = 200000000LL * i;
+    f.sequence = static_cast<std::uint64_t>(i);
+    NavSolution out;
+    ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+    const ReacquisitionStep& step = pipeline.lastReacquisition();
+    each(pipeline, step, out, i);
+    if (run.found_at < 0 && i >= visible_from && step.found) run.found_at = i;
+    if (i >= visible_from && out.pose_valid) {
+      ++run.valid_after;
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * truth.t_c_m.norm()) << "frame " << i;
+      EXPECT_LT(
+          pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) * kDegPerRad,
+          2.0)
+          << "frame " << i;
+    }
+  }
+  EXPECT_EQ(test::allocationCount() - allocations_before, 0U);
+}
+
+/// A run with a search feature `on` or off that took it on `feature_frames` frames: on, more than 5 of them,
+/// the target found within `within` frames of `visible_from` and valid on all but `slack` of the `frames`
+/// after the find; off, none of them and never found (else the test tests nothing).
+void expectFoundOnlyWithFeature(bool on, int feature_frames, const FoundRun& run, int visible_from,
+                                int within, int frames, int slack) {
+  if (on) {
+    EXPECT_GT(feature_frames, 5);
+    ASSERT_GE(run.found_at, visible_from) << "never found again";
+    EXPECT_LE(run.found_at, visible_from + within);
+    EXPECT_GE(run.valid_after, frames - run.found_at - slack);
+  } else {
+    EXPECT_EQ(feature_frames, 0);
+    EXPECT_LT(run.found_at, 0) << "found without it: the test tests nothing";
+    EXPECT_EQ(run.valid_after, 0);
+  }
+}
+
 TEST_F(PipelineTest, ATargetThatReappearsAtHalfItsRangeIsFoundOnTheRangeLadder) {
   // Tracked at 15 m, hidden for ten frames while it comes to 7.5 m: the search keeps the range the track was
   // lost at, and the acquisition cued by the prediction covers 15 m / 1.35 .. x 1.35 (range_span_rel), not
@@ -81,56 +138,33 @@ TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
     if (c.never_valid) p.navigation.max_valid_attitude_sigma_deg = 1e-9;
     SCOPED_TRACE(::testing::Message() << "rung " << c.rung << ", never valid " << c.never_valid
                                       << ", valid track only " << c.valid_track_only);
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
-    const std::uint64_t allocations_before = test::allocationCount();
-    int found_at = -1;
-    int valid_after = 0;
     int rung_frames = 0;
-    for (int i = 0; i < kApproachFrames; ++i) {
-      const Frame f = frameOf(seq, i);
-      NavSolution out;
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      const ReacquisitionStep& step = pipeline.lastReacquisition();
-      if (step.rate_rung_range_m > 0.0) {
-        ++rung_frames;
-        // The rung is where the rate took the range: the truth within the rate's error over the search.
-        EXPECT_NEAR(step.rate_rung_range_m, seq[static_cast<std::size_t>(i)].truth.t_c_m.norm(), 0.5) << i;
-      }
-      if (i == kHiddenFrom + 3) {
-        ASSERT_TRUE(pipeline.reacquisition().active()) << "the plate is hidden: the search must be on";
-        ASSERT_TRUE(pipeline.filter().velocity().isZero(0.0))
-            << "the prediction kept the velocity: the rung is not what finds it";
-      }
-      if (found_at < 0 && i >= kVisibleFrom && step.found) found_at = i;
-      if (i >= kVisibleFrom && out.pose_valid) {
-        ++valid_after;
-        const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * truth.t_c_m.norm()) << "frame " << i;
-        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
-                      kDegPerRad,
-                  2.0)
-            << "frame " << i;
-      }
-    }
-    EXPECT_EQ(test::allocationCount() - allocations_before, 0U);
+    FoundRun run;
+    runFromTruth(
+        model, seq, p, kVisibleFrom, run,
+        [&](const NavigationPipeline& pipeline, const ReacquisitionStep& step, const NavSolution&, int i) {
+          if (step.rate_rung_range_m > 0.0) {
+            ++rung_frames;
+            // The rung is where the rate took the range: the truth within the rate's error over the
+            // search.
+            EXPECT_NEAR(step.rate_rung_range_m, seq[static_cast<std::size_t>(i)].truth.t_c_m.norm(), 0.5)
+                << i;
+          }
+          if (i == kHiddenFrom + 3) {
+            EXPECT_TRUE(pipeline.reacquisition().active()) << "the plate is hidden: the search must be on";
+            EXPECT_TRUE(pipeline.filter().velocity().isZero(0.0))
+                << "the prediction kept the velocity: the rung is not what finds it";
+          }
+        });
     if (c.never_valid) {
-      EXPECT_EQ(valid_after, 0);  // nothing meets the delivery limit; the rung is what is counted
+      EXPECT_EQ(run.valid_after, 0);  // nothing meets the delivery limit; the rung is what is counted
       if (rung_expected) {
         EXPECT_GT(rung_frames, 5);
       } else {
         EXPECT_EQ(rung_frames, 0) << "a rate no valid pose vouched for moved the search";
       }
-    } else if (on) {
-      EXPECT_GT(rung_frames, 5);
-      ASSERT_GE(found_at, kVisibleFrom) << "never found again";
-      EXPECT_LE(found_at, kVisibleFrom + 8);
-      EXPECT_GE(valid_after, kApproachFrames - found_at - 2);
     } else {
-      EXPECT_EQ(rung_frames, 0);
-      EXPECT_LT(found_at, 0) << "found without the rung: the test tests nothing";
-      EXPECT_EQ(valid_after, 0);
+      expectFoundOnlyWithFeature(on, rung_frames, run, kVisibleFrom, 8, kApproachFrames, 2);
     }
   }
 }
@@ -164,49 +198,24 @@ TEST_F(PipelineTest, ATargetThatTurnsBackDuringAnEclipseIsFoundWhereTheSearchBeg
     p.navigation.reacquire_far_cue = false;
     p.navigation.reacquire_motion_hedge = on;
     SCOPED_TRACE(::testing::Message() << "hedge " << on);
-    NavigationPipeline pipeline;
-    ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
-    pipeline.startNearRange(seq[0].truth, 0);
-    const std::uint64_t allocations_before = test::allocationCount();
-    int found_at = -1;
-    int valid_after = 0;
     int hedge_frames = 0;
     int valid_before = 0;
-    for (int i = 0; i < kSwingFrames; ++i) {
-      const Frame f = frameOf(seq, i);
-      NavSolution out;
-      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
-      const ReacquisitionStep& step = pipeline.lastReacquisition();
-      if (pipeline.reacquisition().active() || step.found) hedge_frames += step.motion_hedge ? 1 : 0;
-      if (i == kVisibleFrom) {
-        ASSERT_TRUE(pipeline.reacquisition().active()) << "the plate was hidden: the search must be on";
-        EXPECT_GT((pipeline.predictedPose().t_c_m - seq[static_cast<std::size_t>(i)].truth.t_c_m).norm(), 5.0)
-            << "the prediction did not carry the velocity: the hedge is not what finds it";
-      }
-      if (i >= kHiddenFrom - 3 && i < kHiddenFrom && out.pose_valid) ++valid_before;
-      if (found_at < 0 && i >= kVisibleFrom && step.found) found_at = i;
-      if (i >= kVisibleFrom && out.pose_valid) {
-        ++valid_after;
-        const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
-        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * truth.t_c_m.norm()) << "frame " << i;
-        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
-                      kDegPerRad,
-                  2.0)
-            << "frame " << i;
-      }
-    }
-    EXPECT_EQ(test::allocationCount() - allocations_before, 0U);
+    FoundRun run;
+    runFromTruth(
+        model, seq, p, kVisibleFrom, run,
+        [&](const NavigationPipeline& pipeline, const ReacquisitionStep& step, const NavSolution& out,
+            int i) {
+          if (pipeline.reacquisition().active() || step.found) hedge_frames += step.motion_hedge ? 1 : 0;
+          if (i == kVisibleFrom) {
+            EXPECT_TRUE(pipeline.reacquisition().active()) << "the plate was hidden: the search must be on";
+            EXPECT_GT((pipeline.predictedPose().t_c_m - seq[static_cast<std::size_t>(i)].truth.t_c_m).norm(),
+                      5.0)
+                << "the prediction did not carry the velocity: the hedge is not what finds it";
+          }
+          if (i >= kHiddenFrom - 3 && i < kHiddenFrom && out.pose_valid) ++valid_before;
+        });
     EXPECT_EQ(valid_before, 3) << "the crossing was not tracked up to the eclipse";
-    if (on) {
-      EXPECT_GT(hedge_frames, 5);
-      ASSERT_GE(found_at, kVisibleFrom) << "never found again";
-      EXPECT_LE(found_at, kVisibleFrom + 6);
-      EXPECT_GE(valid_after, kSwingFrames - found_at - 3);
-    } else {
-      EXPECT_EQ(hedge_frames, 0);
-      EXPECT_LT(found_at, 0) << "found without the hedge: the test tests nothing";
-      EXPECT_EQ(valid_after, 0);
-    }
+    expectFoundOnlyWithFeature(on, hedge_frames, run, kVisibleFrom, 6, kSwingFrames, 3);
   }
 }
 
