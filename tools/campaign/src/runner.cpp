@@ -400,15 +400,12 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
       }
       const nav::ReacquisitionStep& rs = pipeline->lastReacquisition();
       if (rs.hypotheses > 0 || rs.candidate || rs.found) {
-        // The search is centred on the prediction: how far it is from the truth says whether the grid can
-        // reach the target at all.
+        // Where the search looked against where the target is, in image pixels: the prediction's centre (can
+        // the grid reach the target at all?) and the outline cue's best match from where this frame's search
+        // started (the prediction, the rate rung, the motion hedge's held position); -1: not projected, no
+        // cue.
         const Pose predicted = pipeline->predictedPose();
-        // Where the search looked against where the target is, in image pixels: the prediction's centre and
-        // the outline cue's best match (-1: not projected, no cue this frame).
-        Vec2 truth_px, predicted_px, cue_offset_px;
-        // The cue slid the outline from where this frame's search started (the prediction, its rate rung's
-        // range, or the motion hedge's held position).
-        Vec2 searched_px;
+        Vec2 truth_px, predicted_px, cue_offset_px, searched_px;
         const bool centres =
             camera.project(truth.t_c_m, truth_px) && camera.project(predicted.t_c_m, predicted_px);
         const double predicted_off_px = centres ? (predicted_px - truth_px).norm() : -1.0;
@@ -421,9 +418,8 @@ SceneResult runScene(const Scene& scene, const nav::PipelineParams& base, bool t
             buf, sizeof buf,
             "       reacq: starts=%d cue=%d radius=%dpx lost=%d weak=%d inconsistent=%d ambiguous=%d "
             "candidate=%d found=%d best_q=%.2f pred_dp=%.3f pred_da=%.2f pred_lat=%.1fdeg pred_rng=%.3f "
-            "last_dp=%.3f "
-            "last_da=%.2f acq=%d/%d snr=%.1f fcue=%d ocue=%d pred_off=%.0fpx cue_off=%.0fpx rung=%.2fm "
-            "hold=%d%s%s\n",
+            "last_dp=%.3f last_da=%.2f acq=%d/%d snr=%.1f fcue=%d ocue=%d pred_off=%.0fpx cue_off=%.0fpx "
+            "rung=%.2fm hold=%d%s%s\n",
             rs.hypotheses, rs.cue_starts, rs.search_radius_px, rs.starts_lost, rs.starts_weak,
             rs.starts_inconsistent, rs.ambiguous ? 1 : 0, rs.candidate ? 1 : 0, rs.found ? 1 : 0,
             rs.best_quality, (predicted.t_c_m - truth.t_c_m).norm(),
