@@ -198,7 +198,7 @@ bool NavigationPipeline::rateFromValidTrack() const {
 bool NavigationPipeline::motionHedge(const Pose& predicted) const {
   // The filter carries the velocity the track left with in a straight line; a target swinging sideways
   // turns back meanwhile (campaign plate/5004: 2.0 m/s when a 6.2 s eclipse began, the prediction 13 m and
-  // 34 deg of line of sight off when the plate reappeared, the position the search began at 3.4 m off).
+  // 34 deg of line of sight off when the plate reappeared, the last trusted pose 3.4 m off).
   // The held start keeps the prediction's attitude (the rates the filter kept turn it) and is taken only
   // once the prediction has left it by more than a find's range tolerance: nearer, the frame would repeat
   // the prediction's starts.

@@ -130,6 +130,19 @@ class PipelineTest : public ::testing::Test {
       pushFrame(seq, empty, i < kHiddenUntil ? before : reappears, i >= 3 && i < kHiddenUntil, 400U + i);
     return seq;
   }
+  /// `count` frames of the plate at `pose_at(i)`, hidden (background and noise only) on frames
+  /// `hidden_from` to `visible_from` - 1; frame i's noise seeded with `seed` + i.
+  template <typename PoseAt>
+  std::vector<test::RenderedFrame> eclipsedSequence(int count, int hidden_from, int visible_from,
+                                                    std::uint64_t seed, PoseAt pose_at) {
+    std::vector<test::RenderedFrame> seq;
+    synthetic::Renderer empty;
+    EXPECT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
+    for (int i = 0; i < count; ++i)
+      pushFrame(seq, empty, pose_at(i), i >= hidden_from && i < visible_from,
+                seed + static_cast<std::uint64_t>(i));
+    return seq;
+  }
   /// `truth`'s frame onto `seq`; `hidden`: drawn by `empty` behind the camera (background and noise only),
   /// the truth still recorded.
   void pushFrame(std::vector<test::RenderedFrame>& seq, synthetic::Renderer& empty, const Pose& truth,

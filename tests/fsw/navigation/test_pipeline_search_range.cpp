@@ -117,12 +117,9 @@ TEST_F(PipelineTest, AnApproachLostInAnEclipseIsFoundAtTheRangeItsRateReached) {
   constexpr int kHiddenFrom = 12;
   constexpr int kVisibleFrom = 50;
   constexpr int kApproachFrames = 60;
-  std::vector<test::RenderedFrame> seq;
-  synthetic::Renderer empty;
-  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-  for (int i = 0; i < kApproachFrames; ++i)
-    pushFrame(seq, empty, test::plateAt(kStartM - kStepM * i, 0.2, 10.0, -5.0),
-              i >= kHiddenFrom && i < kVisibleFrom, 700U + i);
+  const std::vector<test::RenderedFrame> seq =
+      eclipsedSequence(kApproachFrames, kHiddenFrom, kVisibleFrom, 700U,
+                       [&](int i) { return test::plateAt(kStartM - kStepM * i, 0.2, 10.0, -5.0); });
   struct Case {
     bool rung;
     bool never_valid;  // the track before the loss is tracked but never delivered valid
@@ -173,26 +170,25 @@ TEST_F(PipelineTest, ATargetThatTurnsBackDuringAnEclipseIsFoundWhereTheSearchBeg
   // The plate crosses the image at 18 m, speeding up to 0.4 m a frame (2 m/s, 22 px a frame), tracked up to
   // frame 11 (valid on 9-11); hidden on 12-29 while it swings back; visible again from frame 30 where it was
   // lost. The filter keeps the velocity (above what the start-at-rest prior covers) and carries it in a
-  // straight line: 7.6 m off (24 deg, off the image) when the plate reappears, and the search's starts there
-  // keep that line of sight's range and look. With reacquire_motion_hedge every other search frame starts at
+  // straight line: more than 5 m off (checked) when the plate reappears, and the search's starts there keep
+  // that line of sight's range and look. With reacquire_motion_hedge every other search frame starts at
   // the filter's position when the search began, with the prediction's attitude (campaign plate/5004: a 5 m
   // swing, 2.0 m/s at a 6.2 s eclipse, the prediction 13 m off at reappearance). Far range's cue is off: its
   // acquisition would find the plate anywhere on the image, and the test is about the local search.
   constexpr int kHiddenFrom = 12;
   constexpr int kVisibleFrom = 30;
   constexpr int kSwingFrames = 45;
-  std::vector<test::RenderedFrame> seq;
-  synthetic::Renderer empty;
-  ASSERT_TRUE(empty.init(test::vgaCamera(), model, synthetic::RenderOptions{}).ok);
-  double x_m = -3.0;
-  double lost_x_m = 0.0;
-  for (int i = 0; i < kSwingFrames; ++i) {
-    if (i > 0 && i < kHiddenFrom) x_m += 0.05 * std::min(i, 8);
-    if (i == kHiddenFrom - 1) lost_x_m = x_m;
-    const double at_m = i >= kVisibleFrom ? lost_x_m : x_m;
-    pushFrame(seq, empty, test::plateAt(18.0, at_m, 10.0, -5.0), i >= kHiddenFrom && i < kVisibleFrom,
-              900U + i);
-  }
+  // Its lateral position: speeding up by 0.05 m a frame to 0.4 m a frame, back where it was lost once
+  // visible again.
+  const auto crossing_x_m = [](int i) {
+    double x_m = -3.0;
+    for (int k = 1; k <= std::min(i, kHiddenFrom - 1); ++k) x_m += 0.05 * std::min(k, 8);
+    return x_m;
+  };
+  const std::vector<test::RenderedFrame> seq =
+      eclipsedSequence(kSwingFrames, kHiddenFrom, kVisibleFrom, 900U, [&](int i) {
+        return test::plateAt(18.0, crossing_x_m(i >= kVisibleFrom ? kHiddenFrom - 1 : i), 10.0, -5.0);
+      });
   for (const bool on : {true, false}) {
     PipelineParams p = params;
     p.navigation.reacquire_far_cue = false;

@@ -174,7 +174,7 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
        "reacquire_range_tolerance_rel of the range from it. The filter carries the velocity it "
        "left with in a straight line, and a target swinging sideways turns back (campaign "
        "plate/5004: 2 m/s when a 6.2 s eclipse began, the prediction 13 m off at reappearance, "
-       "the held position 3.4 m). A find there is judged against the held start. Off: on "
+       "the last trusted pose 3.4 m). A find there is judged against the held start. Off: on "
        "campaign seeds 1-40 / 5001-5040 / 7001-7040 tracked frames 15 586 / 15 511 / 15 585 -> 15 578 / "
        "15 508 / 15 580, no scene gained, none wrong either way (half the searching frames leave the "
        "prediction, where a target that kept its motion is); top-level README, stop 78. true: used"},
