@@ -1,7 +1,7 @@
 // The navigation pipeline's recovery of a track lost below the far-range hand-over, end to end on rendered
 // frames: the filter restarted with the target's motion, the close-range acquisition (cued by the prediction
-// or by far range), and the doubt on a reacquired track (which branch a find continues:
-// test_pipeline_branch.cpp).
+// or by far range), a search started on the frame a weak fit lands far off the prediction (a slew), and the
+// doubt on a reacquired track (which branch a find continues: test_pipeline_branch.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -325,6 +325,80 @@ TEST_F(PipelineTest, AReacquiredTrackStaysDoubtedUntilDoubtClearFramesPosesInARo
       EXPECT_EQ(first_valid, run.found_at);
     } else {
       EXPECT_GE(first_valid, run.found_at + clear_frames - 1);
+    }
+  }
+}
+
+TEST_F(PipelineTest, AWeakFitFarOffThePredictionStartsTheSearchOnItsFrame) {
+  // [navigation] break_nis_chi2 (campaign smallsat/36: after an 8.3 deg slew the tracker kept fitting 4-7 of
+  // 17 lines, NIS 93-1784, coasted on for four frames before it gave up and the search began). A shaded box
+  // at 10 m, the camera slewed by 2 deg (35 px) between frames 4 and 5: the tracker holds 3 of 8 lines at an
+  // NIS in the thousands. With the rule the search starts on frame 5 and the box is valid again within 3
+  // frames; without it the pipeline coasts on those fits and the box is valid 6 frames after the slew (beyond
+  // the 5).
+  constexpr int kSlewAt = 5;
+  constexpr int kSlewFrames = 14;
+  const PolygonModel box = makeBox(0.8, 0.6, 0.5);
+  synthetic::RenderOptions options;
+  options.noise_sigma = 0.05;
+  options.blur_sigma_px = 0.8;
+  options.shading.enabled = true;
+  options.shading.sun_dir_c = Vec3(0.3, 0.5, 1.0);
+  synthetic::Renderer box_renderer;
+  ASSERT_TRUE(box_renderer.init(test::vgaCamera(), box, options).ok);
+  const Pose before = Pose::fromYpr({0.6, 0.4, 2.8}, Vec3(0.1, -0.05, 10.0));
+  const Mat3 slew = expSo3(Vec3::UnitY() * (2.0 * kRadPerDeg));
+  std::vector<test::RenderedFrame> seq;
+  for (int i = 0; i < kSlewFrames; ++i) {
+    Pose truth = before;
+    if (i >= kSlewAt) {
+      truth.R_c_m = slew * before.R_c_m;  // turned about the camera centre: what a slew does
+      truth.t_c_m = slew * before.t_c_m;
+    }
+    seq.push_back(test::renderFrame(box_renderer, truth, 500U + static_cast<std::uint64_t>(i)));
+  }
+  for (const double break_nis : {200.0, 0.0}) {
+    SCOPED_TRACE(::testing::Message() << "break_nis_chi2 " << break_nis);
+    PipelineParams p = params;
+    p.navigation.break_nis_chi2 = break_nis;
+    NavigationPipeline pipeline;
+    ASSERT_TRUE(pipeline.init(test::vgaCamera(), box, p).ok);
+    pipeline.startNearRange(seq[0].truth, 0);
+    const std::uint64_t allocations_before = test::allocationCount();
+    int valid_again = -1;
+    bool searched_on_slew = false;
+    double slew_nis = 0.0;
+    for (int i = 0; i < kSlewFrames; ++i) {
+      const Frame f = frameOf(seq, i);
+      NavSolution out;
+      ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+      const Pose& truth = seq[static_cast<std::size_t>(i)].truth;
+      if (i < kSlewAt) {
+        EXPECT_TRUE(out.pose_valid) << "frame " << i << " before the slew";
+      }
+      if (i == kSlewAt) {
+        searched_on_slew = pipeline.reacquisition().active();
+        slew_nis = pipeline.lastPoseUpdate().nis;
+        EXPECT_FALSE(out.pose_valid);
+      }
+      if (i >= kSlewAt && out.pose_valid) {
+        if (valid_again < 0) valid_again = i;
+        EXPECT_LT((out.pose.t_c_m - truth.t_c_m).norm(), 0.02 * truth.t_c_m.norm()) << "frame " << i;
+        EXPECT_LT(pipeline.reacquisition().symmetries().attitudeDistanceRad(out.pose.R_c_m, truth.R_c_m) *
+                      kDegPerRad,
+                  2.0)
+            << "frame " << i;
+      }
+    }
+    EXPECT_EQ(test::allocationCount() - allocations_before, 0U);
+    EXPECT_GT(slew_nis, 1000.0) << "the slew's fit was not far off the prediction: the rule is not tested";
+    ASSERT_GE(valid_again, 0) << "never valid again";
+    if (break_nis > 0.0) {
+      EXPECT_TRUE(searched_on_slew);
+      EXPECT_LE(valid_again, kSlewAt + 3);
+    } else {
+      EXPECT_FALSE(searched_on_slew) << "the tracker lost the box at once: the control shows nothing";
+      EXPECT_GT(valid_again, kSlewAt + 5);
     }
   }
 }

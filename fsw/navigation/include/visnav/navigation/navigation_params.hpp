@@ -22,7 +22,9 @@ struct NavigationParams {
   int acquire_retry_holdoff_max_frames = 80;  ///< ... doubling per consecutive failure up to this
   double acquire_retry_growth = 2.0;  ///< after an unconfirmed acquisition: retry that many times nearer
   int fault_persistence_frames = 5;   ///< a near-range fault held this long falls back to far range
-  int coast_frames = 3;               ///< frames the filter may propagate without a usable measurement
+  double break_nis_chi2 = 0.0;  ///< a weak fit the filter rejects above this NIS ends the track now (0: off)
+  double break_max_line_fraction = 0.5;  ///< ... when it used fewer than this share of its selected lines
+  int coast_frames = 3;                  ///< frames the filter may propagate without a usable measurement
   // FDIR thresholds (near range).
   double min_inlier_ratio = 0.5;  ///< edge-point inliers / points over the used lines, below: fault
   int min_usable_lines = 3;       ///< fewer used lines: fault
