@@ -20,10 +20,10 @@ struct NavigationParams {
   int acquisition_timeout_frames = 25;   ///< acquisition gives up (back to far range) after this many frames
   int acquire_retry_holdoff_frames = 5;  ///< far range waits this long after a failed acquisition...
   int acquire_retry_holdoff_max_frames = 80;  ///< ... doubling per consecutive failure up to this
-  double acquire_retry_growth = 2.0;  ///< after an unconfirmed acquisition: retry that many times nearer
-  int fault_persistence_frames = 5;   ///< a near-range fault held this long falls back to far range
-  double break_nis_chi2 = 0.0;  ///< a weak fit the filter rejects above this NIS ends the track now (0: off)
-  double break_max_line_fraction = 0.5;  ///< ... when it used fewer than this share of its selected lines
+  double acquire_retry_growth = 2.0;     ///< after an unconfirmed acquisition: retry that many times nearer
+  int fault_persistence_frames = 5;      ///< a near-range fault held this long falls back to far range
+  double break_nis_chi2 = 200.0;         ///< a weak fit rejected above this NIS ends the track (0: off)
+  double break_max_line_fraction = 0.5;  ///< ... on fewer than this share of its selected lines
   int coast_frames = 3;                  ///< frames the filter may propagate without a usable measurement
   // FDIR thresholds (near range).
   double min_inlier_ratio = 0.5;  ///< edge-point inliers / points over the used lines, below: fault
