@@ -72,9 +72,10 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
          p.break_nis_chi2);
   v.real({"navigation", "break_max_line_fraction", "-", 0.0, 1.0,
           "break_nis_chi2 ends the track only on a fit that used fewer than this share of its selected "
-          "lines: a plate fit that lost one of its four lines reads NIS 300-1100 for a frame and is whole "
-          "again on the next (campaign plate/28, plate/37, box/23 at 5 of 6: with any share, 26 tracked "
-          "frames fewer on seeds 1-40), while a slew leaves 3-7 of 8-17 lines on clutter"},
+          "lines: a plate fit that lost one of its four lines reads NIS 300-1100 for a frame and is "
+          "accepted by the filter on the next (campaign plate/28, plate/37, and box/23 at 5 of 6 lines: "
+          "with any share those three lost 26 tracked frames on seeds 1-40, 1 net), while a slew leaves "
+          "3-7 of 8-17 lines on clutter"},
          p.break_max_line_fraction);
   v.integer({"navigation", "coast_frames", "count", 0, 1000,
              "frames the Kalman prediction stands in for a failed near-range measurement (sec. II-H)"},
