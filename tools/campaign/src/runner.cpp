@@ -38,7 +38,7 @@ bool dumpFrame(const std::string& dir, const Scene& scene, int index, const std:
                int h) {
   std::string name = scene.name;
   std::replace(name.begin(), name.end(), '/', '-');
-  char suffix[16];
+  char suffix[24];  // "-%04d.pgm" of any int: at most 17 bytes
   std::snprintf(suffix, sizeof suffix, "-%04d.pgm", index);
   std::ofstream out(dir + "/" + name + suffix, std::ios::binary);
   out << "P5\n" << w << " " << h << "\n255\n";
