@@ -62,6 +62,13 @@ bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const Naviga
          (params.doubt_narrow_face && (r.flags & kFlagNarrowFace) != 0U);
 }
 
+bool nearFitBreaksTrack(const NearRangeCheck& check, double nis, const NavigationParams& params) {
+  const NearRangeResult& r = *check.near;
+  return params.break_nis_chi2 > 0.0 && r.status != TrackStatus::kLost && !check.evidence_good &&
+         check.innovation_checked && !check.innovation_accepted && nis > params.break_nis_chi2 &&
+         r.lines_used < params.break_max_line_fraction * r.lines_total;
+}
+
 bool fitDoubtedByItsLines(const NearRangeResult& r, const NavigationParams& params) {
   return static_cast<double>(r.lines_used) <
              params.doubt_min_line_fraction * static_cast<double>(r.lines_total) ||

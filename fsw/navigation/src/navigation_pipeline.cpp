@@ -240,13 +240,8 @@ void NavigationPipeline::runNearRange(const MonoImage& image, std::uint64_t fram
   // Checked against the start pose alone (the first), or a prediction from it and one fit, without motion.
   const bool start_fit = measured && m_start_fits_pending > 0;
   if (start_fit) --m_start_fits_pending;
-  // A weak fit the filter rejects far beyond its gate says the target is not where the track predicts (a
-  // slew): searching from the prediction now beats coasting on such fits until the tracker gives up.
-  const bool broke = measured && !check.evidence_good && check.innovation_checked &&
-                     !check.innovation_accepted && m_params.navigation.break_nis_chi2 > 0.0 &&
-                     m_last_pose_update.nis > m_params.navigation.break_nis_chi2 &&
-                     r.lines_used < m_params.navigation.break_max_line_fraction * r.lines_total;
-  const bool dropped = !measured || m_fdir.faultPersisted() || broke;
+  const bool dropped = !measured || m_fdir.faultPersisted() ||
+                       nearFitBreaksTrack(check, m_last_pose_update.nis, m_params.navigation);
   if (!dropped && accepted) {
     // A fault (e.g. the innovation gate on a measurement the image supports) is flagged in fault_bits and
     // halves the quality; it does not swap the measurement for the prediction.

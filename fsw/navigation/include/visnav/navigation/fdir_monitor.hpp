@@ -61,6 +61,12 @@ EvidenceVerdict imageEvidenceVerdict(const NearRangeResult& r, const NavigationP
 /// `doubted_max_attitude_sigma_deg`: its covariance knows the noise, not the bias.
 bool nearFitDoubted(const NearRangeResult& r, std::uint32_t faults, const NavigationParams& params);
 
+/// A fit that ends the track on its frame (`break_nis_chi2`, 0: never): its image evidence is not good, it
+/// used fewer than `break_max_line_fraction` of its selected lines and the filter rejected it at an NIS
+/// (`nis`) above `break_nis_chi2`. Such a fit says the target is not where the track predicts (a slew):
+/// searching from the prediction now beats coasting on such fits until the tracker gives up.
+bool nearFitBreaksTrack(const NearRangeCheck& check, double nis, const NavigationParams& params);
+
 /// The most lines a minimal near-range fit uses: 4 lines give 4 vertices for 6 unknowns, so one displaced
 /// line is absorbed by the attitude instead of showing in the residual.
 constexpr int kMinimalFitLines = 4;
