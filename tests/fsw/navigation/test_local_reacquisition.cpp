@@ -8,6 +8,7 @@
 
 #include "../../support/alloc_counter.hpp"
 #include "../nearrange/tracker_fixture.hpp"
+#include "shaded_box_scene.hpp"
 #include "visnav/navigation/local_reacquisition.hpp"
 
 namespace visnav::nav {
@@ -16,23 +17,14 @@ namespace {
 class ReacquisitionTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    model = makeBox(0.8, 0.6, 0.5);
-    synthetic::RenderOptions render;
-    render.shading.enabled = true;  // one flat brightness would hide the inner edges
-    render.shading.sun_dir_c = Vec3(0.3, 0.5, 1.0);
-    ASSERT_TRUE(renderer.init(test::vgaCamera(), model, render).ok);
+    model = test::shadedBox();
+    ASSERT_TRUE(renderer.init(test::vgaCamera(), model, test::shadedBoxRender()).ok);
     ASSERT_TRUE(reacquisition.init(test::vgaCamera(), model, params, NearRangeParams{}).ok);
-    truth = Pose::fromYpr({0.6, 0.4, 2.8}, Vec3(0.1, -0.05, 10.0));
+    truth = test::shadedBoxPose();
   }
   /// The prediction the filter would give after the camera slewed by `deg` about its y axis: the truth
   /// before the slew.
-  Pose slewed(double deg) const {
-    const Mat3 r = expSo3(Vec3::UnitY() * (deg * kRadPerDeg));
-    Pose p;
-    p.R_c_m = r * truth.R_c_m;
-    p.t_c_m = r * truth.t_c_m;
-    return p;
-  }
+  Pose slewed(double deg) const { return test::slewedAboutCameraY(truth, deg); }
   /// framesToFind (below) with a search of its own on `with` (the control of a test): 12 frames.
   int framesToFindWith(const NavigationParams& with, const Pose& predicted, int& cue_starts);
   NavigationParams params;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "pipeline_fixture.hpp"
+#include "shaded_box_scene.hpp"
 
 namespace visnav::nav {
 namespace {
@@ -338,25 +339,18 @@ TEST_F(PipelineTest, AWeakFitFarOffThePredictionStartsTheSearchOnItsFrame) {
   // valid 6 frames after the slew (beyond the 5).
   constexpr int kSlewAt = 5;
   constexpr int kSlewFrames = 14;
-  const PolygonModel box = makeBox(0.8, 0.6, 0.5);
-  synthetic::RenderOptions options;
+  const PolygonModel box = test::shadedBox();  // ReacquisitionTest's scene, with noise and blur
+  synthetic::RenderOptions options = test::shadedBoxRender();
   options.noise_sigma = 0.05;
   options.blur_sigma_px = 0.8;
-  options.shading.enabled = true;
-  options.shading.sun_dir_c = Vec3(0.3, 0.5, 1.0);
   synthetic::Renderer box_renderer;
   ASSERT_TRUE(box_renderer.init(test::vgaCamera(), box, options).ok);
-  const Pose before = Pose::fromYpr({0.6, 0.4, 2.8}, Vec3(0.1, -0.05, 10.0));
-  const Mat3 slew = expSo3(Vec3::UnitY() * (2.0 * kRadPerDeg));
+  const Pose before = test::shadedBoxPose();
+  const Pose after = test::slewedAboutCameraY(before, 2.0);
   std::vector<test::RenderedFrame> seq;
-  for (int i = 0; i < kSlewFrames; ++i) {
-    Pose truth = before;
-    if (i >= kSlewAt) {
-      truth.R_c_m = slew * before.R_c_m;  // turned about the camera centre: what a slew does
-      truth.t_c_m = slew * before.t_c_m;
-    }
-    seq.push_back(test::renderFrame(box_renderer, truth, 500U + static_cast<std::uint64_t>(i)));
-  }
+  for (int i = 0; i < kSlewFrames; ++i)
+    seq.push_back(
+        test::renderFrame(box_renderer, i >= kSlewAt ? after : before, 500U + static_cast<std::uint64_t>(i)));
   for (const double break_nis : {200.0, 0.0}) {
     SCOPED_TRACE(::testing::Message() << "break_nis_chi2 " << break_nis);
     PipelineParams p = params;
