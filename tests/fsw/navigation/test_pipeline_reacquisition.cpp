@@ -332,7 +332,7 @@ TEST_F(PipelineTest, AReacquiredTrackStaysDoubtedUntilDoubtClearFramesPosesInARo
 
 TEST_F(PipelineTest, AWeakFitFarOffThePredictionStartsTheSearchOnItsFrame) {
   // [navigation] break_nis_chi2 (campaign smallsat/36: after an 8.3 deg slew the tracker kept fitting 4-7 of
-  // 17 lines, NIS 93-1784, coasted on for four frames before it gave up and the search began). A shaded box
+  // 17 lines, NIS 144-1784, coasted on for four frames before it gave up and the search began). A shaded box
   // at 10 m, the camera slewed by 2 deg (35 px) between frames 4 and 5: the tracker holds 3 of 8 lines at NIS
   // 2629 on frame 5 and 3-4 of 8 at NIS 396-963 on the next three. With the rule the search starts on frame 5
   // and the box is valid again within 3 frames; without it the pipeline coasts on those fits and the box is

@@ -19,7 +19,7 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
           "filter rejects with an NIS (6 dof) above this ends the track on its frame: close-range "
           "reacquisition searches from the prediction at once instead of coasting on such fits until "
           "the tracker loses the target (campaign smallsat/36: after an 8.3 deg slew four fits on 4-7 of "
-          "17 lines, NIS 93-1784, were coasted on before the search began: found 2 frames after the slew "
+          "17 lines, NIS 144-1784, were coasted on before the search began: found 2 frames after the slew "
           "instead of 10). On campaign seeds 1-40 / 5001-5040 / 7001-7040 (stop 79): tracked frames 15 586 / "
           "15 511 / 15 585 -> 15 595 / 15 517 / 15 593, 7 scenes gained, none lost a frame, none wrong; "
           "slews tracked again within 5 frames 36 / 31 / 28 -> 37 / 32 / 28. 0: off"},
