@@ -45,7 +45,7 @@ void ModeManager::transition(NavMode to, const char* reason, std::uint64_t frame
   m_far_count = 0;
 }
 
-void ModeManager::backOff() {
+void ModeManager::backOff(bool escalate) {
   // 5, 10, 20, 40, 80, 80, ... frames: bounded shifts, no overflow.
   m_holdoff_frames = m_params.acquire_retry_holdoff_frames;
   for (int i = 0; i < m_acquisition_failures && m_holdoff_frames < m_params.acquire_retry_holdoff_max_frames;
@@ -53,7 +53,7 @@ void ModeManager::backOff() {
     m_holdoff_frames *= 2;
   if (m_holdoff_frames > m_params.acquire_retry_holdoff_max_frames)
     m_holdoff_frames = m_params.acquire_retry_holdoff_max_frames;
-  if (m_acquisition_failures < 1000) ++m_acquisition_failures;
+  if (escalate && m_acquisition_failures < 1000) ++m_acquisition_failures;
 }
 
 bool ModeManager::handOverCondition(const ModeInputs& in, int close_count, std::uint32_t frames) const {
@@ -90,7 +90,7 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
         if (in.cue_lacks_edges) {
           // What the acquisition would fail on its first frame (no_target): a failure, backed off the same
           // way, without the two mode changes (campaign approaches: 185 of 341 failed acquisitions).
-          backOff();
+          backOff(m_params.refused_handover_escalates_backoff);
           ++m_refused_handovers;
           m_frames_in_mode = 0;
           m_close_count = 0;

@@ -123,7 +123,9 @@ TEST(ModeManager, FailedAcquisitionsBackOffExponentially) {
   // A far-range cue that keeps fooling acquisition (campaign box/2: a 750 m approach that flipped far range
   // <-> acquisition 60 times): every failure doubles the wait before the next hand-over, 5, 10, 20, ...
   ModeManager m;
-  ASSERT_TRUE(m.init(plateHandover()).ok);
+  NavigationParams p = plateHandover();
+  p.acquire_retry_holdoff_max_frames = 80;  // the cap this test walks up to
+  ASSERT_TRUE(m.init(p).ok);
   ModeInputs failed;
   failed.acquisition_failed = true;
   std::uint64_t frame = 0;
@@ -164,8 +166,10 @@ TEST(ModeManager, FailedAcquisitionsBackOffExponentially) {
 // A cue the acquisition would fail on its first frame (no edge structure: check_cue_before_handover) is
 // refused in far range: no transition, the same back-off as a failed acquisition, and counted.
 TEST(ModeManager, AHandOverRefusedForACueWithoutEdgesBacksOffWithoutLeavingFarRange) {
+  NavigationParams p = plateHandover();
+  p.refused_handover_escalates_backoff = true;  // the refusals double the wait as failures do
   ModeManager m;
-  ASSERT_TRUE(m.init(plateHandover()).ok);
+  ASSERT_TRUE(m.init(p).ok);
   ModeInputs bare = farAt(10.0);
   bare.cue_lacks_edges = true;
   std::uint64_t frame = 0;
@@ -201,10 +205,13 @@ TEST(ModeManager, AnUnconfirmedAcquisitionIsRetriedOnceTheTargetHasComeNearer) {
   // Case approach_smallsat: acquisition saw the satellite at 157 m but could confirm no pose (no_candidate),
   // then again at 122 m (ambiguous); at 69 m it succeeded. After such a failure the next hand-over waits
   // until far range reads acquire_retry_growth (2) times nearer than the last hand-over, or for the longest
-  // back-off (80 frames) when the target holds its range. A failure without edges (no_target) only backs off.
+  // back-off (acquire_retry_holdoff_max_frames) when the target holds its range. A failure without edges
+  // (no_target) only backs off.
   for (const bool unconfirmed : {true, false}) {
     ModeManager m;
-    ASSERT_TRUE(m.init(plateHandover()).ok);
+    NavigationParams approach = plateHandover();
+    approach.acquire_retry_holdoff_max_frames = 80;  // longer than the 52 frames to 14 m
+    ASSERT_TRUE(m.init(approach).ok);
     std::uint64_t frame = 0;
     for (int i = 0; i < 3; ++i) m.step(farAt(28.0), ++frame);
     ASSERT_EQ(m.mode(), NavMode::kAcquisition);
@@ -256,6 +263,48 @@ TEST(ModeManager, AnUnconfirmedAcquisitionIsRetriedOnceTheTargetHasComeNearer) {
     ++waited;
   }
   EXPECT_EQ(waited, 6U);
+}
+
+TEST(ModeManager, ARefusedHandOverWaitsTheBackOffOfTheFailuresSoFarWithoutDoublingIt) {
+  // refused_handover_escalates_backoff off: a refusal changes no mode, so it does not double the wait;
+  // it waits what the acquisitions that failed so far earned (campaign approaches: refusals of a few noisy
+  // pixels far out had grown the wait to 80 frames by the time the target was near enough).
+  NavigationParams p = plateHandover();
+  p.refused_handover_escalates_backoff = false;
+  ModeManager m;
+  ASSERT_TRUE(m.init(p).ok);
+  ModeInputs bare = farAt(10.0);
+  bare.cue_lacks_edges = true;
+  std::uint64_t frame = 0;
+  // Frames in far range until the next hand-over is due, counting the frame it is due on.
+  const auto waitUntilDue = [&m, &frame]() {
+    std::uint64_t waited = 1;
+    for (; !m.handOverDue(farAt(10.0)) && waited < 1000; ++waited) m.step(farAt(10.0), ++frame);
+    return waited;
+  };
+  std::vector<std::uint64_t> waits;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    waits.push_back(waitUntilDue());
+    EXPECT_FALSE(m.step(bare, ++frame)) << "refused: no mode change";
+  }
+  EXPECT_EQ(waits, (std::vector<std::uint64_t>{3, 6, 6})) << "3, then the base hold-off (5) plus one";
+  // A cue with edges is handed over when due; its acquisition fails: that failure doubles the wait.
+  waits.clear();
+  waits.push_back(waitUntilDue());
+  m.step(farAt(10.0), ++frame);
+  ASSERT_EQ(m.mode(), NavMode::kAcquisition);
+  ModeInputs failed;
+  failed.acquisition_failed = true;
+  m.step(failed, ++frame);
+  ASSERT_EQ(m.mode(), NavMode::kFarRange);
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    waits.push_back(waitUntilDue());
+    EXPECT_FALSE(m.step(bare, ++frame));
+  }
+  EXPECT_EQ(waits, (std::vector<std::uint64_t>{6, 6, 11, 11}))
+      << "after one failed acquisition the refusals wait 10 frames, and no more";
+  EXPECT_EQ(m.refusedHandOvers(), 6U);
+  EXPECT_EQ(m.transitionCount(), 2U);
 }
 
 TEST(ModeManager, NoiseAroundAThresholdNeverChatters) {

@@ -48,8 +48,9 @@ class ModeManager {
   /// Forces a transition (e.g. the pipeline's own fault handling); no-op when already in `to`.
   void transition(NavMode to, const char* reason, std::uint64_t frame_number);
   /// After a failed acquisition: the next hand-over waits acquire_retry_holdoff_frames, doubled per
-  /// consecutive failure up to acquire_retry_holdoff_max_frames.
-  void backOff();
+  /// consecutive failure up to acquire_retry_holdoff_max_frames. `escalate` false: the wait of the failures
+  /// so far, this one not counted (a refused hand-over, refused_handover_escalates_backoff off).
+  void backOff(bool escalate = true);
   /// In far range: whether step() with these inputs hands over to acquisition (before cue_lacks_edges).
   bool handOverDue(const ModeInputs& in) const;
   /// Hand-overs refused because the cue had no edge structure (cue_lacks_edges), since init or reset.

@@ -54,6 +54,13 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
           "same way (case approach_smallsat: no_candidate at 157 m, ambiguous at 122 m, confirmed at "
           "69 m). <= 1: the back-off alone"},
          p.acquire_retry_growth);
+  v.boolean({"navigation", "refused_handover_escalates_backoff", "-", 0, 1,
+             "a hand-over refused for lacking edges at the cue (check_cue_before_handover) counts as a "
+             "failed acquisition in the back-off: it waits, and doubles the wait of the next. Off: it waits "
+             "the back-off of the acquisitions that failed so far and does not double it: a refusal changes "
+             "no mode, and a target refused while it was a few noisy pixels far out is not held off for "
+             "acquire_retry_holdoff_max_frames once it is near"},
+            p.refused_handover_escalates_backoff);
   v.integer({"navigation", "acquisition_timeout_frames", "count", 1, 10000,
              "acquisition returns to far range when it has not succeeded within this many frames"},
             p.acquisition_timeout_frames);

@@ -19,8 +19,9 @@ struct NavigationParams {
   bool close_count_survives_gaps = false;   ///< far range: a frame without a fix holds the count
   int acquisition_timeout_frames = 25;   ///< acquisition gives up (back to far range) after this many frames
   int acquire_retry_holdoff_frames = 5;  ///< far range waits this long after a failed acquisition...
-  int acquire_retry_holdoff_max_frames = 80;  ///< ... doubling per consecutive failure up to this
-  double acquire_retry_growth = 2.0;     ///< after an unconfirmed acquisition: retry that many times nearer
+  int acquire_retry_holdoff_max_frames = 40;  ///< ... doubling per consecutive failure up to this
+  double acquire_retry_growth = 2.0;  ///< after an unconfirmed acquisition: retry that many times nearer
+  bool refused_handover_escalates_backoff = false;  ///< a refused hand-over doubles the back-off too
   int fault_persistence_frames = 5;      ///< a near-range fault held this long falls back to far range
   double break_nis_chi2 = 200.0;         ///< a weak fit rejected above this NIS ends the track (0: off)
   double break_max_line_fraction = 0.5;  ///< ... on fewer than this share of its selected lines
