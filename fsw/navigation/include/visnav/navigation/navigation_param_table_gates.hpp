@@ -44,7 +44,11 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "cue that keeps fooling acquisition must not flip the mode every few frames)"},
             p.acquire_retry_holdoff_frames);
   v.integer({"navigation", "acquire_retry_holdoff_max_frames", "frames", 0, 100000,
-             "upper bound of that back-off (80 frames: 16 s at 5 Hz)"},
+             "upper bound of that back-off (40 frames: 8 s at 5 Hz), and the wait of acquire_retry_growth "
+             "for a target that holds its range. 80 before stop 81: on the 257 campaign approaches (seeds "
+             "1-200, --kind approach) 40 tracked 4 403 -> 4 501 frames, 0 confidently wrong, approaches "
+             "with more than 4 mode changes 25 unchanged (mean 2.18 -> 2.30); with "
+             "refused_handover_escalates_backoff off as well: README, stop 81"},
             p.acquire_retry_holdoff_max_frames);
   v.real({"navigation", "acquire_retry_growth", "-", 0.0, 1000.0,
           "after an acquisition that found edges at far range's cue but confirmed no pose there "
@@ -59,7 +63,12 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
              "failed acquisition in the back-off: it waits, and doubles the wait of the next. Off: it waits "
              "the back-off of the acquisitions that failed so far and does not double it: a refusal changes "
              "no mode, and a target refused while it was a few noisy pixels far out is not held off for "
-             "acquire_retry_holdoff_max_frames once it is near"},
+             "acquire_retry_holdoff_max_frames once it is near. Off alone, on the 257 campaign approaches "
+             "(seeds 1-200, --kind approach): tracked 4 403 -> 4 470 frames, approaches acquired 114 -> "
+             "117, 0 confidently wrong, more than 4 mode changes 25 -> 26. With "
+             "acquire_retry_holdoff_max_frames 40 (the defaults since stop 81): 4 534 frames, acquired "
+             "118, 0 wrong, more than 4 mode changes 28 (mean 2.18 -> 2.37, max 8 -> 12); seeds 1-40 "
+             "(near scenes too): 15 595 -> 15 599, no near scene changed"},
             p.refused_handover_escalates_backoff);
   v.integer({"navigation", "acquisition_timeout_frames", "count", 1, 10000,
              "acquisition returns to far range when it has not succeeded within this many frames"},
