@@ -46,7 +46,7 @@ void ModeManager::transition(NavMode to, const char* reason, std::uint64_t frame
 }
 
 void ModeManager::backOff(bool escalate) {
-  // 5, 10, 20, 40, 80, 80, ... frames: bounded shifts, no overflow.
+  // 5, 10, 20, 40, 40, ... frames (acquire_retry_holdoff_frames doubled up to its max): bounded shifts.
   m_holdoff_frames = m_params.acquire_retry_holdoff_frames;
   for (int i = 0; i < m_acquisition_failures && m_holdoff_frames < m_params.acquire_retry_holdoff_max_frames;
        ++i)
@@ -88,8 +88,9 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
       if (handOverCondition(in, m_close_count, m_frames_in_mode)) {
         m_retry_below_m = 0.0;
         if (in.cue_lacks_edges) {
-          // What the acquisition would fail on its first frame (no_target): a failure, backed off the same
-          // way, without the two mode changes (campaign approaches: 185 of 341 failed acquisitions).
+          // What the acquisition would fail on its first frame (no_target): backed off without the two mode
+          // changes (campaign approaches: 185 of 341 failed acquisitions), and without doubling the wait
+          // unless refused_handover_escalates_backoff (a refusal changes no mode).
           backOff(m_params.refused_handover_escalates_backoff);
           ++m_refused_handovers;
           m_frames_in_mode = 0;
