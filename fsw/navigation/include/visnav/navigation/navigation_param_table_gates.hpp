@@ -45,10 +45,8 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
             p.acquire_retry_holdoff_frames);
   v.integer({"navigation", "acquire_retry_holdoff_max_frames", "frames", 0, 100000,
              "upper bound of that back-off (40 frames: 8 s at 5 Hz), and the wait of acquire_retry_growth "
-             "for a target that holds its range. 80 before stop 81: on the 257 campaign approaches (seeds "
-             "1-200, --kind approach) 40 tracked 4 403 -> 4 501 frames, 0 confidently wrong, approaches "
-             "with more than 4 mode changes 25 unchanged (mean 2.18 -> 2.30); with "
-             "refused_handover_escalates_backoff off as well: README, stop 81"},
+             "for a target that holds its range. 80 before stop 81; 40 alone on the 257 campaign "
+             "approaches: tracked 4 403 -> 4 501 frames, 0 wrong, more than 4 mode changes 25 (README)"},
             p.acquire_retry_holdoff_max_frames);
   v.real({"navigation", "acquire_retry_growth", "-", 0.0, 1000.0,
           "after an acquisition that found edges at far range's cue but confirmed no pose there "
