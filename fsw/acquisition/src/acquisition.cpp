@@ -126,7 +126,12 @@ void Acquisition::start(const Vec3& direction_c, double distance_m, double direc
   const double max_px = 2.0 * std::max(m_camera.width(), m_camera.height());
   const int scale =
       std::max(1, static_cast<int>(std::min(expected_radius_px, max_px) / m_params.working_radius_px + 0.5));
-  m_window.setWindow(centre_px, std::min(half_px, max_px), scale);
+  const int used = m_window.setWindow(centre_px, std::min(half_px, max_px), scale);
+  const double working_radius_px = std::min(expected_radius_px, max_px) / used;
+  m_window.setCoarseSnrFactor(
+      m_params.edge_snr_radius_px > 0
+          ? static_cast<int>(std::min(working_radius_px / m_params.edge_snr_radius_px, 16.0))
+          : 1);
   m_state = AcquisitionState::kSearching;
 }
 
@@ -137,7 +142,7 @@ bool Acquisition::cueLacksEdges(const FarRangeSolution& cue, const MonoImage& im
   const bool searching = m_state == AcquisitionState::kSearching;
   if (searching) {
     prepareWindow(image);
-    edge_snr = m_window.stats().edge_snr;
+    edge_snr = m_window.stats().detectionSnr();
   }
   const bool lacks = searching && edge_snr < m_min_edge_snr;  // what step() fails kNoTarget on
   reset();
@@ -317,8 +322,8 @@ Status Acquisition::step(const MonoImage& image, std::uint64_t frame_number, Acq
     ++m_frames;
     if (m_state != AcquisitionState::kConfirming) {
       prepareWindow(image);
-      out.edge_snr = m_window.stats().edge_snr;
-      if (m_window.stats().edge_snr < m_min_edge_snr) fail(AcquisitionFailure::kNoTarget);
+      out.edge_snr = m_window.stats().detectionSnr();
+      if (out.edge_snr < m_min_edge_snr) fail(AcquisitionFailure::kNoTarget);
     }
     switch (m_state) {
       case AcquisitionState::kSearching: search(out); break;

@@ -19,8 +19,14 @@ namespace visnav::acq {
 struct GradientStats {
   double median = 0.0;  ///< noise level (most of the window is background), >= 1/4 code step
   double p99 = 0.0;
-  double p999 = 0.0;        ///< the target's strongest edges when there is a target
-  double edge_snr = 0.0;    ///< p999 / median: ~3 for noise alone (Rayleigh), >> 3 with a target
+  double p999 = 0.0;      ///< the target's strongest edges when there is a target
+  double edge_snr = 0.0;  ///< p999 / median: ~3 for noise alone (Rayleigh), >> 3 with a target
+  /// The same on a copy box-averaged coarse_factor times more (0 when not asked): a dim target's outline
+  /// keeps its contrast there while the noise drops by the factor.
+  double coarse_edge_snr = 0.0;
+  int coarse_factor = 1;
+  /// What the no-target test reads: the better of the two scales.
+  double detectionSnr() const { return edge_snr > coarse_edge_snr ? edge_snr : coarse_edge_snr; }
   bool has_strong = false;  ///< any pixel above the strong threshold max(0.5 p99, 3 median)
   Vec2 strong_centroid_w =
       Vec2::Zero();  ///< magnitude-weighted centroid of strong pixels, working coordinates
@@ -59,6 +65,9 @@ class WorkingImage {
   /// too) and the asked factor at a sixteenth of the window's side, so prepare() reads at most about
   /// max_window_px^2 raw pixels whatever is asked. Returns the factor used.
   int setWindow(const Vec2& centre_px, double half_size_px, int scale);
+  /// prepare() also measures the edge SNR on a copy box-averaged `factor` times more (1: not; bounded so
+  /// the copy keeps 8 px a side). Holds until changed.
+  void setCoarseSnrFactor(int factor) { m_coarse_snr_factor = factor < 1 ? 1 : factor; }
 
   /// Reads the window from the frame (outside the frame: nearest frame pixel, so no false edge), computes
   /// gradients and statistics, saturates the channels at cap_multiple x presenceThreshold() and builds the
@@ -94,12 +103,14 @@ class WorkingImage {
   void computeGradients();
   void spreadChannels(int radius, BoundedBuffer<float>* out);
   void computeStats();
+  void computeCoarseSnr();
 
   int m_max_side = 0;
   int m_max_window = 0;  ///< raw px a side (init)
   int m_width = 0;
   int m_height = 0;
   int m_scale = 1;
+  int m_coarse_snr_factor = 1;
   Vec2 m_origin = Vec2::Zero();  ///< full-resolution position of working coordinate (0, 0)
   double m_noise_floor = 0.0;    ///< lower bound of the median gradient (quantisation)
   float m_cap = 1.0F;
