@@ -96,6 +96,10 @@ void Acquisition::start(const FarRangeSolution& cue) {
   }
   start(cue.direction_c, cue.distance_m);
   if (cue.outline) m_min_edge_snr = m_params.outline_cue_min_edge_snr;
+  // Far range's cue is judged at the working scale alone: box-averaged, a limb's soft edge is a step that
+  // passes, and every retry on it costs two mode changes (campaign plate/6: 2 -> 10 with edge_snr_radius_px
+  // 12 on far cues too, smallsat/10 2 -> 8, no frame gained).
+  m_window.setCoarseSnrFactor(1);
 }
 
 void Acquisition::start(const Vec3& direction_c, double distance_m) {

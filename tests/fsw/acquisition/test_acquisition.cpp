@@ -5,6 +5,7 @@
 // the tracker keeps.
 #include <gtest/gtest.h>
 
+
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -175,6 +176,42 @@ TEST_F(PlateAcquisitionTest, ACueWithoutEdgesIsToldWithoutStartingAnAcquisition)
   FarRangeSolution invalid;
   EXPECT_FALSE(acquisition.cueLacksEdges(invalid, without[0].image(), snr_empty));
   EXPECT_EQ(snr_empty, 0.0);
+}
+
+// [acquisition] edge_snr_radius_px: a dim plate (0.34 on 0.20) under noise 0.1 at 20 m is under the
+// no-target threshold at the working scale (edge SNR 4.4), and over it box-averaged to a 12 px radius (9.3). Only an acquisition
+// the near-range prediction cued (start(direction, distance)) reads the box-averaged SNR; far range's cue is
+// judged at the working scale alone (a limb's soft edge passes box-averaged: campaign plate/6).
+TEST(AcquisitionNoTarget, ADimTargetPassesBoxAveragedOnlyWhenThePredictionCuedIt) {
+  const test::Scene scene = test::makeScene(test::Target::kPlate);
+  synthetic::RenderOptions options = scene.render;
+  options.background = 0.20;
+  options.target_brightness = 0.34;
+  options.noise_sigma = 0.1;
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, options).ok);
+  const Pose truth = test::plateAt(20.0);
+  const auto frames = test::renderStatic(renderer, truth, 1, 43);
+  const FarRangeSolution cue = test::perturbedCue(truth, 0.0, 0.0, 0.0);
+  acq::AcquisitionParams params;
+  for (const int radius : {0, 12}) {
+    params.edge_snr_radius_px = radius;
+    acq::Acquisition acquisition;
+    ASSERT_TRUE(acquisition.init(test::vgaCamera(), scene.model, params, NearRangeParams{}).ok);
+    double far_cue_snr = 0.0;
+    EXPECT_TRUE(acquisition.cueLacksEdges(cue, frames[0].image(), far_cue_snr)) << radius;
+    EXPECT_LT(far_cue_snr, params.min_edge_snr) << radius;
+    acquisition.start(cue.direction_c, cue.distance_m);
+    acq::AcquisitionResult r;
+    acquisition.step(frames[0].image(), 0, r);
+    if (radius == 0) {
+      EXPECT_EQ(r.failure, AcquisitionFailure::kNoTarget);
+      EXPECT_DOUBLE_EQ(r.edge_snr, far_cue_snr) << "the same window, the same scale";
+    } else {
+      EXPECT_NE(r.failure, AcquisitionFailure::kNoTarget);
+      EXPECT_GE(r.edge_snr, params.min_edge_snr);
+    }
+  }
 }
 
 // A cue far range found by its outline has shown edge structure already: its no-target threshold is
