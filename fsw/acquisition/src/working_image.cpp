@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 
 namespace visnav::acq {
@@ -254,9 +255,10 @@ void WorkingImage::computeCoarseSnr() {
   for (int j = 0; j < ch; ++j) {
     for (int i = 0; i < cw; ++i) {
       float sum = 0.0F;
-      for (int dy = 0; dy < f; ++dy)
-        for (int dx = 0; dx < f; ++dx)
-          sum += m_intensity[static_cast<std::size_t>((j * f + dy) * m_width + i * f + dx)];
+      for (int dy = 0; dy < f; ++dy) {
+        const float* row = m_intensity.data() + static_cast<std::ptrdiff_t>(j * f + dy) * m_width + i * f;
+        for (int dx = 0; dx < f; ++dx) sum += row[dx];
+      }
       m_tmp.push(sum * norm);
     }
   }

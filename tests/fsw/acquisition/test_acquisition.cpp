@@ -5,7 +5,6 @@
 // the tracker keeps.
 #include <gtest/gtest.h>
 
-
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -179,9 +178,10 @@ TEST_F(PlateAcquisitionTest, ACueWithoutEdgesIsToldWithoutStartingAnAcquisition)
 }
 
 // [acquisition] edge_snr_radius_px: a dim plate (0.34 on 0.20) under noise 0.1 at 20 m is under the
-// no-target threshold at the working scale (edge SNR 4.4), and over it box-averaged to a 12 px radius (9.3). Only an acquisition
-// the near-range prediction cued (start(direction, distance)) reads the box-averaged SNR; far range's cue is
-// judged at the working scale alone (a limb's soft edge passes box-averaged: campaign plate/6).
+// no-target threshold at the working scale (edge SNR 4.4), and over it box-averaged to a 12 px radius (9.3).
+// Only an acquisition the near-range prediction cued (start(direction, distance)) reads the box-averaged SNR;
+// far range's cue is judged at the working scale alone (a limb's soft edge passes box-averaged: campaign
+// plate/6).
 TEST(AcquisitionNoTarget, ADimTargetPassesBoxAveragedOnlyWhenThePredictionCuedIt) {
   const test::Scene scene = test::makeScene(test::Target::kPlate);
   synthetic::RenderOptions options = scene.render;
