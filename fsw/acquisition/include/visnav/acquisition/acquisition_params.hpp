@@ -121,13 +121,14 @@ struct AcquisitionParams {
          "unchanged, but approach mode changes 299 -> 347 (failed acquisitions of small cues); kept at "
          "min_edge_snr's 5 until acquisition fails less on them"},
         outline_cue_min_edge_snr);
-    v.integer({"acquisition", "edge_snr_radius_px", "px", 0, 512,
-               "an acquisition the near-range prediction cued also reads the edge SNR of its window "
-               "box-averaged to this target radius, and its no-target test takes the better of the two (0: "
-               "the working scale alone): noise's gradient drops by the factor, a dim outline's does not. "
-               "Far range's cues keep the working scale (a limb's soft edge passes averaged: plate/6 2 -> 10 "
-               "mode changes). 12 on campaign seeds 1-80: tracked 30 444 -> 30 477, 0 wrong, no mode change"},
-              edge_snr_radius_px);
+    v.integer(
+        {"acquisition", "edge_snr_radius_px", "px", 0, 512,
+         "an acquisition the near-range prediction cued also reads the edge SNR of its window "
+         "box-averaged to this target radius, and its no-target test takes the better of the two (0: "
+         "the working scale alone): noise's gradient drops by the factor, a dim outline's does not. "
+         "Far range's cues keep the working scale (a limb's soft edge passes averaged: plate/6 2 -> 10 "
+         "mode changes). 12 on campaign seeds 1-120: tracked 45 476 -> 45 541, 0 wrong, no mode change"},
+        edge_snr_radius_px);
     v.integer({"acquisition", "hypotheses_per_cycle", "count", 1, 10000000,
                "budget: hypotheses scored per frame; the search spans several frames"},
               hypotheses_per_cycle);
