@@ -98,7 +98,7 @@ void Acquisition::start(const FarRangeSolution& cue) {
   if (cue.outline) m_min_edge_snr = m_params.outline_cue_min_edge_snr;
   // Far range's cue is judged at the working scale alone: box-averaged, a limb's soft edge is a step that
   // passes, and every retry on it costs two mode changes (campaign plate/6: 2 -> 10 with edge_snr_radius_px
-  // 12 on far cues too, smallsat/10 2 -> 8, no frame gained).
+  // 12 on far cues too, smallsat/10 2 -> 8; neither tracked a frame).
   m_window.setCoarseSnrFactor(1);
 }
 
@@ -131,10 +131,10 @@ void Acquisition::start(const Vec3& direction_c, double distance_m, double direc
   const int scale =
       std::max(1, static_cast<int>(std::min(expected_radius_px, max_px) / m_params.working_radius_px + 0.5));
   const int used = m_window.setWindow(centre_px, std::min(half_px, max_px), scale);
-  const double working_radius_px = std::min(expected_radius_px, max_px) / used;
+  const double target_radius_working_px = std::min(expected_radius_px, max_px) / used;
   m_window.setCoarseSnrFactor(
       m_params.edge_snr_radius_px > 0
-          ? static_cast<int>(std::min(working_radius_px / m_params.edge_snr_radius_px, 16.0))
+          ? static_cast<int>(std::min(target_radius_working_px / m_params.edge_snr_radius_px, 16.0))
           : 1);
   m_state = AcquisitionState::kSearching;
 }
