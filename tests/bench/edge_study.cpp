@@ -3,7 +3,9 @@
 // blur (0.3-1.2 px), contrast (0.1-0.5) and background ramps, 8-bit quantised. It compares the paper's rule
 // (eq. 4's one-pixel difference against delta 0.2, else Algorithm 1 with a 1-nat gain, one scanline) with
 // the detector as configured (band of 5 lines, w-sample step test, texture split gated by spread).
-// Seeded: the printout is the same on every run. Usage: edge_study [trials per cell, default 2000]
+// The last row adds the noise before the blur, as the campaign's renderer does (drivers/synthetic): blurred
+// noise is correlated from pixel to pixel, which the scanline's noise estimate (first differences) does not
+// see. Seeded: the printout is the same on every run. Usage: edge_study [trials per cell, default 2000]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +56,34 @@ EdgeHit paperRule(const double* s) {
   return hit;
 }
 
+constexpr int kMaxBand = 5;
+constexpr int kTaps = 7;
+constexpr int kPad = kTaps / 2;
+
+/// band x kCount samples of white noise (sigma) blurred by a normalised Gaussian of `blur` px, 7 taps in
+/// x and y: the renderer's order (noise, then blur).
+void blurredNoise(Pcg32& rng, double sigma, double blur, int band, double (&out)[kMaxBand][kCount]) {
+  double kernel[kTaps];
+  double total = 0.0;
+  for (int i = 0; i < kTaps; ++i) {
+    kernel[i] = std::exp(-0.5 * (i - kPad) * (i - kPad) / (blur * blur));
+    total += kernel[i];
+  }
+  for (double& k : kernel) k /= total;
+  double field[kMaxBand + 2 * kPad][kCount + 2 * kPad];
+  for (auto& row : field)
+    for (double& v : row) v = sigma * gaussian(rng);
+  double rows[kMaxBand + 2 * kPad][kCount] = {};
+  for (int y = 0; y < band + 2 * kPad; ++y)
+    for (int x = 0; x < kCount; ++x)
+      for (int i = 0; i < kTaps; ++i) rows[y][x] += kernel[i] * field[y][x + i];
+  for (int y = 0; y < band; ++y)
+    for (int x = 0; x < kCount; ++x) {
+      out[y][x] = 0.0;
+      for (int i = 0; i < kTaps; ++i) out[y][x] += kernel[i] * rows[y + i][x];
+    }
+}
+
 struct Tally {
   double good = 0.0, bad = 0.0, false_alarm = 0.0, abs_error = 0.0;
   int edge_cells = 0, empty_cells = 0;
@@ -67,9 +97,11 @@ int main(int argc, char** argv) {
     const char* name;
     int band_lines;
     bool paper;
-  } variants[] = {{"paper eq. 4 + Algorithm 1, one line", 1, true},
-                  {"visnav detector, one line", 1, false},
-                  {"visnav detector, band of 5 (default)", 5, false}};
+    bool noise_blurred;
+  } variants[] = {{"paper eq. 4 + Algorithm 1, one line", 1, true, false},
+                  {"visnav detector, one line", 1, false, false},
+                  {"visnav detector, band of 5 (default)", 5, false, false},
+                  {"the same, noise blurred with the image", 5, false, true}};
   std::printf("%-40s %8s %8s %8s %8s\n", "detector", "good", "bad", "empty", "mae_px");
   for (const Variant& v : variants) {
     Pcg32 rng(2026);
@@ -86,6 +118,9 @@ int main(int argc, char** argv) {
             const double level = 0.2 + 0.4 * rng.uniform();
             const double ramp = (rng.uniform() - 0.5) * 0.01;
             const double spread = std::sqrt(blur * blur + 0.35 * 0.35);  // optics and pixel area
+            // Noise blurred with the image: a white field blurred by the optics' 7-tap Gaussian.
+            double noise[kMaxBand][kCount] = {};
+            if (v.noise_blurred) blurredNoise(rng, sigma, blur, v.band_lines, noise);
             double s[kCount];
             for (int k = 0; k < kCount; ++k) {
               double acc = 0.0;
@@ -93,7 +128,7 @@ int main(int argc, char** argv) {
                 const double value =
                     level + ramp * k +
                     contrast * 0.5 * (1.0 + std::erf((k - edge) / (spread * std::sqrt(2.0)))) +
-                    sigma * gaussian(rng);
+                    (v.noise_blurred ? noise[j][k] : sigma * gaussian(rng));
                 acc += std::round(std::clamp(value, 0.0, 1.0) * 255.0) / 255.0;
               }
               s[k] = acc / v.band_lines;
