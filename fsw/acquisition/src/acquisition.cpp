@@ -280,10 +280,17 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
     offer(m_refined, r, 2.0 * kRadPerDeg, &m_symmetries);
   }
   m_verified.clear();
-  for (const Candidate& c : m_refined) {
+  for (Candidate& c : m_refined) {
     Pose pose = c.pose;
     NearRangeResult r;
-    if (!trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, pose, r, out)) continue;
+    const bool accepted =
+        trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, pose, r, out);
+    c.verify_run = true;
+    c.verify_status = r.status;
+    c.verify_rms_px = r.rms_px;
+    c.verify_quality = r.quality;
+    c.verify_pose = r.pose;
+    if (!accepted) continue;
     // Rank by the two-way agreement at the tracked pose (the tracker's residual only covers the lines it
     // kept, and a wrong pose can fit those well), less a residual term: depth-reversed ("Necker") poses
     // explain the same edges, only perspective tells them apart, and that shows in the full-resolution fit.

@@ -56,6 +56,35 @@ std::string traceEdges(const NearRangeTracker& tracker, const Pose& fit, const P
   return out + "\n";
 }
 
+// A verification that ended no_candidate: each refined candidate's error (dp m, da deg) and what the
+// verifying tracker made of it (status, rms, quality, and the tracked pose's error). A right refined
+// candidate the tracker refused is a verification loss; none right is the search's.
+std::string traceVerification(const acq::Acquisition& acquisition, const Pose& truth,
+                              const std::vector<Symmetry>& symmetries) {
+  std::string out = "       verify:";
+  for (const acq::AcquisitionCandidate& c : acquisition.refined()) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, " [%.2f,%.1f", (c.pose.t_c_m - truth.t_c_m).norm(),
+                  attitudeErrorModuloDeg(c.pose.R_c_m, truth.R_c_m, symmetries));
+    out += buf;
+    if (c.verify_run)
+      std::snprintf(buf, sizeof buf, "->s%d rms=%.2f q=%.2f %.2f,%.1f]", static_cast<int>(c.verify_status),
+                    c.verify_rms_px, c.verify_quality, (c.verify_pose.t_c_m - truth.t_c_m).norm(),
+                    attitudeErrorModuloDeg(c.verify_pose.R_c_m, truth.R_c_m, symmetries));
+    else
+      std::snprintf(buf, sizeof buf, "]");
+    out += buf;
+  }
+  out += "\n       coarse:";
+  for (const acq::AcquisitionCandidate& c : acquisition.candidates()) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, " [%.2f,%.1f]", (c.pose.t_c_m - truth.t_c_m).norm(),
+                  attitudeErrorModuloDeg(c.pose.R_c_m, truth.R_c_m, symmetries));
+    out += buf;
+  }
+  return out + "\n";
+}
+
 }  // namespace
 
 std::string traceLine(const FrameOutcome& f, const NearRangeResult& near, const nav::FilterUpdate& update) {
@@ -207,6 +236,9 @@ std::string traceFrame(const FrameTraceInputs& in) {
         rs.by_acquisition ? " (found by acquisition)" : "",
         rs.twin_by_continuity ? " (near twin told apart by continuity)" : "");
     out += buf;
+    if (rs.acquisition_state == static_cast<int>(acq::AcquisitionState::kFailed) &&
+        rs.acquisition_failure == static_cast<int>(acq::AcquisitionFailure::kNoCandidate))
+      out += traceVerification(pipeline.acquisition(), truth, scene.symmetries);
   }
   return out;
 }

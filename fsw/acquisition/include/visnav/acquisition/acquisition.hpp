@@ -77,6 +77,13 @@ struct AcquisitionCandidate {
   double score = -1.0;
   Pose pose;
   Mat3 attitude = Mat3::Identity();  ///< compared for distinctness: grid attitude R_lm, or R_c_m once refined
+  /// Refined candidates only, once verification ran: what the verifying tracker made of it on its last
+  /// pass (why a frame ends no_candidate: lost, or a fit over max_rms_px or under min_quality).
+  bool verify_run = false;
+  TrackStatus verify_status = TrackStatus::kLost;
+  double verify_rms_px = 0.0;
+  double verify_quality = 0.0;
+  Pose verify_pose;
 };
 
 /// A refined candidate the near-range tracker accepted (debug view).
