@@ -383,8 +383,7 @@ TEST_F(PlateAcquisitionTest, AStillTargetIsConfirmedWhereItStandsAndHandsOverNoM
 }
 
 TEST_F(PlateAcquisitionTest, EveryRefinedCandidateSaysWhatTheVerifyingTrackerMadeOfIt) {
-  // The debug view behind the campaign trace's verify: line (why an attempt ends no_candidate): each
-  // refined candidate carries the verifier's last pass, and those it passed are the verified ones.
+  // The campaign trace's verify: line: each refined candidate carries the verifier's last pass.
   synthetic::Renderer renderer;
   ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
   const auto frames = crossingPlate(renderer, 0.0, 12);
@@ -394,7 +393,6 @@ TEST_F(PlateAcquisitionTest, EveryRefinedCandidateSaysWhatTheVerifyingTrackerMad
   for (; i < frames.size() && acquisition.state() == AcquisitionState::kSearching; ++i)
     acquisition.step(frames[i].image(), i, r);
   ASSERT_EQ(acquisition.state(), AcquisitionState::kVerifying);
-  for (const acq::AcquisitionCandidate& c : acquisition.refined()) EXPECT_FALSE(c.verify_run);
   acquisition.step(frames[i].image(), i, r);
   ASSERT_GT(acquisition.refined().size(), 0U);
   const acq::AcquisitionParams& p = acquisition.params();
