@@ -55,6 +55,7 @@ LoadError Acquisition::init(const PinholeCamera& camera, const PolygonModel& mod
   m_symmetries.findMirrors(model);
   m_candidates.reserve(static_cast<std::size_t>(params.search_candidates));
   m_refined.reserve(static_cast<std::size_t>(params.candidates));
+  m_verify_passes.reserve(static_cast<std::size_t>(params.candidates));
   m_verified.reserve(static_cast<std::size_t>(params.candidates));
   reset();
   return LoadError::success();
@@ -65,6 +66,7 @@ void Acquisition::reset() {
   m_failure = AcquisitionFailure::kNone;
   m_candidates.clear();
   m_refined.clear();
+  m_verify_passes.clear();
   m_verified.clear();
   m_next_hypothesis = 0;
   m_frames = 0;
@@ -280,16 +282,13 @@ void Acquisition::verify(const MonoImage& image, std::uint64_t frame_number, Acq
     offer(m_refined, r, 2.0 * kRadPerDeg, &m_symmetries);
   }
   m_verified.clear();
-  for (Candidate& c : m_refined) {
+  m_verify_passes.clear();
+  for (const Candidate& c : m_refined) {
     Pose pose = c.pose;
     NearRangeResult r;
     const bool accepted =
         trackCandidate(m_verifier, image, frame_number, m_params.tracker_iterations, pose, r, out);
-    c.verify_run = true;
-    c.verify_status = r.status;
-    c.verify_rms_px = r.rms_px;
-    c.verify_quality = r.quality;
-    c.verify_pose = r.pose;
+    m_verify_passes.push({r.status, r.rms_px, r.quality, r.pose});
     if (!accepted) continue;
     // Rank by the two-way agreement at the tracked pose (the tracker's residual only covers the lines it
     // kept, and a wrong pose can fit those well), less a residual term: depth-reversed ("Necker") poses

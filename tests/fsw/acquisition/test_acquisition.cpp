@@ -382,33 +382,6 @@ TEST_F(PlateAcquisitionTest, AStillTargetIsConfirmedWhereItStandsAndHandsOverNoM
   EXPECT_FALSE(r.has_previous);
 }
 
-TEST_F(PlateAcquisitionTest, EveryRefinedCandidateSaysWhatTheVerifyingTrackerMadeOfIt) {
-  // The campaign trace's verify: line: each refined candidate carries the verifier's last pass.
-  synthetic::Renderer renderer;
-  ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
-  const auto frames = crossingPlate(renderer, 0.0, 12);
-  acquisition.start(test::perturbedCue(frames[0].truth, 0.5, 0.0, 0.1));
-  acq::AcquisitionResult r;
-  std::size_t i = 0;
-  for (; i < frames.size() && acquisition.state() == AcquisitionState::kSearching; ++i)
-    acquisition.step(frames[i].image(), i, r);
-  ASSERT_EQ(acquisition.state(), AcquisitionState::kVerifying);
-  acquisition.step(frames[i].image(), i, r);
-  ASSERT_GT(acquisition.refined().size(), 0U);
-  const acq::AcquisitionParams& p = acquisition.params();
-  int passed = 0;
-  bool right_one = false;
-  for (const acq::AcquisitionCandidate& c : acquisition.refined()) {
-    EXPECT_TRUE(c.verify_run);
-    const bool ok = c.verify_status != TrackStatus::kLost && c.verify_rms_px <= p.max_rms_px &&
-                    c.verify_quality >= p.min_quality;
-    passed += ok ? 1 : 0;
-    right_one = right_one || (ok && (c.verify_pose.t_c_m - frames[i].truth.t_c_m).norm() < 0.05);
-  }
-  EXPECT_EQ(passed, r.candidates_verified);
-  EXPECT_TRUE(right_one) << "the still plate's right pose is among those the verifier passed";
-}
-
 TEST(AcquisitionNoAlloc, WholeAcquisitionsAllocateNothingAfterInit) {
   // Both targets (plate: vertex residual; box: more edges and surfaces), a success and a failure each.
   for (const test::Target target : {test::Target::kPlate, test::Target::kBox}) {

@@ -367,4 +367,36 @@ TEST(AcquisitionParamsTest, CrossCheckAndInit) {
 }
 
 }  // namespace
+TEST(AcquisitionDebugView, EveryRefinedCandidateSaysWhatTheVerifyingTrackerMadeOfIt) {
+  // The campaign trace's verify: line: each refined candidate carries the verifier's last pass.
+  const test::Scene scene = test::makeScene(test::Target::kPlate);
+  acq::Acquisition acquisition;
+  ASSERT_TRUE(
+      acquisition.init(test::vgaCamera(), scene.model, acq::AcquisitionParams{}, NearRangeParams{}).ok);
+  synthetic::Renderer renderer;
+  ASSERT_TRUE(renderer.init(test::vgaCamera(), scene.model, scene.render).ok);
+  const Pose truth{test::tiltedAttitude(20.0, 30.0, 40.0), Vec3(-0.9, 0.2, 12.0)};
+  const auto frames = test::renderStatic(renderer, truth, 8, 900U);
+  acquisition.start(test::perturbedCue(truth, 0.5, 0.0, 0.1));
+  acq::AcquisitionResult r;
+  std::size_t i = 0;
+  for (; i + 1 < frames.size() && acquisition.state() == acq::AcquisitionState::kSearching; ++i)
+    acquisition.step(frames[i].image(), i, r);
+  ASSERT_EQ(acquisition.state(), acq::AcquisitionState::kVerifying);
+  EXPECT_EQ(acquisition.verifyPasses().size(), 0U);
+  acquisition.step(frames[i].image(), i, r);
+  ASSERT_GT(acquisition.refined().size(), 0U);
+  ASSERT_EQ(acquisition.verifyPasses().size(), acquisition.refined().size());
+  const acq::AcquisitionParams& p = acquisition.params();
+  int passed = 0;
+  bool right_one = false;
+  for (const acq::AcquisitionVerifyPass& v : acquisition.verifyPasses()) {
+    const bool ok = v.status != TrackStatus::kLost && v.rms_px <= p.max_rms_px && v.quality >= p.min_quality;
+    passed += ok ? 1 : 0;
+    right_one = right_one || (ok && (v.pose.t_c_m - truth.t_c_m).norm() < 0.05);
+  }
+  EXPECT_EQ(passed, r.candidates_verified);
+  EXPECT_TRUE(right_one) << "the still plate's right pose is among those the verifier passed";
+}
+
 }  // namespace visnav::acq

@@ -57,31 +57,33 @@ std::string traceEdges(const NearRangeTracker& tracker, const Pose& fit, const P
 }
 
 // A verification that ended no_candidate: each refined candidate's error (dp m, da deg) and what the
-// verifying tracker made of it (status, rms, quality, and the tracked pose's error). A right refined
-// candidate the tracker refused is a verification loss; none right is the search's.
+// verifying tracker made of it (status, rms, quality, and the tracked pose's error), then the coarse
+// search's best. A right refined candidate the tracker refused is a verification loss; none right, the
+// search's.
 std::string traceVerification(const acq::Acquisition& acquisition, const Pose& truth,
                               const std::vector<Symmetry>& symmetries) {
+  const auto error = [&truth, &symmetries](const Pose& pose) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.2f,%.1f", (pose.t_c_m - truth.t_c_m).norm(),
+                  attitudeErrorModuloDeg(pose.R_c_m, truth.R_c_m, symmetries));
+    return std::string(buf);
+  };
   std::string out = "       verify:";
-  for (const acq::AcquisitionCandidate& c : acquisition.refined()) {
-    char buf[120];
-    std::snprintf(buf, sizeof buf, " [%.2f,%.1f", (c.pose.t_c_m - truth.t_c_m).norm(),
-                  attitudeErrorModuloDeg(c.pose.R_c_m, truth.R_c_m, symmetries));
-    out += buf;
-    if (c.verify_run)
-      std::snprintf(buf, sizeof buf, "->s%d rms=%.2f q=%.2f %.2f,%.1f]", static_cast<int>(c.verify_status),
-                    c.verify_rms_px, c.verify_quality, (c.verify_pose.t_c_m - truth.t_c_m).norm(),
-                    attitudeErrorModuloDeg(c.verify_pose.R_c_m, truth.R_c_m, symmetries));
-    else
-      std::snprintf(buf, sizeof buf, "]");
-    out += buf;
+  const BoundedBuffer<acq::AcquisitionCandidate>& refined = acquisition.refined();
+  const BoundedBuffer<acq::AcquisitionVerifyPass>& passes = acquisition.verifyPasses();
+  for (std::size_t i = 0; i < refined.size(); ++i) {
+    out += " [" + error(refined[i].pose);
+    if (i < passes.size()) {
+      const acq::AcquisitionVerifyPass& v = passes[i];
+      char buf[60];
+      std::snprintf(buf, sizeof buf, "->s%d rms=%.2f q=%.2f ", static_cast<int>(v.status), v.rms_px,
+                    v.quality);
+      out += buf + error(v.pose);
+    }
+    out += "]";
   }
   out += "\n       coarse:";
-  for (const acq::AcquisitionCandidate& c : acquisition.candidates()) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, " [%.2f,%.1f]", (c.pose.t_c_m - truth.t_c_m).norm(),
-                  attitudeErrorModuloDeg(c.pose.R_c_m, truth.R_c_m, symmetries));
-    out += buf;
-  }
+  for (const acq::AcquisitionCandidate& c : acquisition.candidates()) out += " [" + error(c.pose) + "]";
   return out + "\n";
 }
 

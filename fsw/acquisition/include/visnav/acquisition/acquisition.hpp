@@ -77,13 +77,15 @@ struct AcquisitionCandidate {
   double score = -1.0;
   Pose pose;
   Mat3 attitude = Mat3::Identity();  ///< compared for distinctness: grid attitude R_lm, or R_c_m once refined
-  /// Refined candidates only, once verification ran: what the verifying tracker made of it on its last
-  /// pass (why a frame ends no_candidate: lost, or a fit over max_rms_px or under min_quality).
-  bool verify_run = false;
-  TrackStatus verify_status = TrackStatus::kLost;
-  double verify_rms_px = 0.0;
-  double verify_quality = 0.0;
-  Pose verify_pose;
+};
+
+/// What the verifying tracker made of a refined candidate on its last pass (debug view): why an attempt
+/// ends no_candidate (lost, or a fit over max_rms_px or under min_quality).
+struct AcquisitionVerifyPass {
+  TrackStatus status = TrackStatus::kLost;
+  double rms_px = 0.0;
+  double quality = 0.0;
+  Pose pose;
 };
 
 /// A refined candidate the near-range tracker accepted (debug view).
@@ -131,6 +133,8 @@ class Acquisition {
   const BoundedBuffer<AcquisitionCandidate>& candidates() const { return m_candidates; }
   /// The refined candidates the tracker checked, best first (debug view).
   const BoundedBuffer<AcquisitionCandidate>& refined() const { return m_refined; }
+  /// After verification, the verifier's pass on each of refined(), in its order (debug view; empty before).
+  const BoundedBuffer<AcquisitionVerifyPass>& verifyPasses() const { return m_verify_passes; }
   /// The candidates the tracker accepted, best first (debug view).
   const BoundedBuffer<AcquisitionVerified>& verified() const { return m_verified; }
   /// The window of the last searched or verified frame (debug view).
@@ -224,10 +228,11 @@ class Acquisition {
   int m_next_hypothesis = 0;
   int m_frames = 0;
   double m_best_score = 0.0;
-  BoundedBuffer<Candidate> m_candidates;  ///< search survivors, best first
-  BoundedBuffer<Candidate> m_refined;     ///< refined, best first (the tracker checks these)
-  BoundedBuffer<Verified> m_verified;     ///< highest evidence first
-  int m_current = 0;                      ///< verified candidate under confirmation
+  BoundedBuffer<Candidate> m_candidates;                 ///< search survivors, best first
+  BoundedBuffer<Candidate> m_refined;                    ///< refined, best first (the tracker checks these)
+  BoundedBuffer<AcquisitionVerifyPass> m_verify_passes;  ///< parallel to m_refined once verified
+  BoundedBuffer<Verified> m_verified;                    ///< highest evidence first
+  int m_current = 0;                                     ///< verified candidate under confirmation
   int m_confirmed = 0;
   int m_confirm_frames_run = 0;
   bool m_rival_alive = false;
