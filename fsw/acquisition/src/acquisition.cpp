@@ -77,6 +77,7 @@ void Acquisition::reset() {
   m_has_look_reference = false;
   m_twin_by_continuity = false;
   m_min_edge_snr = m_params.min_edge_snr;
+  m_target_radius_working_px = 0.0;
 }
 
 void Acquisition::setLookReference(const Pose& reference, double tolerance_rad) {
@@ -101,7 +102,13 @@ void Acquisition::start(const FarRangeSolution& cue) {
   // Far range's cue is judged at the working scale alone: box-averaged, a limb's soft edge is a step that
   // passes, and every retry on it costs two mode changes (campaign plate/6: 2 -> 10 with edge_snr_radius_px
   // 12 on far cues too, smallsat/10 2 -> 8; neither tracked a frame).
-  m_window.setCoarseSnrFactor(1);
+  m_window.setCoarseSnrFactor(coarseSnrFactor(m_params.far_cue_edge_snr_radius_px));
+}
+
+int Acquisition::coarseSnrFactor(int edge_snr_radius_px) const {
+  return edge_snr_radius_px > 0
+             ? static_cast<int>(std::min(m_target_radius_working_px / edge_snr_radius_px, 16.0))
+             : 1;
 }
 
 void Acquisition::start(const Vec3& direction_c, double distance_m) {
@@ -133,11 +140,8 @@ void Acquisition::start(const Vec3& direction_c, double distance_m, double direc
   const int scale =
       std::max(1, static_cast<int>(std::min(expected_radius_px, max_px) / m_params.working_radius_px + 0.5));
   const int used = m_window.setWindow(centre_px, std::min(half_px, max_px), scale);
-  const double target_radius_working_px = std::min(expected_radius_px, max_px) / used;
-  m_window.setCoarseSnrFactor(
-      m_params.edge_snr_radius_px > 0
-          ? static_cast<int>(std::min(target_radius_working_px / m_params.edge_snr_radius_px, 16.0))
-          : 1);
+  m_target_radius_working_px = std::min(expected_radius_px, max_px) / used;
+  m_window.setCoarseSnrFactor(coarseSnrFactor(m_params.edge_snr_radius_px));
   m_state = AcquisitionState::kSearching;
 }
 

@@ -25,6 +25,8 @@ void ModeManager::reset() {
   m_handover_distance_m = 0.0;
   m_retry_below_m = 0.0;
   m_refused_handovers = 0;
+  m_acquiring_beside = false;
+  m_acquiring_frames = 0;
   m_last = ModeTransition{};
   m_last.from = m_mode;
   m_last.to = m_mode;
@@ -43,6 +45,7 @@ void ModeManager::transition(NavMode to, const char* reason, std::uint64_t frame
   m_frames_in_mode = 0;
   m_close_count = 0;
   m_far_count = 0;
+  m_acquiring_beside = false;
 }
 
 void ModeManager::backOff(bool escalate) {
@@ -78,12 +81,41 @@ bool ModeManager::handOverDue(const ModeInputs& in) const {
   return handOverCondition(in, nextCloseCount(in), m_frames_in_mode + 1U);
 }
 
+void ModeManager::acquisitionEnded(const ModeInputs& in) {
+  backOff();
+  if (in.acquisition_failed && in.acquisition_unconfirmed && m_params.acquire_retry_growth > 1.0)
+    m_retry_below_m = m_handover_distance_m / m_params.acquire_retry_growth;
+}
+
+void ModeManager::stepAcquiringBeside(const ModeInputs& in, std::uint64_t frame_number) {
+  ++m_acquiring_frames;
+  if (in.acquisition_succeeded) {
+    m_acquisition_failures = 0;
+    m_holdoff_frames = 0;
+    transition(NavMode::kNearRange, "acquisition beside far range: first pose confirmed", frame_number);
+    return;
+  }
+  if (!in.acquisition_failed &&
+      m_acquiring_frames < static_cast<std::uint32_t>(m_params.acquisition_timeout_frames))
+    return;
+  // Failed or timed out: far range goes on, as after a refused hand-over (no mode changed), and the
+  // back-off counts from here.
+  acquisitionEnded(in);
+  m_acquiring_beside = false;
+  m_frames_in_mode = 0;
+  m_close_count = 0;
+}
+
 bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
   const NavMode before = m_mode;
   ++m_frames_in_mode;
   switch (m_mode) {
     case NavMode::kStandby: break;  // only a resume command leaves standby
     case NavMode::kFarRange: {
+      if (m_acquiring_beside) {
+        stepAcquiringBeside(in, frame_number);
+        break;
+      }
       m_close_count = nextCloseCount(in);
       if (handOverCondition(in, m_close_count, m_frames_in_mode)) {
         m_retry_below_m = 0.0;
@@ -97,7 +129,12 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
           m_close_count = 0;
         } else {
           m_handover_distance_m = in.far_distance_m;
-          transition(NavMode::kAcquisition, "far range: target close enough", frame_number);
+          if (m_params.acquire_beside_far_range) {
+            m_acquiring_beside = true;
+            m_acquiring_frames = 0;
+          } else {
+            transition(NavMode::kAcquisition, "far range: target close enough", frame_number);
+          }
         }
       }
       break;
@@ -108,12 +145,10 @@ bool ModeManager::step(const ModeInputs& in, std::uint64_t frame_number) {
         m_holdoff_frames = 0;
         transition(NavMode::kNearRange, "acquisition: first pose confirmed", frame_number);
       } else if (in.acquisition_failed) {
-        backOff();
-        if (in.acquisition_unconfirmed && m_params.acquire_retry_growth > 1.0)
-          m_retry_below_m = m_handover_distance_m / m_params.acquire_retry_growth;
+        acquisitionEnded(in);
         transition(NavMode::kFarRange, "acquisition: failed", frame_number);
       } else if (m_frames_in_mode >= static_cast<std::uint32_t>(m_params.acquisition_timeout_frames)) {
-        backOff();
+        acquisitionEnded(in);
         transition(NavMode::kFarRange, "acquisition: timeout", frame_number);
       }
       break;
@@ -141,8 +176,10 @@ bool ModeManager::command(ModeCommandKind kind, std::uint32_t command_id, bool f
     case ModeCommandKind::kForceFarRange:
       if (m_mode == NavMode::kStandby)
         rejection = "in standby: send resume first";
-      else
+      else {
+        m_acquiring_beside = false;  // far range alone, as commanded: a hand-over starts a new one
         transition(NavMode::kFarRange, "command: force far range", frame_number);
+      }
       break;
     case ModeCommandKind::kReacquire:
       if (m_mode == NavMode::kStandby)

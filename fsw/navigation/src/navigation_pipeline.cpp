@@ -193,6 +193,17 @@ void NavigationPipeline::runAcquisition(const MonoImage& image, std::uint64_t fr
   }
 }
 
+void NavigationPipeline::acquisitionBesideFarRange(bool started) {
+  if (started) {
+    m_acquisition.start(m_last_far_fix);
+    return;
+  }
+  // Failed or timed out: far range restarts as on entering it after a failed acquisition (enterMode), or
+  // keeps its track when that acquisition left it (far_track_survives_unconfirmed): here it never stopped.
+  if (!m_far_track_kept) m_far.reset();
+  m_far_track_kept = false;
+}
+
 Pose NavigationPipeline::predictedPose() const {
   return m_filter.initialised() && m_filter.attitudeKnown() ? m_filter.pose() : m_last_pose;
 }
@@ -352,6 +363,7 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
   out.frame_number = m_last_frame_number;
   const NavMode mode_before = m_modes.mode();
   out.mode = mode_before;
+  NavMode processed_as = mode_before;
   Status status = Status::kOk;
   ModeInputs in;
   if (frame == nullptr || frame->image.empty()) {
@@ -390,13 +402,18 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
       case NavMode::kStandby: break;
       case NavMode::kFarRange:
         runFarRange(frame->image, out, in);
-        checkCueBeforeHandOver(frame->image, in);
+        if (m_modes.acquiringBesideFarRange()) {
+          runAcquisition(frame->image, out.frame_number, out, in);
+          processed_as = NavMode::kAcquisition;  // its pose and branch are an acquisition's
+        } else {
+          checkCueBeforeHandOver(frame->image, in);
+        }
         break;
       case NavMode::kAcquisition: runAcquisition(frame->image, out.frame_number, out, in); break;
       case NavMode::kNearRange: runNearRange(frame->image, out.frame_number, out, in); break;
     }
   }
-  confirmBranch(mode_before, out);
+  confirmBranch(processed_as, out);
   if (frame != nullptr && out.frame_received) followNearTwin(mode_before, frame->image, out);
   noteRangeReference(out);
   if (out.pose_valid) {
@@ -419,7 +436,12 @@ Status NavigationPipeline::process(const Frame* frame, std::int64_t now_ns, NavS
     m_narrow_break = true;
   }
   if (!out.pose_valid && m_frames_since_branch_reference != ~0ULL) ++m_frames_since_branch_reference;
-  if (m_modes.step(in, out.frame_number)) enterMode(m_modes.mode());
+  const bool was_acquiring_beside = m_modes.acquiringBesideFarRange();
+  if (m_modes.step(in, out.frame_number)) {
+    enterMode(m_modes.mode());
+  } else if (m_modes.acquiringBesideFarRange() != was_acquiring_beside) {
+    acquisitionBesideFarRange(m_modes.acquiringBesideFarRange());
+  }
   out.fault_bits = m_fdir.endFrame();
   if (m_clock != nullptr) out.timing.process_us = static_cast<double>(m_clock() - start) * 1e-3;
   return status;

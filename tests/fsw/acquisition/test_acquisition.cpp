@@ -181,7 +181,7 @@ TEST_F(PlateAcquisitionTest, ACueWithoutEdgesIsToldWithoutStartingAnAcquisition)
 // no-target threshold at the working scale (edge SNR 4.4), and over it box-averaged to a 12 px radius (9.3).
 // Only an acquisition the near-range prediction cued (start(direction, distance)) reads the box-averaged SNR;
 // far range's cue is judged at the working scale alone (a limb's soft edge passes box-averaged: campaign
-// plate/6).
+// plate/6) unless far_cue_edge_snr_radius_px says otherwise.
 TEST(AcquisitionNoTarget, ADimTargetPassesBoxAveragedOnlyWhenThePredictionCuedIt) {
   const test::Scene scene = test::makeScene(test::Target::kPlate);
   synthetic::RenderOptions options = scene.render;
@@ -212,6 +212,14 @@ TEST(AcquisitionNoTarget, ADimTargetPassesBoxAveragedOnlyWhenThePredictionCuedIt
       EXPECT_GE(r.edge_snr, params.min_edge_snr);
     }
   }
+  // far_cue_edge_snr_radius_px (0 by default, measured at stop 85) reads far range's cue box-averaged too.
+  params.edge_snr_radius_px = 0;
+  params.far_cue_edge_snr_radius_px = 12;
+  acq::Acquisition averaged;
+  ASSERT_TRUE(averaged.init(test::vgaCamera(), scene.model, params, NearRangeParams{}).ok);
+  double averaged_snr = 0.0;
+  EXPECT_FALSE(averaged.cueLacksEdges(cue, frames[0].image(), averaged_snr));
+  EXPECT_GE(averaged_snr, params.min_edge_snr);
 }
 
 // A cue far range found by its outline has shown edge structure already: its no-target threshold is

@@ -117,21 +117,29 @@ TEST(DaemonNoAlloc, WithDdsTelemetryAllocatesNothing) {
   EXPECT_LE(m.allocations, kBackgroundSlack);
 }
 
-// Every mode and transition: 80 frames of approach_ci (25 m -> 18.7 m) looped go far range -> acquisition ->
-// near range; at the loop the target jumps back to 25 m. With its defaults close-range reacquisition finds
-// it again there (no transition); here it is limited to one start and one frame, so it hands over to far
-// range and every mode and transition runs in each loop.
+// Every mode and transition: 80 frames of approach_ci (25 m -> 18.7 m) looped go far range -> near range, the
+// acquisition beside far range (the default), or far range -> acquisition -> near range with the acquisition
+// in its own mode; at the loop the target jumps back to 25 m. With its defaults close-range reacquisition
+// finds it again there (no transition); here it is limited to one start and one frame, so it hands over to
+// far range and every mode and transition runs in each loop.
 TEST(DaemonNoAlloc, EveryModeAndTransitionAllocatesNothing) {
   if (kSanitizerBuild) GTEST_SKIP() << "acquisition takes seconds per frame under ASan at -O0: release only";
-  const std::string fallback =
-      "[navigation]\nreacquire_timeout_frames = 1\nreacquire_hypotheses_per_frame = 1\n";
-  const Measured m =
-      measure(loopingReplay(test::renderedApproachCi(VISNAV_APP_TEST_FRAMES), false) + fallback, kCycles,
-              VISNAV_APP_TEST_FRAMES, false);
-  print("daemon cycle, every mode, telemetry off", m);
-  EXPECT_EQ(m.cycles, kCycles);
-  EXPECT_GE(m.transitions, 3U * (kCycles / VISNAV_APP_TEST_FRAMES)) << "ended in " << nav::toString(m.mode);
-  EXPECT_EQ(m.allocations, 0U);
+  for (const bool beside : {true, false}) {
+    const std::string fallback =
+        std::string("[navigation]\nreacquire_timeout_frames = 1\nreacquire_hypotheses_per_frame = 1\n") +
+        "acquire_beside_far_range = " + (beside ? "true" : "false") + "\n";
+    const Measured m =
+        measure(loopingReplay(test::renderedApproachCi(VISNAV_APP_TEST_FRAMES), false) + fallback, kCycles,
+                VISNAV_APP_TEST_FRAMES, false);
+    print(beside ? "daemon cycle, every mode (acquisition beside far range), telemetry off"
+                 : "daemon cycle, every mode (acquisition in its own mode), telemetry off",
+          m);
+    EXPECT_EQ(m.cycles, kCycles);
+    const std::uint64_t per_loop = beside ? 2U : 3U;
+    EXPECT_GE(m.transitions, per_loop * (kCycles / VISNAV_APP_TEST_FRAMES))
+        << "ended in " << nav::toString(m.mode);
+    EXPECT_EQ(m.allocations, 0U);
+  }
 }
 
 TEST(DaemonNoAlloc, SyntheticCameraCycleAllocatesNothing) {

@@ -168,6 +168,7 @@ TEST(CApi, SameNumbersAsThePipelineBitForBitThroughEveryMode) {
   visnav_handle* h = createOrFail();
   ASSERT_NE(h, nullptr);
   int per_mode[4] = {0, 0, 0, 0};
+  int acquisition_frames = 0;
   for (std::size_t i = 0; i < seq.frames.size(); ++i) {
     const visnav::test::RenderedFrame& f = seq.frames[i];
     visnav::Frame frame;
@@ -182,6 +183,8 @@ TEST(CApi, SameNumbersAsThePipelineBitForBitThroughEveryMode) {
     SCOPED_TRACE("frame " + std::to_string(i));
     ASSERT_EQ(sol.mode, static_cast<int>(ref.mode));
     ++per_mode[sol.mode];
+    // The acquisition runs beside far range (acquire_beside_far_range) or in its own mode.
+    acquisition_frames += reference->lastAcquisition().state != visnav::acq::AcquisitionState::kIdle ? 1 : 0;
     ASSERT_EQ(sol.frame_number, ref.frame_number);
     ASSERT_EQ(sol.fault_bits, ref.fault_bits);
     ASSERT_EQ(sol.pose_valid, ref.pose_valid ? 1 : 0);
@@ -212,7 +215,7 @@ TEST(CApi, SameNumbersAsThePipelineBitForBitThroughEveryMode) {
   }
   // The comparison covered every estimator (numbers of README.md "750 m to 5 m without help").
   EXPECT_GT(per_mode[VISNAV_MODE_FAR_RANGE], 100);
-  EXPECT_GT(per_mode[VISNAV_MODE_ACQUISITION], 0);
+  EXPECT_GT(acquisition_frames, 0);
   EXPECT_GT(per_mode[VISNAV_MODE_NEAR_RANGE], 50);
   visnav_destroy(h);
 }

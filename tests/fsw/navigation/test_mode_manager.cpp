@@ -30,6 +30,9 @@ NavigationParams plateHandover() {
   NavigationParams p;
   p.handover_radius_px = 50.0;
   p.near_range_min_radius_px = 37.5;
+  // The acquisition's own mode (far -> acquisition -> far or near); beside far range, the default since
+  // stop 85: test_mode_manager_beside.cpp.
+  p.acquire_beside_far_range = false;
   return p.withDerivedHandover(1.5, 1000.0);
 }
 

@@ -14,8 +14,10 @@ namespace {
 using test_support::PipelineTest;
 
 TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
+  PipelineParams p = params;
+  p.navigation.acquire_beside_far_range = false;  // the acquisition in its own mode (the default: below)
   NavigationPipeline pipeline;
-  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
   ASSERT_EQ(pipeline.mode(), NavMode::kFarRange);
   NavSolution out;
   int first_near = -1;
@@ -38,6 +40,42 @@ TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
   EXPECT_EQ(out.symmetric_twins, 1);
   EXPECT_FALSE(out.twin_by_continuity);
   // Compare with the nearer twin of the truth.
+  const Pose truth = frames.back().truth;
+  Pose twin = truth;
+  twin.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitZ()).toRotationMatrix();
+  const Vec6 e1 = truth.boxMinus(out.pose), e2 = twin.boxMinus(out.pose);
+  const Vec6 err = e1.head<3>().norm() < e2.head<3>().norm() ? e1 : e2;
+  EXPECT_LT(err.tail<3>().norm(), 0.1);
+  EXPECT_LT(err.head<3>().norm() * kDegPerRad, 3.0);
+}
+
+TEST_F(PipelineTest, AcquiresBesideFarRangeWithOneModeChangeAndNoGapInTheFixes) {
+  // acquire_beside_far_range (the default): far range keeps delivering while the acquisition searches and
+  // confirms, and the mode changes once, far -> near, against far -> acquisition -> near above.
+  ASSERT_TRUE(params.navigation.acquire_beside_far_range);
+  NavigationPipeline pipeline;
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
+  NavSolution out;
+  int first_near = -1;
+  int acquiring_frames = 0;
+  for (int i = 0; i < kFrames; ++i) {
+    const Frame f = frameAt(i);
+    ASSERT_EQ(pipeline.process(&f, f.exposure_time_ns, out), Status::kOk);
+    EXPECT_NE(out.mode, NavMode::kAcquisition) << "frame " << i;
+    if (out.mode == NavMode::kFarRange) {
+      EXPECT_TRUE(out.far.valid) << "frame " << i;
+      EXPECT_NEAR(out.far.distance_m, 26.0 - 0.1 * i, 2.6) << "frame " << i;
+      acquiring_frames += pipeline.modes().acquiringBesideFarRange() ? 1 : 0;
+    }
+    if (out.mode == NavMode::kNearRange && first_near < 0) first_near = i;
+  }
+  ASSERT_GE(first_near, 0) << "never reached near range";
+  EXPECT_LT(first_near, 20);
+  EXPECT_GT(acquiring_frames, 0) << "the acquisition ran beside far range";
+  EXPECT_EQ(pipeline.modes().transitionCount(), 1U);
+  EXPECT_STREQ(pipeline.modes().lastTransition().reason.data(),
+               "acquisition beside far range: first pose confirmed");
+  ASSERT_TRUE(out.pose_valid);
   const Pose truth = frames.back().truth;
   Pose twin = truth;
   twin.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitZ()).toRotationMatrix();
@@ -81,7 +119,7 @@ TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
         EXPECT_EQ(out.withheld == 0U, out.pose_valid || !(out.quality > 0.0))
             << "frame " << i << " withheld " << out.withheld;
         o.withheld_after.push_back(out.withheld);
-      } else if (out.mode == NavMode::kAcquisition &&
+      } else if (out.mode != NavMode::kNearRange &&  // its own mode or beside far range
                  pipeline.lastAcquisition().state == acq::AcquisitionState::kSucceeded) {
         o.acquired_at = i;
         o.acquired_valid = out.pose_valid;
@@ -175,6 +213,8 @@ TEST_F(PipelineTest, FarRangeGoesOnWithItsTrackAfterAnAcquisitionThatConfirmedNo
     PipelineParams p = params;
     p.navigation.refute_unconfirmed_cue = false;
     p.navigation.far_track_survives_unconfirmed = c.keep;
+    // The far track kept over the acquisition's own mode; beside far range (the default) it never stops.
+    p.navigation.acquire_beside_far_range = false;
     p.farrange.max_coast_frames = c.coast_frames;
     NavigationPipeline pipeline;
     ASSERT_TRUE(pipeline.init(test::vgaCamera(), bar, p).ok);
@@ -203,8 +243,11 @@ TEST_F(PipelineTest, FarRangeGoesOnWithItsTrackAfterAnAcquisitionThatConfirmedNo
 }
 
 TEST_F(PipelineTest, CommandsAndFallbackAllocateNothingAfterInit) {
+  // Every mode, the acquisition's own too (beside far range: DaemonNoAlloc.EveryModeAndTransition...).
+  PipelineParams p = params;
+  p.navigation.acquire_beside_far_range = false;
   NavigationPipeline pipeline;
-  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, params).ok);
+  ASSERT_TRUE(pipeline.init(test::vgaCamera(), model, p).ok);
   NavSolution out;
   CommandAck ack;
   int modes_seen = 0;

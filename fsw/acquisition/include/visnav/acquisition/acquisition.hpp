@@ -154,6 +154,9 @@ class Acquisition {
 
   void fail(AcquisitionFailure failure);
   void prepareWindow(const MonoImage& image);
+  /// The box-averaging factor of the window's second edge SNR for a target radius of edge_snr_radius_px (0:
+  /// 1).
+  int coarseSnrFactor(int edge_snr_radius_px) const;
   void search(AcquisitionResult& out);
   static void offer(BoundedBuffer<Candidate>& list, const Candidate& c, double min_angle_rad,
                     const ModelSymmetries* symmetries = nullptr);
@@ -224,6 +227,7 @@ class Acquisition {
   AcquisitionFailure m_failure = AcquisitionFailure::kNone;
   Vec3 m_cue_direction = Vec3::UnitZ();
   double m_cue_distance_m = 0.0;
+  double m_target_radius_working_px = 0.0;  ///< the cue's expected target radius on the working image
   double m_min_edge_snr = 0.0;  ///< the no-target threshold for this cue (min_edge_snr or the outline cue's)
   int m_next_hypothesis = 0;
   int m_frames = 0;

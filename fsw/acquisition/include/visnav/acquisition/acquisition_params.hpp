@@ -27,6 +27,7 @@ struct AcquisitionParams {
   double min_edge_snr = 5.0;
   double outline_cue_min_edge_snr = 5.0;
   int edge_snr_radius_px = 12;
+  int far_cue_edge_snr_radius_px = 0;
   // Budget per cycle.
   int hypotheses_per_cycle = 4000;
   int search_candidates = 48;
@@ -129,6 +130,13 @@ struct AcquisitionParams {
          "Far range's cues keep the working scale (a limb's soft edge passes averaged: plate/6 2 -> 10 "
          "mode changes). 12 on campaign seeds 1-120: tracked 45 476 -> 45 541, 0 wrong, no mode change"},
         edge_snr_radius_px);
+    v.integer({"acquisition", "far_cue_edge_snr_radius_px", "px", 0, 512,
+               "edge_snr_radius_px for a cue far range gave (0: the working scale alone). A dim target under "
+               "noise fails the working-scale test where the averaged one passes, and is then never handed "
+               "over; a limb's soft edge passes it too. 12, beside far range, on campaign seeds 1-40 / "
+               "41-80: tracked +17 (box/13 0 -> 17) / -24 (box/73 41 -> 11: a cue passed early fails "
+               "unconfirmed and the retry waits until the target is twice as near), 0 wrong"},
+              far_cue_edge_snr_radius_px);
     v.integer({"acquisition", "hypotheses_per_cycle", "count", 1, 10000000,
                "budget: hypotheses scored per frame; the search spans several frames"},
               hypotheses_per_cycle);

@@ -53,6 +53,9 @@ class ModeManager {
   void backOff(bool escalate = true);
   /// In far range: whether step() with these inputs hands over to acquisition (before cue_lacks_edges).
   bool handOverDue(const ModeInputs& in) const;
+  /// In far range with acquire_beside_far_range: an acquisition runs beside far range (started by the step
+  /// that handed over, ended by the step that saw it succeed, fail or time out).
+  bool acquiringBesideFarRange() const { return m_acquiring_beside; }
   /// Hand-overs refused because the cue had no edge structure (cue_lacks_edges), since init or reset.
   std::uint64_t refusedHandOvers() const { return m_refused_handovers; }
 
@@ -70,6 +73,8 @@ class ModeManager {
   double m_handover_distance_m = 0.0;  ///< far range's distance when it last handed over
   /// After an unconfirmed acquisition: far range hands over again below this distance (0: no such limit).
   double m_retry_below_m = 0.0;
+  bool m_acquiring_beside = false;       ///< see acquiringBesideFarRange()
+  std::uint32_t m_acquiring_frames = 0;  ///< frames that acquisition has run beside far range
   ModeTransition m_last;
   std::uint64_t m_transitions = 0;
   std::uint64_t m_refused_handovers = 0;
@@ -78,6 +83,10 @@ class ModeManager {
   bool handOverCondition(const ModeInputs& in, int close_count, std::uint32_t frames) const;
   /// m_close_count after a far-range frame with these inputs (step() and handOverDue() alike).
   int nextCloseCount(const ModeInputs& in) const;
+  /// An acquisition (in its mode or beside far range) failed or timed out: back-off and retry distance.
+  void acquisitionEnded(const ModeInputs& in);
+  /// Far range with an acquisition beside it: its outcome decides (acquire_beside_far_range).
+  void stepAcquiringBeside(const ModeInputs& in, std::uint64_t frame_number);
 };
 
 }  // namespace visnav::nav

@@ -18,6 +18,7 @@ struct NavigationParams {
   int enter_frames = 3;                     ///< consecutive frames a distance condition must hold
   bool close_count_survives_gaps = false;   ///< far range: a frame without a fix holds the count
   int acquisition_timeout_frames = 25;   ///< acquisition gives up (back to far range) after this many frames
+  bool acquire_beside_far_range = true;  ///< hand-over: acquisition beside far range, which keeps its mode
   int acquire_retry_holdoff_frames = 5;  ///< far range waits this long after a failed acquisition...
   int acquire_retry_holdoff_max_frames = 40;  ///< ... doubling per consecutive failure up to this
   double acquire_retry_growth = 2.0;  ///< after an unconfirmed acquisition: retry that many times nearer

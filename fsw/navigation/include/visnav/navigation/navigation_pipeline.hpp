@@ -119,6 +119,9 @@ class NavigationPipeline {
   /// would find edge structure at it; if not, the fix is refuted and in.cue_lacks_edges set.
   void checkCueBeforeHandOver(const MonoImage& image, ModeInputs& in);
   void runAcquisition(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
+  /// acquire_beside_far_range: an acquisition beside far range started (from the last far fix) or ended
+  /// without a pose (far range restarts unless the failure left its track).
+  void acquisitionBesideFarRange(bool started);
   void runNearRange(const MonoImage& image, std::uint64_t frame_number, NavSolution& out, ModeInputs& in);
   void coast(NavSolution& out);
   bool closeRange() const;
