@@ -5,18 +5,15 @@
 #include <cmath>
 #include <vector>
 
+#include "mode_manager_test_support.hpp"
 #include "visnav/core/rng.hpp"
 #include "visnav/navigation/mode_manager.hpp"
 
 namespace visnav::nav {
 namespace {
 
-ModeInputs farAt(double d) {
-  ModeInputs in;
-  in.far_valid = true;
-  in.far_distance_m = d;
-  return in;
-}
+using test_support::farAt;
+
 ModeInputs nearAt(double d) {
   ModeInputs in;
   in.depth_known = true;
@@ -24,17 +21,9 @@ ModeInputs nearAt(double d) {
   return in;
 }
 
-// A hand-over derived for a 1.5 m target seen at f = 1000 px at a 50 px radius: acquire below 30 m, fall
-// back above 40 m (round distances for the transitions the tests walk through).
-NavigationParams plateHandover() {
-  NavigationParams p;
-  p.handover_radius_px = 50.0;
-  p.near_range_min_radius_px = 37.5;
-  // The acquisition's own mode (far -> acquisition -> far or near); beside far range, the default since
-  // stop 85: test_mode_manager_beside.cpp.
-  p.acquire_beside_far_range = false;
-  return p.withDerivedHandover(1.5, 1000.0);
-}
+// The acquisition in its own mode (far -> acquisition -> far or near); beside far range, the default since
+// stop 85: test_mode_manager_beside.cpp.
+NavigationParams plateHandover() { return test_support::plateHandover(false); }
 
 TEST(ModeManager, HandOverDistancesAreDerivedFromTheTargetsApparentSize) {
   const NavigationParams plate = plateHandover();

@@ -5,40 +5,29 @@
 #include <cstdint>
 #include <vector>
 
+#include "mode_manager_test_support.hpp"
 #include "visnav/navigation/mode_manager.hpp"
 
 namespace visnav::nav {
 namespace {
 
-ModeInputs farFixAt(double d) {
-  ModeInputs in;
-  in.far_valid = true;
-  in.far_distance_m = d;
-  return in;
-}
+using test_support::farAt;
 
-// Acquire below 30 m, fall back above 40 m (test_mode_manager.cpp's plate).
-NavigationParams besideHandover() {
-  NavigationParams p;
-  p.handover_radius_px = 50.0;
-  p.near_range_min_radius_px = 37.5;
-  p.acquire_beside_far_range = true;
-  return p.withDerivedHandover(1.5, 1000.0);
-}
+NavigationParams besideHandover() { return test_support::plateHandover(true); }
 
 TEST(ModeManagerBeside, AHandOverStartsAnAcquisitionBesideFarRangeAndOnlyItsPoseChangesTheMode) {
   ModeManager m;
   ASSERT_TRUE(m.init(besideHandover()).ok);
   std::uint64_t frame = 0;
-  for (int i = 0; i < 2; ++i) EXPECT_FALSE(m.step(farFixAt(28.0), ++frame));
+  for (int i = 0; i < 2; ++i) EXPECT_FALSE(m.step(farAt(28.0), ++frame));
   EXPECT_FALSE(m.acquiringBesideFarRange());
-  EXPECT_FALSE(m.step(farFixAt(28.0), ++frame)) << "the hand-over itself changes no mode";
+  EXPECT_FALSE(m.step(farAt(28.0), ++frame)) << "the hand-over itself changes no mode";
   EXPECT_TRUE(m.acquiringBesideFarRange());
   EXPECT_EQ(m.mode(), NavMode::kFarRange);
   // Frames of the attempt: far range's fixes are no hand-over of their own.
-  for (int i = 0; i < 5; ++i) EXPECT_FALSE(m.step(farFixAt(27.0), ++frame));
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(m.step(farAt(27.0), ++frame));
   EXPECT_TRUE(m.acquiringBesideFarRange());
-  ModeInputs ok = farFixAt(27.0);
+  ModeInputs ok = farAt(27.0);
   ok.acquisition_succeeded = true;
   EXPECT_TRUE(m.step(ok, ++frame));
   EXPECT_EQ(m.mode(), NavMode::kNearRange);
@@ -54,14 +43,14 @@ TEST(ModeManagerBeside, FailedAttemptsBackOffAsInTheAcquisitionModeWithoutAModeC
   NavigationParams p = besideHandover();
   p.acquire_retry_holdoff_max_frames = 80;
   ASSERT_TRUE(m.init(p).ok);
-  ModeInputs failed = farFixAt(10.0);
+  ModeInputs failed = farAt(10.0);
   failed.acquisition_failed = true;
   std::uint64_t frame = 0;
   std::vector<std::uint64_t> far_frames;
   for (int attempt = 0; attempt < 5; ++attempt) {
     std::uint64_t waited = 0;
     while (!m.acquiringBesideFarRange() && waited < 1000) {
-      m.step(farFixAt(10.0), ++frame);
+      m.step(farAt(10.0), ++frame);
       ++waited;
     }
     far_frames.push_back(waited);
@@ -80,25 +69,25 @@ TEST(ModeManagerBeside, AnUnconfirmedAttemptIsRetriedNearerAndAnAttemptTimesOut)
   p.acquisition_timeout_frames = 4;
   ASSERT_TRUE(m.init(p).ok);
   std::uint64_t frame = 0;
-  for (int i = 0; i < 3; ++i) m.step(farFixAt(28.0), ++frame);
+  for (int i = 0; i < 3; ++i) m.step(farAt(28.0), ++frame);
   ASSERT_TRUE(m.acquiringBesideFarRange());
-  ModeInputs unconfirmed = farFixAt(28.0);
+  ModeInputs unconfirmed = farAt(28.0);
   unconfirmed.acquisition_failed = true;
   unconfirmed.acquisition_unconfirmed = true;
   m.step(unconfirmed, ++frame);
   // Approaching 0.25 m a frame: the next attempt waits for half the hand-over distance (14 m).
   double d = 27.0;
   while (!m.acquiringBesideFarRange() && d > 5.0) {
-    m.step(farFixAt(d), ++frame);
+    m.step(farAt(d), ++frame);
     d -= 0.25;
   }
   const double handed_over_at = d + 0.25;
   EXPECT_LT(handed_over_at, 14.0);
   EXPECT_GT(handed_over_at, 13.0);
   // Neither success nor failure within acquisition_timeout_frames: the attempt ends, far range goes on.
-  for (int i = 0; i < 3; ++i) EXPECT_FALSE(m.step(farFixAt(13.0), ++frame));
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(m.step(farAt(13.0), ++frame));
   EXPECT_TRUE(m.acquiringBesideFarRange());
-  EXPECT_FALSE(m.step(farFixAt(13.0), ++frame));
+  EXPECT_FALSE(m.step(farAt(13.0), ++frame));
   EXPECT_FALSE(m.acquiringBesideFarRange());
   EXPECT_EQ(m.mode(), NavMode::kFarRange);
   EXPECT_EQ(m.transitionCount(), 0U);
@@ -108,12 +97,12 @@ TEST(ModeManagerBeside, CommandsEndTheAttempt) {
   ModeManager m;
   ASSERT_TRUE(m.init(besideHandover()).ok);
   std::uint64_t frame = 0;
-  for (int i = 0; i < 3; ++i) m.step(farFixAt(28.0), ++frame);
+  for (int i = 0; i < 3; ++i) m.step(farAt(28.0), ++frame);
   ASSERT_TRUE(m.acquiringBesideFarRange());
   CommandAck ack;
   EXPECT_TRUE(m.command(ModeCommandKind::kForceFarRange, 1, true, ++frame, ack));
   EXPECT_FALSE(m.acquiringBesideFarRange()) << "far range alone, as commanded";
-  for (int i = 0; i < 3; ++i) m.step(farFixAt(28.0), ++frame);
+  for (int i = 0; i < 3; ++i) m.step(farAt(28.0), ++frame);
   ASSERT_TRUE(m.acquiringBesideFarRange());
   EXPECT_TRUE(m.command(ModeCommandKind::kReacquire, 2, true, ++frame, ack));
   EXPECT_EQ(m.mode(), NavMode::kAcquisition);

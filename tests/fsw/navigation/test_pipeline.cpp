@@ -1,5 +1,6 @@
-// The navigation pipeline end to end on rendered frames: far range -> acquisition -> near range without
-// help, ground commands, and no allocation after init in any mode or across any transition.
+// The navigation pipeline end to end on rendered frames: far range -> acquisition (beside far range or in its
+// own mode) -> near range without help, ground commands, and no allocation after init in any mode or across
+// any transition.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,16 @@ namespace visnav::nav {
 namespace {
 
 using test_support::PipelineTest;
+
+// The plate is 2-fold symmetric about its normal: a pose is compared with the nearer twin of the truth.
+void expectNearTheNearerTwin(const Pose& truth, const Pose& pose) {
+  Pose twin = truth;
+  twin.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitZ()).toRotationMatrix();
+  const Vec6 e1 = truth.boxMinus(pose), e2 = twin.boxMinus(pose);
+  const Vec6 err = e1.head<3>().norm() < e2.head<3>().norm() ? e1 : e2;
+  EXPECT_LT(err.tail<3>().norm(), 0.1);
+  EXPECT_LT(err.head<3>().norm() * kDegPerRad, 3.0);
+}
 
 TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
   PipelineParams p = params;
@@ -39,14 +50,7 @@ TEST_F(PipelineTest, AcquiresByItselfAndTracks) {
   // telemetry says so; no lost track chose between them.
   EXPECT_EQ(out.symmetric_twins, 1);
   EXPECT_FALSE(out.twin_by_continuity);
-  // Compare with the nearer twin of the truth.
-  const Pose truth = frames.back().truth;
-  Pose twin = truth;
-  twin.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitZ()).toRotationMatrix();
-  const Vec6 e1 = truth.boxMinus(out.pose), e2 = twin.boxMinus(out.pose);
-  const Vec6 err = e1.head<3>().norm() < e2.head<3>().norm() ? e1 : e2;
-  EXPECT_LT(err.tail<3>().norm(), 0.1);
-  EXPECT_LT(err.head<3>().norm() * kDegPerRad, 3.0);
+  expectNearTheNearerTwin(frames.back().truth, out.pose);
 }
 
 TEST_F(PipelineTest, AcquiresBesideFarRangeWithOneModeChangeAndNoGapInTheFixes) {
@@ -76,13 +80,7 @@ TEST_F(PipelineTest, AcquiresBesideFarRangeWithOneModeChangeAndNoGapInTheFixes) 
   EXPECT_STREQ(pipeline.modes().lastTransition().reason.data(),
                "acquisition beside far range: first pose confirmed");
   ASSERT_TRUE(out.pose_valid);
-  const Pose truth = frames.back().truth;
-  Pose twin = truth;
-  twin.R_c_m = truth.R_c_m * Eigen::AngleAxisd(kPi, Vec3::UnitZ()).toRotationMatrix();
-  const Vec6 e1 = truth.boxMinus(out.pose), e2 = twin.boxMinus(out.pose);
-  const Vec6 err = e1.head<3>().norm() < e2.head<3>().norm() ? e1 : e2;
-  EXPECT_LT(err.tail<3>().norm(), 0.1);
-  EXPECT_LT(err.head<3>().norm() * kDegPerRad, 3.0);
+  expectNearTheNearerTwin(frames.back().truth, out.pose);
 }
 
 TEST_F(PipelineTest, AnAcquisitionsPoseIsValidOnceTheNextNearRangeFitAgrees) {
