@@ -151,7 +151,9 @@ std::string traceFrame(const FrameTraceInputs& in) {
                   pipeline.filter().angularVelocity().norm() * kDegPerRad);
     out += buf;
   }
-  if (f.mode == nav::NavMode::kAcquisition) {
+  // In its own mode, or beside far range (acquire_beside_far_range): the frame's result says it ran.
+  if (f.mode == nav::NavMode::kAcquisition ||
+      pipeline.lastAcquisition().state != acq::AcquisitionState::kIdle) {
     const acq::AcquisitionResult& a = pipeline.lastAcquisition();
     char buf[200];
     std::snprintf(buf, sizeof buf,
