@@ -99,9 +99,9 @@ void Acquisition::start(const FarRangeSolution& cue) {
   }
   start(cue.direction_c, cue.distance_m);
   if (cue.outline) m_min_edge_snr = m_params.outline_cue_min_edge_snr;
-  // Far range's cue is judged at the working scale alone: box-averaged, a limb's soft edge is a step that
-  // passes, and every retry on it costs two mode changes (campaign plate/6: 2 -> 10 with edge_snr_radius_px
-  // 12 on far cues too, smallsat/10 2 -> 8; neither tracked a frame).
+  // Far range's cue is judged at the working scale alone by default (far_cue_edge_snr_radius_px 0):
+  // box-averaged, a limb's soft edge passes too (campaign plate/6, smallsat/10), and a dim cue passed early
+  // fails unconfirmed and delays the retry (stop 85: box/73 41 -> 11 tracked frames).
   m_window.setCoarseSnrFactor(coarseSnrFactor(m_params.far_cue_edge_snr_radius_px));
 }
 

@@ -72,15 +72,6 @@ void visitModeAndGateParams(Visitor& v, Params& p) {
   v.integer({"navigation", "acquisition_timeout_frames", "count", 1, 10000,
              "acquisition returns to far range when it has not succeeded within this many frames"},
             p.acquisition_timeout_frames);
-  v.boolean(
-      {"navigation", "acquire_beside_far_range", "-", 0, 1,
-       "a hand-over starts the acquisition beside far range: far range keeps its mode and its fixes while "
-       "acquisition searches and confirms, and the mode changes once, to near range, when a pose is "
-       "confirmed. A failed acquisition then changes no mode (off: far range -> acquisition -> far range, "
-       "two mode changes per failure). Campaign seeds 1-40 / 41-80 / 81-120: mode changes 101 -> 36, "
-       "146 -> 42, 159 -> 35 (the most on an approach 7, 12, 12 -> 1, 1, 3), tracked +14, +19, +42, 0 "
-       "wrong"},
-      p.acquire_beside_far_range);
   v.integer({"navigation", "fault_persistence_frames", "count", 1, 1000,
              "a near-range fault held for this many consecutive frames falls back to far range"},
             p.fault_persistence_frames);

@@ -299,6 +299,15 @@ void visitReacquisitionParams(Visitor& v, Params& p) {
              "approaches 185 of 341 failed acquisitions ended on their first frame, two mode changes each "
              "(stop 49); false: handed over, and failed there"},
             p.check_cue_before_handover);
+  v.boolean(
+      {"navigation", "acquire_beside_far_range", "-", 0, 1,
+       "a hand-over starts the acquisition beside far range: far range keeps its mode and its fixes while "
+       "acquisition searches and confirms, and the mode changes once, to near range, when a pose is "
+       "confirmed. A failed acquisition then changes no mode (off: far range -> acquisition -> far range, "
+       "two mode changes per failure). Campaign seeds 1-40 / 41-80 / 81-120: mode changes 101 -> 36, "
+       "146 -> 42, 159 -> 35 (the most on an approach 7, 12, 12 -> 1, 1, 3), tracked +14, +19, +42, 0 "
+       "wrong"},
+      p.acquire_beside_far_range);
   v.boolean({"navigation", "far_track_survives_unconfirmed", "-", 0, 1,
              "after an acquisition that failed at far range's cue with edges there (no_candidate, "
              "not_confirmed, ambiguous; not refuted), far range goes on tracking the cluster it handed "
